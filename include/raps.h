@@ -1,0 +1,396 @@
+/*
+ * raps.h - r-adaptive surface parameterization (Zayer, Roessl, Seidel: "r-Adaptive
+ * Parameterization of Surfaces"). The one public header of libraps; it is the documentation.
+ *
+ * What it does
+ *   Given a triangle mesh, compute texture coordinates (UVs) whose distortion is equidistributed
+ *   rather than piled up: first a quasi-conformal map (mean value weights, boundary on a convex
+ *   shape, one sparse solve), then one or more solves with adaptive weights
+ *   W_ij = w_ij * e_ij^alpha built from an error monitor (area, edge length or angle) measured on
+ *   the previous map (paper sections 3-6).
+ *
+ * How to use it (C; every other language binds these same functions)
+ *
+ *   raps_mesh* mesh = NULL;  raps_settings* settings = NULL;  raps_result* result = NULL;
+ *   raps_mesh_create(&mesh);
+ *   raps_mesh_set_positions_f32(mesh, xyz, vertex_count, 0);
+ *   raps_mesh_set_indices_u32(mesh, indices, index_count);
+ *   raps_settings_create(&settings);                          // defaults: mean value + area
+ *   raps_settings_set_int(settings, RAPS_PARAM_MONITOR, RAPS_MONITOR_AREA);
+ *   raps_result_create(&result);
+ *   if (raps_parameterize(mesh, settings, result) != RAPS_OK)
+ *       fprintf(stderr, "raps: %s\n", raps_result_last_error(result));
+ *   raps_result_copy_uvs_f32(result, uvs, raps_result_vertex_count(result), 0);
+ *   raps_result_destroy(result); raps_settings_destroy(settings); raps_mesh_destroy(mesh);
+ *
+ * Conventions that hold for every function below
+ *   - Status: every fallible function returns a raps_status (0 = RAPS_OK). The values of the
+ *     status codes and of every other constant in this header are pinned forever: new values are
+ *     only ever appended. Types that cross the ABI are fixed-width integers, double and pointers;
+ *     the enum-like types are int32_t typedefs (a C enum's size is up to the compiler, and FFI
+ *     code must be able to receive a value added by a later version).
+ *   - Messages: a failing call stores a UTF-8 message naming the problem in the handle it was
+ *     given (for raps_parameterize: in the result handle). Read it with raps_*_last_error(); the
+ *     pointer stays valid until the next call that may fail on that same handle. A successful
+ *     call clears the message to "".
+ *   - Ownership: create/destroy pairs. The caller owns every handle it created and must destroy
+ *     it exactly once; destroy(NULL) is a no-op. The library copies all input arrays it is given
+ *     (the caller may free them on return) and never keeps a caller pointer except the progress
+ *     callback's user pointer. Output is copied into caller-owned buffers (raps_result_copy_*).
+ *   - Threading: there is no global state. Distinct handles may be used from any threads at
+ *     once. Functions taking a const handle only read it: one mesh and one settings handle may be
+ *     shared by any number of concurrent raps_parameterize calls, each with its own result
+ *     handle. A handle must not be passed to a non-const function while any other call uses it.
+ *   - Errors never crash: no function aborts, throws across the ABI or leaves a handle half
+ *     changed. On failure a setter leaves its handle as it was; raps_parameterize leaves the
+ *     result empty (zero counts) with its message set.
+ *   - Units: positions are in any consistent unit (all distortion figures are scale-free); UVs
+ *     are in texture space, [0,1]^2; times are milliseconds of wall clock; angles are degrees.
+ */
+#ifndef RAPS_H
+#define RAPS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* ---------------------------------------------------------------------------------------------
+ * Export and version
+ * ------------------------------------------------------------------------------------------- */
+
+#if defined(RAPS_STATIC)
+#define RAPS_API
+#elif defined(_WIN32)
+#if defined(RAPS_BUILDING_LIBRARY)
+#define RAPS_API __declspec(dllexport)
+#else
+#define RAPS_API __declspec(dllimport)
+#endif
+#else
+#define RAPS_API __attribute__((visibility("default")))
+#endif
+
+#define RAPS_VERSION_MAJOR 0
+#define RAPS_VERSION_MINOR 1
+#define RAPS_VERSION_PATCH 0
+/* MAJOR*10000 + MINOR*100 + PATCH, as a compile-time number to compare with raps_version(). */
+#define RAPS_VERSION ((RAPS_VERSION_MAJOR * 10000) + (RAPS_VERSION_MINOR * 100) + RAPS_VERSION_PATCH)
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The version of the library actually loaded, encoded like RAPS_VERSION. Thread-safe. */
+RAPS_API uint32_t raps_version(void);
+/* "MAJOR.MINOR.PATCH" of the loaded library; a static string, never freed. Thread-safe. */
+RAPS_API const char* raps_version_string(void);
+
+/* ---------------------------------------------------------------------------------------------
+ * Status codes
+ * ------------------------------------------------------------------------------------------- */
+
+typedef int32_t raps_status;
+
+enum {
+    RAPS_OK = 0,
+    /* A NULL pointer where a handle or array is required, an unknown parameter or value, a value
+     * outside its bounds, a stride too small for a vertex, a capacity too small for the output. */
+    RAPS_ERROR_INVALID_ARGUMENT = 1,
+    RAPS_ERROR_OUT_OF_MEMORY = 2,
+    /* The mesh has no vertices or no triangles (or its positions or indices were never set). */
+    RAPS_ERROR_EMPTY_MESH = 3,
+    /* The index count is not a multiple of 3. */
+    RAPS_ERROR_INDEX_COUNT = 4,
+    /* An index is >= the vertex count. */
+    RAPS_ERROR_INDEX_OUT_OF_RANGE = 5,
+    /* A position coordinate is NaN or infinite. */
+    RAPS_ERROR_NON_FINITE_POSITION = 6,
+    /* A triangle names the same vertex twice. */
+    RAPS_ERROR_REPEATED_VERTEX = 7,
+    /* A triangle has (numerically) zero area: below 1e-12 times the mean triangle area. */
+    RAPS_ERROR_ZERO_AREA_TRIANGLE = 8,
+    /* An edge is shared by more than two triangles. */
+    RAPS_ERROR_NON_MANIFOLD_EDGE = 9,
+    /* The triangles around a vertex form more than one fan (e.g. two cones touching at a tip). */
+    RAPS_ERROR_NON_MANIFOLD_VERTEX = 10,
+    /* Two triangles traverse their shared edge in the same direction (inconsistent winding). */
+    RAPS_ERROR_INCONSISTENT_ORIENTATION = 11,
+    /* A vertex is used by no triangle. */
+    RAPS_ERROR_ISOLATED_VERTEX = 12,
+    /* The mesh falls apart into several edge-connected pieces. */
+    RAPS_ERROR_MULTIPLE_COMPONENTS = 13,
+    /* Disk domain: the mesh is closed (no boundary loop). */
+    RAPS_ERROR_NO_BOUNDARY = 14,
+    /* Disk domain: the mesh has more than one boundary loop (holes). */
+    RAPS_ERROR_MULTIPLE_BOUNDARIES = 15,
+    /* The mesh has handles (genus > 0): one boundary loop but not a topological disk. */
+    RAPS_ERROR_NONZERO_GENUS = 16,
+    /* The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
+     * more vertices than uint16 indices can address (65536), or more triangles than
+     * RAPS_PARAM_MAX_TRIANGLES allows. */
+    RAPS_ERROR_TOO_LARGE = 17,
+    /* The progress callback returned 0. Nothing was produced; the handles stay usable. */
+    RAPS_ERROR_CANCELLED = 18,
+    /* The sparse solver failed (a singular system, e.g. from negative cotangent weights). */
+    RAPS_ERROR_SOLVER_FAILED = 19,
+    /* A call that is not allowed in the handle's current state (e.g. reading a result that holds
+     * no map). */
+    RAPS_ERROR_INVALID_OPERATION = 20,
+    /* A bug in raps. Please report it with the message. */
+    RAPS_ERROR_INTERNAL = 21
+};
+
+/* A short static description of a status ("invalid argument", ...); "unknown status" for values
+ * this version does not know. Never NULL. Thread-safe. */
+RAPS_API const char* raps_status_string(raps_status status);
+
+/* ---------------------------------------------------------------------------------------------
+ * Mesh: the input. Positions and triangle indices, copied into the handle.
+ * ------------------------------------------------------------------------------------------- */
+
+typedef struct raps_mesh raps_mesh;
+
+/* Creates an empty mesh. *out_mesh receives the handle (NULL on failure).
+ * Errors: INVALID_ARGUMENT (out_mesh NULL), OUT_OF_MEMORY. */
+RAPS_API raps_status raps_mesh_create(raps_mesh** out_mesh);
+/* Destroys a mesh; NULL is a no-op. The mesh must not be in use by another call. */
+RAPS_API void raps_mesh_destroy(raps_mesh* mesh);
+
+/* Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
+ * the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
+ * 24 for f64). The data is copied; the pointer need not be aligned.
+ * Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+ * EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count >= 2^31),
+ * NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY. */
+RAPS_API raps_status raps_mesh_set_positions_f32(raps_mesh* mesh, const float* xyz,
+                                                 size_t vertex_count, size_t stride_bytes);
+RAPS_API raps_status raps_mesh_set_positions_f64(raps_mesh* mesh, const double* xyz,
+                                                 size_t vertex_count, size_t stride_bytes);
+
+/* Sets (replaces) the triangle list: index_count indices, three per triangle, counter-clockwise
+ * seen from the front. The data is copied. Index ranges are checked against the positions when
+ * the mesh is used, so positions and indices may be set in either order.
+ * Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
+ * multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY. */
+RAPS_API raps_status raps_mesh_set_indices_u16(raps_mesh* mesh, const uint16_t* indices,
+                                               size_t index_count);
+RAPS_API raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* indices,
+                                               size_t index_count);
+
+/* Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers. */
+RAPS_API size_t raps_mesh_vertex_count(const raps_mesh* mesh);
+RAPS_API size_t raps_mesh_triangle_count(const raps_mesh* mesh);
+
+/* The message of the last failed setter on this mesh, "" after a success; never NULL (a static
+ * message for a NULL mesh). Valid until the next setter call on this mesh. */
+RAPS_API const char* raps_mesh_last_error(const raps_mesh* mesh);
+
+/* ---------------------------------------------------------------------------------------------
+ * Settings: key/value parameters with defaults, so that new parameters never break the ABI.
+ * ------------------------------------------------------------------------------------------- */
+
+typedef struct raps_settings raps_settings;
+typedef int32_t raps_param;
+
+enum {
+    /* int. The parameter domain. Default RAPS_DOMAIN_DISK. */
+    RAPS_PARAM_DOMAIN = 1,
+    /* int. Base (quasi-conformal) weights w_ij of the Laplace system. Default MEAN_VALUE. */
+    RAPS_PARAM_WEIGHTS = 2,
+    /* int. Error monitor e_ij of the adaptive step; NONE returns the initial map. Default AREA. */
+    RAPS_PARAM_MONITOR = 3,
+    /* float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 16]. Default 1. */
+    RAPS_PARAM_ALPHA = 4,
+    /* int. Number of adaptive solves, 1..100 (the paper: 1). Ignored with monitor NONE.
+     * Default 1. */
+    RAPS_PARAM_ITERATIONS = 5,
+    /* int. How iterations combine, see RAPS_ITERATION_*. Default ACCUMULATE. */
+    RAPS_PARAM_ITERATION_MODE = 6,
+    /* int. Convex shape the boundary is fixed to. Default RAPS_BOUNDARY_CIRCLE. */
+    RAPS_PARAM_BOUNDARY = 7,
+    /* int. Largest triangle count accepted, 1..2^31-1; larger meshes get RAPS_ERROR_TOO_LARGE
+     * before any work is done. Default 2^31-1. */
+    RAPS_PARAM_MAX_TRIANGLES = 8
+};
+
+/* RAPS_PARAM_DOMAIN values */
+enum {
+    /* A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
+     * boundary on the convex shape of RAPS_PARAM_BOUNDARY. One output vertex per input vertex. */
+    RAPS_DOMAIN_DISK = 0
+};
+
+/* RAPS_PARAM_WEIGHTS values */
+enum {
+    /* Floater's mean value weights (paper section 5): positive, so the map never folds. */
+    RAPS_WEIGHTS_MEAN_VALUE = 0,
+    /* Discrete harmonic (cotangent) weights; negative on obtuse triangles, so the map may fold
+     * (the count of negative weights is in raps_stats.negative_weights). */
+    RAPS_WEIGHTS_COTANGENT = 1,
+    /* Tutte's uniform weights: all 1. */
+    RAPS_WEIGHTS_UNIFORM = 2
+};
+
+/* RAPS_PARAM_MONITOR values (paper section 6) */
+enum {
+    RAPS_MONITOR_NONE = 0,        /* no adaptive step: the initial quasi-conformal map */
+    RAPS_MONITOR_AREA = 1,        /* 6.1: uv area / 3D area, averaged over the edge's triangles */
+    RAPS_MONITOR_EDGE_LENGTH = 2, /* 6.2: uv length / 3D length of the edge */
+    RAPS_MONITOR_ANGLE = 3        /* 6.3: uv angle / 3D angle at the edge's first vertex */
+};
+
+/* RAPS_PARAM_ITERATION_MODE values: with K > 1 adaptive solves, the weights of solve k are */
+enum {
+    /* the weights of solve k-1 times e^alpha measured on map k-1: a fixed-point iteration of the
+     * equidistribution that keeps lowering the monitor's spread (measured: see README). */
+    RAPS_ITERATION_ACCUMULATE = 0,
+    /* the base weights times e^alpha measured on map k-1 (each step forgets the previous ones). */
+    RAPS_ITERATION_REAPPLY = 1
+};
+
+/* RAPS_PARAM_BOUNDARY values */
+enum {
+    /* The circle of radius 0.5 centred at (0.5, 0.5), by chord length. */
+    RAPS_BOUNDARY_CIRCLE = 0,
+    /* The unit square's sides, by chord length, its corners at the boundary vertices nearest to
+     * each quarter of the boundary's length. Triangles with all three vertices on one side have
+     * zero uv area (counted in raps_stats.zero_area_triangles). */
+    RAPS_BOUNDARY_SQUARE = 1
+};
+
+/* Creates settings holding the defaults above. Errors: INVALID_ARGUMENT, OUT_OF_MEMORY. */
+RAPS_API raps_status raps_settings_create(raps_settings** out_settings);
+/* Creates an independent copy of settings (including its progress callback).
+ * Errors: INVALID_ARGUMENT, OUT_OF_MEMORY. */
+RAPS_API raps_status raps_settings_clone(const raps_settings* settings,
+                                         raps_settings** out_settings);
+/* Destroys settings; NULL is a no-op. */
+RAPS_API void raps_settings_destroy(raps_settings* settings);
+
+/* Set an int or float parameter. An int parameter is only set through _int and a float one only
+ * through _float. Errors: INVALID_ARGUMENT (NULL settings, unknown parameter, wrong type, value
+ * out of bounds or not one of the parameter's values; the settings stay unchanged). */
+RAPS_API raps_status raps_settings_set_int(raps_settings* settings, raps_param param,
+                                           int64_t value);
+RAPS_API raps_status raps_settings_set_float(raps_settings* settings, raps_param param,
+                                             double value);
+/* Read a parameter. Errors: INVALID_ARGUMENT (NULL pointer, unknown parameter, wrong type). */
+RAPS_API raps_status raps_settings_get_int(const raps_settings* settings, raps_param param,
+                                           int64_t* out_value);
+RAPS_API raps_status raps_settings_get_float(const raps_settings* settings, raps_param param,
+                                             double* out_value);
+
+/* Facts about a parameter, without a settings handle: its name ("alpha", ...), whether it is a
+ * float (1) or an int (0), its inclusive bounds and its default. Any out pointer may be NULL.
+ * Errors: INVALID_ARGUMENT (unknown parameter). Thread-safe. */
+RAPS_API raps_status raps_param_info(raps_param param, const char** out_name,
+                                     int32_t* out_is_float, double* out_min, double* out_max,
+                                     double* out_default);
+
+/* Progress phases, reported to the progress callback and timed in raps_result_phase_ms. */
+typedef int32_t raps_phase;
+enum {
+    RAPS_PHASE_VALIDATE = 0,    /* checking the input */
+    RAPS_PHASE_TOPOLOGY = 1,    /* edges, boundary loop, system pattern and ordering */
+    RAPS_PHASE_INITIAL_MAP = 2, /* boundary, base weights, first solve (paper sections 3, 5) */
+    RAPS_PHASE_ADAPT = 3,       /* monitors and adaptive solves (section 6) */
+    RAPS_PHASE_METRICS = 4,     /* distortion statistics */
+    RAPS_PHASE_COUNT = 5        /* number of phases in this version */
+};
+
+/* Progress callback: called with the phase and the fraction of it done, in [0, 1], at least at
+ * the start and end of every phase and about every 1% of the long ones. Return nonzero to go on,
+ * 0 to cancel: the run then stops soon and returns RAPS_ERROR_CANCELLED. It is called on the
+ * thread that called raps_parameterize; calls for one run never overlap. When one settings
+ * handle is shared by concurrent runs, the callback receives calls from each of them. */
+typedef int32_t (*raps_progress_fn)(void* user, raps_phase phase, double fraction);
+
+/* Sets the progress callback (NULL: none) and the pointer passed to it. Errors: INVALID_ARGUMENT
+ * (NULL settings). */
+RAPS_API raps_status raps_settings_set_progress(raps_settings* settings, raps_progress_fn fn,
+                                                void* user);
+
+/* The message of the last failed setter on these settings, "" after a success; never NULL. */
+RAPS_API const char* raps_settings_last_error(const raps_settings* settings);
+
+/* ---------------------------------------------------------------------------------------------
+ * Result: the map and its statistics
+ * ------------------------------------------------------------------------------------------- */
+
+typedef struct raps_result raps_result;
+
+/* Creates an empty result, to be filled (and refilled) by raps_parameterize.
+ * Errors: INVALID_ARGUMENT, OUT_OF_MEMORY. */
+RAPS_API raps_status raps_result_create(raps_result** out_result);
+/* Destroys a result; NULL is a no-op. */
+RAPS_API void raps_result_destroy(raps_result* result);
+
+/* Parameterizes mesh with settings (NULL: the defaults) into result, replacing what it held.
+ * mesh and settings are only read (see Threading). Runs on the calling thread.
+ * On success result holds the output vertices (UVs and the input vertex each comes from), the
+ * output triangles and the statistics. On failure it holds nothing and its message names the
+ * problem (for mesh problems: the first offending triangle, vertex or edge).
+ * Errors: INVALID_ARGUMENT (mesh or result NULL), EMPTY_MESH, INDEX_OUT_OF_RANGE, TOO_LARGE,
+ * REPEATED_VERTEX, ZERO_AREA_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX,
+ * INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
+ * MULTIPLE_BOUNDARIES, NONZERO_GENUS, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY, INTERNAL. */
+RAPS_API raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
+                                       raps_result* result);
+
+/* The message of the last failed call on this result, "" after a success; never NULL. */
+RAPS_API const char* raps_result_last_error(const raps_result* result);
+
+/* Output sizes; 0 for NULL or an empty result. For RAPS_DOMAIN_DISK the output vertices are the
+ * input vertices, in input order, and the output triangles are the input triangles. */
+RAPS_API size_t raps_result_vertex_count(const raps_result* result);
+RAPS_API size_t raps_result_index_count(const raps_result* result);
+
+/* Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
+ * i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
+ * be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
+ * INVALID_OPERATION (the result holds no map). */
+RAPS_API raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst,
+                                              size_t capacity, size_t stride_bytes);
+RAPS_API raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst,
+                                              size_t capacity, size_t stride_bytes);
+/* Copy the output triangles (indices into the output vertices), capacity >= index_count. */
+RAPS_API raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,
+                                                  size_t capacity);
+/* Copy, per output vertex, the input vertex it comes from; capacity >= vertex_count. */
+RAPS_API raps_status raps_result_copy_vertex_remap(const raps_result* result, uint32_t* dst,
+                                                   size_t capacity);
+
+/* Distortion statistics of a result. Definitions (r_t, the per-triangle area ratio, is
+ * (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area):
+ * Caller sets struct_size = sizeof(raps_stats) before the call; the library fills only the
+ * fields that fit in struct_size, so a caller built against an older, shorter raps_stats keeps
+ * working. Fields are only ever appended. */
+typedef struct raps_stats {
+    uint32_t struct_size;
+    uint32_t reserved;
+    uint64_t vertex_count;        /* output vertices */
+    uint64_t triangle_count;      /* output triangles */
+    uint64_t flipped_triangles;   /* uv triangles with the wrong (clockwise) orientation */
+    uint64_t zero_area_triangles; /* |uv area| < 1e-14 * mean |uv area| */
+    uint64_t negative_weights;    /* directed edges of the Laplace system with w_ij < 0 */
+    uint64_t adaptive_solves;     /* adaptive solves done (0 with RAPS_MONITOR_NONE) */
+    double area_log_mean;         /* weighted mean of |log r_t|; 0 for an area-preserving map */
+    double area_max;              /* max over triangles of max(r_t, 1/r_t); 1 is ideal */
+    double angle_mean_deg;        /* mean over corners of |uv angle - 3D angle|, degrees */
+    double angle_max_deg;         /* max of the same */
+    double stretch_l2;            /* Sander et al. 2001 L2 stretch, uv scaled to the 3D area */
+    double stretch_linf;          /* Sander's Linf stretch (largest singular value); isometry 1 */
+} raps_stats;
+
+/* Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size < 8),
+ * INVALID_OPERATION (the result holds no map). */
+RAPS_API raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats);
+
+/* Wall-clock milliseconds the run that filled this result spent in a phase (RAPS_PHASE_*); 0 for
+ * a phase it did not enter, for an empty result, for NULL or for an unknown phase. */
+RAPS_API double raps_result_phase_ms(const raps_result* result, raps_phase phase);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* RAPS_H */

@@ -1,0 +1,257 @@
+#include "mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace raps_samples {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    const size_t dot = path.find_last_of('.');
+    const size_t slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot + 1);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+std::string read_all(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot open (" + std::strerror(errno) + ")");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw std::runtime_error(path + ": read error");
+    return buffer.str();
+}
+
+// A cursor over one line of text.
+struct Tokens {
+    const char* p;
+    const char* end;
+    bool next(std::string_view& token) {
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+        if (p >= end) return false;
+        const char* start = p;
+        while (p < end && *p != ' ' && *p != '\t' && *p != '\r') ++p;
+        token = std::string_view(start, static_cast<size_t>(p - start));
+        return true;
+    }
+};
+
+[[noreturn]] void fail(const std::string& path, size_t line, const std::string& what) {
+    throw std::runtime_error(path + ":" + std::to_string(line) + ": " + what);
+}
+
+double parse_double(std::string_view token, const std::string& path, size_t line) {
+    double value = 0;
+    const char* first = token.data();
+    if (!token.empty() && token[0] == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
+    if (ec != std::errc() || ptr != token.data() + token.size()) {
+        fail(path, line, "cannot read number '" + std::string(token) + "'");
+    }
+    return value;
+}
+
+long long parse_integer(std::string_view token, const std::string& path, size_t line) {
+    long long value = 0;
+    const char* first = token.data();
+    if (!token.empty() && token[0] == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
+    if (ec != std::errc() || ptr != token.data() + token.size()) {
+        fail(path, line, "cannot read index '" + std::string(token) + "'");
+    }
+    return value;
+}
+
+PolygonMesh read_obj(const std::string& path, const std::string& text) {
+    PolygonMesh mesh;
+    mesh.polygon_offsets.push_back(0);
+    size_t line_number = 0;
+    const char* p = text.data();
+    const char* end = p + text.size();
+    while (p < end) {
+        const char* line_end = static_cast<const char*>(std::memchr(p, '\n', end - p));
+        if (!line_end) line_end = end;
+        ++line_number;
+        Tokens tokens{p, line_end};
+        p = line_end + 1;
+        std::string_view keyword;
+        if (!tokens.next(keyword)) continue;
+        if (keyword == "v") {
+            std::string_view coordinate;
+            for (int c = 0; c < 3; ++c) {
+                if (!tokens.next(coordinate)) fail(path, line_number, "vertex with fewer than 3 coordinates");
+                mesh.positions.push_back(parse_double(coordinate, path, line_number));
+            }
+        } else if (keyword == "f") {
+            std::string_view corner;
+            size_t corners = 0;
+            while (tokens.next(corner)) {
+                const std::string_view vertex = corner.substr(0, corner.find('/'));
+                const long long index = parse_integer(vertex, path, line_number);
+                const long long resolved =
+                    index > 0 ? index - 1 : static_cast<long long>(mesh.vertex_count()) + index;
+                if (index == 0 || resolved < 0 || resolved > 0xffffffffLL) {
+                    fail(path, line_number, "vertex index " + std::to_string(index) + " is invalid");
+                }
+                mesh.corners.push_back(static_cast<uint32_t>(resolved));
+                ++corners;
+            }
+            if (corners < 3) fail(path, line_number, "face with fewer than 3 vertices");
+            mesh.polygon_offsets.push_back(static_cast<uint32_t>(mesh.corners.size()));
+        }
+        // vt, vn, o, g, s, usemtl, mtllib, l, p and comments carry nothing raps uses.
+    }
+    return mesh;
+}
+
+PolygonMesh read_off(const std::string& path, const std::string& text) {
+    // OFF: a header line "OFF" (optionally followed by the counts), then "V F E", then V points
+    // and F faces "k i0 .. ik-1" (possibly followed by a colour). '#' starts a comment.
+    std::vector<std::pair<std::string_view, size_t>> tokens;
+    size_t line_number = 0;
+    const char* p = text.data();
+    const char* end = p + text.size();
+    while (p < end) {
+        const char* line_end = static_cast<const char*>(std::memchr(p, '\n', end - p));
+        if (!line_end) line_end = end;
+        ++line_number;
+        const char* hash = static_cast<const char*>(std::memchr(p, '#', line_end - p));
+        Tokens line{p, hash ? hash : line_end};
+        p = line_end + 1;
+        std::string_view token;
+        while (line.next(token)) tokens.emplace_back(token, line_number);
+    }
+    size_t at = 0;
+    auto next = [&](const char* what) -> std::pair<std::string_view, size_t> {
+        if (at >= tokens.size()) fail(path, line_number, std::string("file ends before ") + what);
+        return tokens[at++];
+    };
+    const auto header = next("the OFF header");
+    if (header.first != "OFF") fail(path, header.second, "does not start with OFF");
+    auto count = [&](const char* what) {
+        const auto token = next(what);
+        const long long value = parse_integer(token.first, path, token.second);
+        if (value < 0) fail(path, token.second, std::string("negative ") + what);
+        return static_cast<size_t>(value);
+    };
+    const size_t vertex_count = count("the vertex count");
+    const size_t face_count = count("the face count");
+    count("the edge count");
+    PolygonMesh mesh;
+    mesh.positions.reserve(3 * std::min<size_t>(vertex_count, tokens.size()));
+    for (size_t i = 0; i < 3 * vertex_count; ++i) {
+        const auto token = next("all vertices are read");
+        mesh.positions.push_back(parse_double(token.first, path, token.second));
+    }
+    mesh.polygon_offsets.push_back(0);
+    for (size_t f = 0; f < face_count; ++f) {
+        const auto size_token = next("all faces are read");
+        const long long corners = parse_integer(size_token.first, path, size_token.second);
+        if (corners < 3) fail(path, size_token.second, "face with fewer than 3 vertices");
+        const size_t face_line = size_token.second;
+        for (long long c = 0; c < corners; ++c) {
+            const auto token = next("all faces are read");
+            if (token.second != face_line) fail(path, face_line, "face line ends early");
+            const long long index = parse_integer(token.first, path, token.second);
+            if (index < 0 || index > 0xffffffffLL) fail(path, token.second, "invalid vertex index");
+            mesh.corners.push_back(static_cast<uint32_t>(index));
+        }
+        mesh.polygon_offsets.push_back(static_cast<uint32_t>(mesh.corners.size()));
+        while (at < tokens.size() && tokens[at].second == face_line) ++at;  // colour
+    }
+    return mesh;
+}
+
+void append_number(std::string& out, double value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    out.append(buffer, result.ptr);
+}
+
+}  // namespace
+
+std::vector<uint32_t> PolygonMesh::triangles() const {
+    std::vector<uint32_t> out;
+    out.reserve(3 * (corners.size() - 2 * polygon_count()));
+    for (size_t f = 0; f < polygon_count(); ++f) {
+        for (uint32_t c = polygon_offsets[f] + 1; c + 1 < polygon_offsets[f + 1]; ++c) {
+            out.push_back(corners[polygon_offsets[f]]);
+            out.push_back(corners[c]);
+            out.push_back(corners[c + 1]);
+        }
+    }
+    return out;
+}
+
+PolygonMesh read_mesh(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext != "obj" && ext != "off") {
+        throw std::runtime_error(path + ": unknown mesh format (expected .obj or .off)");
+    }
+    const std::string text = read_all(path);
+    return ext == "obj" ? read_obj(path, text) : read_off(path, text);
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+    const std::string temporary = path + ".tmp." + std::to_string(getpid());
+    FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file) {
+        throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
+    }
+    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+    const bool flushed = std::fflush(file) == 0 && fsync(fileno(file)) == 0;
+    const bool closed = std::fclose(file) == 0;
+    if (!written || !flushed || !closed || std::rename(temporary.c_str(), path.c_str()) != 0) {
+        const std::string reason = std::strerror(errno);
+        std::remove(temporary.c_str());
+        throw std::runtime_error(path + ": cannot write (" + reason + ")");
+    }
+}
+
+void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,
+               const std::vector<uint32_t>& uv_corners, const std::string& header_comment) {
+    std::string out;
+    out.reserve(64 * (mesh.vertex_count() + uvs.size() / 2) + 24 * mesh.corners.size());
+    out += "# " + header_comment + "\n";
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        out += "v ";
+        append_number(out, mesh.positions[3 * v]);
+        out += ' ';
+        append_number(out, mesh.positions[3 * v + 1]);
+        out += ' ';
+        append_number(out, mesh.positions[3 * v + 2]);
+        out += '\n';
+    }
+    for (size_t t = 0; t < uvs.size() / 2; ++t) {
+        out += "vt ";
+        append_number(out, uvs[2 * t]);
+        out += ' ';
+        append_number(out, uvs[2 * t + 1]);
+        out += '\n';
+    }
+    for (size_t f = 0; f < mesh.polygon_count(); ++f) {
+        out += 'f';
+        for (uint32_t c = mesh.polygon_offsets[f]; c < mesh.polygon_offsets[f + 1]; ++c) {
+            out += ' ';
+            out += std::to_string(mesh.corners[c] + 1);
+            out += '/';
+            out += std::to_string(uv_corners[c] + 1);
+        }
+        out += '\n';
+    }
+    write_file_atomically(path, out);
+}
+
+}  // namespace raps_samples

@@ -1,0 +1,38 @@
+// Reading OBJ and OFF meshes and writing OBJ with texture coordinates, for the command-line
+// samples, the benchmarks and the tests. Not part of the library: raps itself never touches
+// files. Polygons are kept as they are for writing back and fan-triangulated for the library.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace raps_samples {
+
+struct PolygonMesh {
+    std::vector<double> positions;         // x, y, z per vertex
+    std::vector<uint32_t> polygon_offsets;  // polygon p: corners [offsets[p], offsets[p + 1])
+    std::vector<uint32_t> corners;          // vertex index per polygon corner
+
+    size_t vertex_count() const { return positions.size() / 3; }
+    size_t polygon_count() const { return polygon_offsets.size() - 1; }
+    // Triangle indices, polygons fanned from their first corner, in polygon order.
+    std::vector<uint32_t> triangles() const;
+};
+
+// Reads .obj or .off (chosen by extension, case-insensitive). Throws std::runtime_error with the
+// file, line and problem on anything it cannot read (a malformed number, an index 0 or one that
+// resolves below 1, a face with fewer than 3 corners, a truncated OFF).
+PolygonMesh read_mesh(const std::string& path);
+
+// Writes OBJ: `v` for every vertex, `vt` for every uv pair, and each polygon as
+// `f v/vt ...` with uv_corners[i] the vt index of corner i (0-based). Written to a temporary
+// file in the same folder and renamed, so `path` never holds a partial file. Throws
+// std::runtime_error on failure.
+void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,
+               const std::vector<uint32_t>& uv_corners, const std::string& header_comment);
+
+// Writes `text` to `path` through a temporary file and a rename.
+void write_file_atomically(const std::string& path, const std::string& text);
+
+}  // namespace raps_samples

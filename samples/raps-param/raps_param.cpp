@@ -1,0 +1,293 @@
+// raps-param: parameterize a mesh file through the raps C API and write it back with UVs.
+//
+//   raps-param IN.(obj|off) -o OUT.obj [options]
+//
+// Prints one JSON object on stdout (statistics, settings, per-phase times); see --help. This
+// tool is a contract other tools and tests drive: keep its name, flags and OBJ-in/OBJ-out
+// behaviour stable.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh_io.h"
+#include "raps.h"
+
+namespace {
+
+const char* kUsage = R"(usage: raps-param IN.(obj|off) -o OUT.obj [options]
+
+Computes texture coordinates for a disk-like triangle or polygon mesh with r-adaptive
+parameterization (Zayer, Roessl, Seidel) and writes OUT.obj with the input's vertices and faces
+in their original order plus one `vt` per vertex (`f v/vt ...`). Prints one JSON object on
+stdout: input and output sizes, the settings used, the distortion statistics and the time of
+each phase in milliseconds. On failure it prints {"error": {...}} on stdout, a message on
+stderr, writes nothing, and exits with 1 (2 for a usage error).
+
+options:
+  -o, --output FILE          where to write the OBJ (required)
+  --weights mvc|cotan|uniform
+                             base weights of the Laplace system (default mvc: mean value)
+  --monitor none|area|length|angle
+                             error monitor of the adaptive step (default area); none keeps the
+                             initial quasi-conformal map
+  --alpha A                  exponent of W = w * e^alpha, A > 0 (default 1)
+  --iterations K             adaptive solves, 1..100 (default 1)
+  --iteration-mode accumulate|reapply
+                             how solves combine for K > 1 (default accumulate)
+  --boundary circle|square   convex shape the boundary is fixed to (default circle)
+  --max-triangles N          refuse meshes with more triangles (default 2^31 - 1)
+  -h, --help                 this text
+  --version                  the raps library version
+)";
+
+struct Choice {
+    const char* name;
+    int64_t value;
+};
+
+const std::map<std::string, std::vector<Choice>> kChoices = {
+    {"--weights",
+     {{"mvc", RAPS_WEIGHTS_MEAN_VALUE}, {"cotan", RAPS_WEIGHTS_COTANGENT},
+      {"uniform", RAPS_WEIGHTS_UNIFORM}}},
+    {"--monitor",
+     {{"none", RAPS_MONITOR_NONE}, {"area", RAPS_MONITOR_AREA},
+      {"length", RAPS_MONITOR_EDGE_LENGTH}, {"angle", RAPS_MONITOR_ANGLE}}},
+    {"--iteration-mode",
+     {{"accumulate", RAPS_ITERATION_ACCUMULATE}, {"reapply", RAPS_ITERATION_REAPPLY}}},
+    {"--boundary", {{"circle", RAPS_BOUNDARY_CIRCLE}, {"square", RAPS_BOUNDARY_SQUARE}}},
+};
+
+const std::map<std::string, raps_param> kChoiceParams = {
+    {"--weights", RAPS_PARAM_WEIGHTS},
+    {"--monitor", RAPS_PARAM_MONITOR},
+    {"--iteration-mode", RAPS_PARAM_ITERATION_MODE},
+    {"--boundary", RAPS_PARAM_BOUNDARY},
+};
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::string json_string(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\t': out += "\\t"; break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20) {
+                    char buffer[8];
+                    std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+                    out += buffer;
+                } else {
+                    out += c;
+                }
+        }
+    }
+    return out + "\"";
+}
+
+// JSON has no infinity or NaN: those become null, as in the project's reference metrics tool.
+std::string json_number(double value) {
+    if (!std::isfinite(value)) return "null";
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.10g", value);
+    return buffer;
+}
+
+const char* choice_name(const std::string& flag, int64_t value) {
+    for (const Choice& c : kChoices.at(flag)) {
+        if (c.value == value) return c.name;
+    }
+    return "?";
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+        .count();
+}
+
+struct Handles {
+    raps_mesh* mesh = nullptr;
+    raps_settings* settings = nullptr;
+    raps_result* result = nullptr;
+    ~Handles() {
+        raps_result_destroy(result);
+        raps_settings_destroy(settings);
+        raps_mesh_destroy(mesh);
+    }
+};
+
+struct Failure : std::runtime_error {
+    Failure(raps_status s, const std::string& message) : std::runtime_error(message), status(s) {}
+    raps_status status;
+};
+
+void check(raps_status status, const char* message) {
+    if (status != RAPS_OK) throw Failure(status, message);
+}
+
+int run(int argc, char** argv) {
+    std::string input, output;
+    Handles h;
+    check(raps_settings_create(&h.settings), "cannot create settings");
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+            return argv[++i];
+        };
+        if (arg == "-h" || arg == "--help") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (arg == "--version") {
+            std::printf("raps-param (raps %s)\n", raps_version_string());
+            return 0;
+        } else if (arg == "-o" || arg == "--output") {
+            output = value();
+        } else if (kChoices.count(arg)) {
+            const std::string name = value();
+            bool found = false;
+            for (const Choice& c : kChoices.at(arg)) {
+                if (name == c.name) {
+                    check(raps_settings_set_int(h.settings, kChoiceParams.at(arg), c.value),
+                          raps_settings_last_error(h.settings));
+                    found = true;
+                }
+            }
+            if (!found) throw UsageError("unknown value '" + name + "' for " + arg);
+        } else if (arg == "--alpha" || arg == "--iterations" || arg == "--max-triangles") {
+            const std::string text = value();
+            char* end = nullptr;
+            errno = 0;
+            const double number = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || errno != 0) {
+                throw UsageError(arg + " needs a number, not '" + text + "'");
+            }
+            raps_status status;
+            if (arg == "--alpha") {
+                status = raps_settings_set_float(h.settings, RAPS_PARAM_ALPHA, number);
+            } else {
+                if (number != std::floor(number) || std::abs(number) > 9e18) {
+                    throw UsageError(arg + " needs a whole number, not '" + text + "'");
+                }
+                status = raps_settings_set_int(
+                    h.settings, arg == "--iterations" ? RAPS_PARAM_ITERATIONS : RAPS_PARAM_MAX_TRIANGLES,
+                    static_cast<int64_t>(number));
+            }
+            if (status != RAPS_OK) throw UsageError(raps_settings_last_error(h.settings));
+        } else if (!arg.empty() && arg[0] == '-') {
+            throw UsageError("unknown option " + arg);
+        } else if (input.empty()) {
+            input = arg;
+        } else {
+            throw UsageError("more than one input file (" + input + ", " + arg + ")");
+        }
+    }
+    if (input.empty()) throw UsageError("no input file");
+    if (output.empty()) throw UsageError("no output file (-o OUT.obj)");
+
+    const auto read_start = std::chrono::steady_clock::now();
+    const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(input);
+    const std::vector<uint32_t> triangles = polygons.triangles();
+    const double read_ms = elapsed_ms(read_start);
+
+    check(raps_mesh_create(&h.mesh), "cannot create a mesh");
+    if (polygons.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, input + ": no vertices");
+    if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, input + ": no faces");
+    check(raps_mesh_set_positions_f64(h.mesh, polygons.positions.data(), polygons.vertex_count(), 0),
+          raps_mesh_last_error(h.mesh));
+    check(raps_mesh_set_indices_u32(h.mesh, triangles.data(), triangles.size()),
+          raps_mesh_last_error(h.mesh));
+    check(raps_result_create(&h.result), "cannot create a result");
+    check(raps_parameterize(h.mesh, h.settings, h.result), raps_result_last_error(h.result));
+
+    std::vector<double> uvs(2 * raps_result_vertex_count(h.result));
+    check(raps_result_copy_uvs_f64(h.result, uvs.data(), uvs.size() / 2, 0), "cannot copy uvs");
+    const auto write_start = std::chrono::steady_clock::now();
+    raps_samples::write_obj(output, polygons, uvs, polygons.corners,
+                            std::string("raps-param ") + raps_version_string() + " from " + input);
+    const double write_ms = elapsed_ms(write_start);
+
+    raps_stats stats;
+    stats.struct_size = sizeof(stats);
+    check(raps_result_get_stats(h.result, &stats), "cannot read statistics");
+    int64_t weights, monitor, iterations, mode, boundary, max_triangles;
+    double alpha;
+    raps_settings_get_int(h.settings, RAPS_PARAM_WEIGHTS, &weights);
+    raps_settings_get_int(h.settings, RAPS_PARAM_MONITOR, &monitor);
+    raps_settings_get_int(h.settings, RAPS_PARAM_ITERATIONS, &iterations);
+    raps_settings_get_int(h.settings, RAPS_PARAM_ITERATION_MODE, &mode);
+    raps_settings_get_int(h.settings, RAPS_PARAM_BOUNDARY, &boundary);
+    raps_settings_get_int(h.settings, RAPS_PARAM_MAX_TRIANGLES, &max_triangles);
+    raps_settings_get_float(h.settings, RAPS_PARAM_ALPHA, &alpha);
+
+    static const char* kPhaseNames[RAPS_PHASE_COUNT] = {"validate", "topology", "initial_map",
+                                                        "adapt", "metrics"};
+    std::string json = "{";
+    json += "\"input\": " + json_string(input) + ", \"output\": " + json_string(output);
+    json += ", \"vertices\": " + std::to_string(stats.vertex_count);
+    json += ", \"triangles\": " + std::to_string(stats.triangle_count);
+    json += ", \"polygons\": " + std::to_string(polygons.polygon_count());
+    json += ", \"settings\": {\"domain\": \"disk\", \"weights\": \"" +
+            std::string(choice_name("--weights", weights)) + "\", \"monitor\": \"" +
+            choice_name("--monitor", monitor) + "\", \"alpha\": " + json_number(alpha) +
+            ", \"iterations\": " + std::to_string(iterations) + ", \"iteration_mode\": \"" +
+            choice_name("--iteration-mode", mode) + "\", \"boundary\": \"" +
+            choice_name("--boundary", boundary) + "\", \"max_triangles\": " +
+            std::to_string(max_triangles) + "}";
+    json += ", \"stats\": {\"flipped_triangles\": " + std::to_string(stats.flipped_triangles) +
+            ", \"zero_area_triangles\": " + std::to_string(stats.zero_area_triangles) +
+            ", \"negative_weights\": " + std::to_string(stats.negative_weights) +
+            ", \"adaptive_solves\": " + std::to_string(stats.adaptive_solves) +
+            ", \"area_log_mean\": " + json_number(stats.area_log_mean) +
+            ", \"area_max\": " + json_number(stats.area_max) +
+            ", \"angle_mean_deg\": " + json_number(stats.angle_mean_deg) +
+            ", \"angle_max_deg\": " + json_number(stats.angle_max_deg) +
+            ", \"stretch_l2\": " + json_number(stats.stretch_l2) +
+            ", \"stretch_linf\": " + json_number(stats.stretch_linf) + "}";
+    json += ", \"time_ms\": {\"read\": " + json_number(read_ms);
+    double library_ms = 0;
+    for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {
+        const double ms = raps_result_phase_ms(h.result, p);
+        library_ms += ms;
+        json += std::string(", \"") + kPhaseNames[p] + "\": " + json_number(ms);
+    }
+    json += ", \"library_total\": " + json_number(library_ms) +
+            ", \"write\": " + json_number(write_ms) + "}}";
+    std::puts(json.c_str());
+    return 0;
+}
+
+void report_error(const char* kind, raps_status status, const std::string& message) {
+    std::printf("{\"error\": {\"kind\": \"%s\", \"status\": %d, \"status_name\": %s, \"message\": %s}}\n",
+                kind, status, json_string(raps_status_string(status)).c_str(),
+                json_string(message).c_str());
+    std::fprintf(stderr, "raps-param: %s\n", message.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const UsageError& e) {
+        report_error("usage", RAPS_ERROR_INVALID_ARGUMENT, e.what());
+        std::fputs("try raps-param --help\n", stderr);
+        return 2;
+    } catch (const Failure& e) {
+        report_error("raps", e.status, e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        report_error("input", RAPS_ERROR_INVALID_ARGUMENT, e.what());
+        return 1;
+    }
+}

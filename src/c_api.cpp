@@ -1,0 +1,534 @@
+// The C ABI: the only extern "C" code. It checks arguments, converts between the caller's
+// arrays and the C++ types, catches every exception and turns it into a status plus a message
+// stored in the handle. No algorithm lives here.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/settings.h"
+#include "core/triangle_mesh.h"
+#include "parameterization.h"
+#include "raps.h"
+
+static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8, "raps_stats layout is part of the ABI");
+
+#define RAPS_CHECK_CODE(name, value) \
+    static_assert(static_cast<int32_t>(raps::ErrorCode::name) == (value), #value)
+RAPS_CHECK_CODE(kInvalidArgument, RAPS_ERROR_INVALID_ARGUMENT);
+RAPS_CHECK_CODE(kOutOfMemory, RAPS_ERROR_OUT_OF_MEMORY);
+RAPS_CHECK_CODE(kEmptyMesh, RAPS_ERROR_EMPTY_MESH);
+RAPS_CHECK_CODE(kIndexCount, RAPS_ERROR_INDEX_COUNT);
+RAPS_CHECK_CODE(kIndexOutOfRange, RAPS_ERROR_INDEX_OUT_OF_RANGE);
+RAPS_CHECK_CODE(kNonFinitePosition, RAPS_ERROR_NON_FINITE_POSITION);
+RAPS_CHECK_CODE(kRepeatedVertex, RAPS_ERROR_REPEATED_VERTEX);
+RAPS_CHECK_CODE(kZeroAreaTriangle, RAPS_ERROR_ZERO_AREA_TRIANGLE);
+RAPS_CHECK_CODE(kNonManifoldEdge, RAPS_ERROR_NON_MANIFOLD_EDGE);
+RAPS_CHECK_CODE(kNonManifoldVertex, RAPS_ERROR_NON_MANIFOLD_VERTEX);
+RAPS_CHECK_CODE(kInconsistentOrientation, RAPS_ERROR_INCONSISTENT_ORIENTATION);
+RAPS_CHECK_CODE(kIsolatedVertex, RAPS_ERROR_ISOLATED_VERTEX);
+RAPS_CHECK_CODE(kMultipleComponents, RAPS_ERROR_MULTIPLE_COMPONENTS);
+RAPS_CHECK_CODE(kNoBoundary, RAPS_ERROR_NO_BOUNDARY);
+RAPS_CHECK_CODE(kMultipleBoundaries, RAPS_ERROR_MULTIPLE_BOUNDARIES);
+RAPS_CHECK_CODE(kNonzeroGenus, RAPS_ERROR_NONZERO_GENUS);
+RAPS_CHECK_CODE(kTooLarge, RAPS_ERROR_TOO_LARGE);
+RAPS_CHECK_CODE(kCancelled, RAPS_ERROR_CANCELLED);
+RAPS_CHECK_CODE(kSolverFailed, RAPS_ERROR_SOLVER_FAILED);
+RAPS_CHECK_CODE(kInvalidOperation, RAPS_ERROR_INVALID_OPERATION);
+RAPS_CHECK_CODE(kInternal, RAPS_ERROR_INTERNAL);
+#undef RAPS_CHECK_CODE
+
+struct raps_mesh {
+    raps::TriangleMesh mesh;
+    std::string last_error;
+};
+
+struct raps_settings {
+    raps::Settings settings;
+    raps_progress_fn progress = nullptr;
+    void* progress_user = nullptr;
+    std::string last_error;
+};
+
+struct raps_result {
+    raps::Parameterization map;
+    bool has_map = false;
+    std::string last_error;
+};
+
+namespace {
+
+using raps::Error;
+using raps::ErrorCode;
+
+constexpr int64_t kMaxElements = 0x7fffffff;  // int32 indexing inside the library
+
+// Runs `body`, storing the message of any failure in `last_error`; never lets an exception
+// cross the ABI.
+template <typename Body>
+raps_status guarded(std::string* last_error, Body&& body) {
+    try {
+        body();
+        if (last_error) last_error->clear();
+        return RAPS_OK;
+    } catch (const Error& error) {
+        if (last_error) *last_error = error.what();
+        return static_cast<raps_status>(error.code());
+    } catch (const std::bad_alloc&) {
+        if (last_error) *last_error = "out of memory";
+        return RAPS_ERROR_OUT_OF_MEMORY;
+    } catch (const std::exception& error) {
+        if (last_error) *last_error = std::string("internal error: ") + error.what();
+        return RAPS_ERROR_INTERNAL;
+    } catch (...) {
+        if (last_error) *last_error = "internal error: unknown exception";
+        return RAPS_ERROR_INTERNAL;
+    }
+}
+
+void require(bool condition, const char* message) {
+    if (!condition) throw Error(ErrorCode::kInvalidArgument, message);
+}
+
+// The public parameters: name, type, inclusive bounds, default, and for enumerations the
+// allowed values (every integer in the bounds).
+struct ParamInfo {
+    raps_param id;
+    const char* name;
+    bool is_float;
+    double min, max, fallback;
+};
+
+constexpr ParamInfo kParams[] = {
+    {RAPS_PARAM_DOMAIN, "domain", false, RAPS_DOMAIN_DISK, RAPS_DOMAIN_DISK, RAPS_DOMAIN_DISK},
+    {RAPS_PARAM_WEIGHTS, "weights", false, RAPS_WEIGHTS_MEAN_VALUE, RAPS_WEIGHTS_UNIFORM,
+     RAPS_WEIGHTS_MEAN_VALUE},
+    {RAPS_PARAM_MONITOR, "monitor", false, RAPS_MONITOR_NONE, RAPS_MONITOR_ANGLE,
+     RAPS_MONITOR_AREA},
+    {RAPS_PARAM_ALPHA, "alpha", true, 2.2250738585072014e-308, 100.0, 1.0},
+    {RAPS_PARAM_ITERATIONS, "iterations", false, 1, 100, 1},
+    {RAPS_PARAM_ITERATION_MODE, "iteration_mode", false, RAPS_ITERATION_ACCUMULATE,
+     RAPS_ITERATION_REAPPLY, RAPS_ITERATION_ACCUMULATE},
+    {RAPS_PARAM_BOUNDARY, "boundary", false, RAPS_BOUNDARY_CIRCLE, RAPS_BOUNDARY_SQUARE,
+     RAPS_BOUNDARY_CIRCLE},
+    {RAPS_PARAM_MAX_TRIANGLES, "max_triangles", false, 1, kMaxElements, kMaxElements},
+};
+
+const ParamInfo* find_param(raps_param id) {
+    for (const ParamInfo& info : kParams) {
+        if (info.id == id) return &info;
+    }
+    return nullptr;
+}
+
+const ParamInfo& checked_param(raps_param id, bool want_float) {
+    const ParamInfo* info = find_param(id);
+    if (!info) {
+        throw Error(ErrorCode::kInvalidArgument, "unknown parameter " + std::to_string(id));
+    }
+    if (info->is_float != want_float) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    std::string("parameter ") + info->name + " is " +
+                        (info->is_float ? "a float: use raps_settings_set_float/get_float"
+                                        : "an int: use raps_settings_set_int/get_int"));
+    }
+    return *info;
+}
+
+int64_t get_int(const raps::Settings& s, raps_param id) {
+    switch (id) {
+        case RAPS_PARAM_DOMAIN: return static_cast<int64_t>(s.domain);
+        case RAPS_PARAM_WEIGHTS: return static_cast<int64_t>(s.weights);
+        case RAPS_PARAM_MONITOR: return static_cast<int64_t>(s.monitor);
+        case RAPS_PARAM_ITERATIONS: return s.iterations;
+        case RAPS_PARAM_ITERATION_MODE: return static_cast<int64_t>(s.iteration_mode);
+        case RAPS_PARAM_BOUNDARY: return static_cast<int64_t>(s.boundary);
+        case RAPS_PARAM_MAX_TRIANGLES: return s.max_triangles;
+        default: throw Error(ErrorCode::kInternal, "int parameter without a field");
+    }
+}
+
+void set_int(raps::Settings& s, raps_param id, int64_t v) {
+    switch (id) {
+        case RAPS_PARAM_DOMAIN: s.domain = static_cast<raps::Domain>(v); break;
+        case RAPS_PARAM_WEIGHTS: s.weights = static_cast<raps::WeightScheme>(v); break;
+        case RAPS_PARAM_MONITOR: s.monitor = static_cast<raps::Monitor>(v); break;
+        case RAPS_PARAM_ITERATIONS: s.iterations = static_cast<int>(v); break;
+        case RAPS_PARAM_ITERATION_MODE:
+            s.iteration_mode = static_cast<raps::IterationMode>(v);
+            break;
+        case RAPS_PARAM_BOUNDARY: s.boundary = static_cast<raps::BoundaryShape>(v); break;
+        case RAPS_PARAM_MAX_TRIANGLES: s.max_triangles = v; break;
+        default: throw Error(ErrorCode::kInternal, "int parameter without a field");
+    }
+}
+
+// Reads `count` points of three coordinates of type T at `stride` bytes into doubles, refusing
+// non-finite values. memcpy because the caller's data need not be aligned.
+template <typename T>
+void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) {
+    require(mesh != nullptr, "mesh is NULL");
+    require(xyz != nullptr, "positions pointer is NULL");
+    if (count == 0) throw Error(ErrorCode::kEmptyMesh, "vertex_count is 0");
+    if (count > static_cast<size_t>(kMaxElements)) {
+        throw Error(ErrorCode::kTooLarge, "vertex_count " + std::to_string(count) +
+                                              " is too large (raps accepts at most 2^31 - 1)");
+    }
+    if (stride == 0) stride = 3 * sizeof(T);
+    if (stride < 3 * sizeof(T)) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "stride_bytes " + std::to_string(stride) + " is smaller than one point (" +
+                        std::to_string(3 * sizeof(T)) + " bytes)");
+    }
+    std::vector<Eigen::Vector3d> positions(count);
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(xyz);
+    for (size_t i = 0; i < count; ++i) {
+        T point[3];
+        std::memcpy(point, bytes + i * stride, sizeof(point));
+        for (int c = 0; c < 3; ++c) {
+            if (!std::isfinite(point[c])) {
+                throw Error(ErrorCode::kNonFinitePosition,
+                            "vertex " + std::to_string(i) + " has a non-finite coordinate (" +
+                                std::to_string(static_cast<double>(point[c])) + ")");
+            }
+            positions[i][c] = static_cast<double>(point[c]);
+        }
+    }
+    mesh->mesh.positions = std::move(positions);
+}
+
+template <typename T>
+void read_indices(raps_mesh* mesh, const T* indices, size_t count) {
+    require(mesh != nullptr, "mesh is NULL");
+    require(indices != nullptr, "indices pointer is NULL");
+    if (count == 0) throw Error(ErrorCode::kEmptyMesh, "index_count is 0");
+    if (count % 3 != 0) {
+        throw Error(ErrorCode::kIndexCount, "index_count " + std::to_string(count) +
+                                                " is not a multiple of 3");
+    }
+    if (count / 3 > static_cast<size_t>(kMaxElements)) {
+        throw Error(ErrorCode::kTooLarge, "too many triangles (raps accepts at most 2^31 - 1)");
+    }
+    std::vector<raps::Triangle> triangles(count / 3);
+    for (size_t i = 0; i < count; ++i) {
+        if (static_cast<uint64_t>(indices[i]) > static_cast<uint64_t>(kMaxElements)) {
+            throw Error(ErrorCode::kIndexOutOfRange,
+                        "index " + std::to_string(i) + " is " + std::to_string(indices[i]) +
+                            ", beyond any vertex raps accepts (at most 2^31 - 1 vertices)");
+        }
+        triangles[i / 3][i % 3] = static_cast<int32_t>(indices[i]);
+    }
+    mesh->mesh.triangles = std::move(triangles);
+}
+
+template <typename T>
+void copy_uvs(const raps_result* result, T* dst, size_t capacity, size_t stride) {
+    require(result != nullptr, "result is NULL");
+    require(dst != nullptr, "dst is NULL");
+    if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
+    const auto& uv = result->map.uv;
+    if (stride == 0) stride = 2 * sizeof(T);
+    require(stride >= 2 * sizeof(T), "stride_bytes is smaller than one uv pair");
+    if (capacity < uv.size()) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "capacity " + std::to_string(capacity) + " is smaller than the " +
+                        std::to_string(uv.size()) + " output vertices");
+    }
+    unsigned char* bytes = reinterpret_cast<unsigned char*>(dst);
+    for (size_t i = 0; i < uv.size(); ++i) {
+        const T pair[2] = {static_cast<T>(uv[i].x()), static_cast<T>(uv[i].y())};
+        std::memcpy(bytes + i * stride, pair, sizeof(pair));
+    }
+}
+
+void copy_u32(const raps_result* result, const std::vector<uint32_t>& source, uint32_t* dst,
+              size_t capacity, const char* what) {
+    require(dst != nullptr, "dst is NULL");
+    if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
+    if (capacity < source.size()) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "capacity " + std::to_string(capacity) + " is smaller than the " +
+                        std::to_string(source.size()) + " " + what);
+    }
+    std::copy(source.begin(), source.end(), dst);
+}
+
+const char* message_of(const std::string* last_error) {
+    return last_error ? last_error->c_str() : "the handle is NULL";
+}
+
+}  // namespace
+
+extern "C" {
+
+uint32_t raps_version(void) { return RAPS_VERSION; }
+
+const char* raps_version_string(void) {
+#define RAPS_STRINGIFY2(x) #x
+#define RAPS_STRINGIFY(x) RAPS_STRINGIFY2(x)
+    return RAPS_STRINGIFY(RAPS_VERSION_MAJOR) "." RAPS_STRINGIFY(
+        RAPS_VERSION_MINOR) "." RAPS_STRINGIFY(RAPS_VERSION_PATCH);
+#undef RAPS_STRINGIFY
+#undef RAPS_STRINGIFY2
+}
+
+const char* raps_status_string(raps_status status) {
+    switch (status) {
+        case RAPS_OK: return "ok";
+        case RAPS_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RAPS_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RAPS_ERROR_EMPTY_MESH: return "empty mesh";
+        case RAPS_ERROR_INDEX_COUNT: return "index count is not a multiple of 3";
+        case RAPS_ERROR_INDEX_OUT_OF_RANGE: return "index out of range";
+        case RAPS_ERROR_NON_FINITE_POSITION: return "non-finite position";
+        case RAPS_ERROR_REPEATED_VERTEX: return "triangle with a repeated vertex";
+        case RAPS_ERROR_ZERO_AREA_TRIANGLE: return "zero-area triangle";
+        case RAPS_ERROR_NON_MANIFOLD_EDGE: return "non-manifold edge";
+        case RAPS_ERROR_NON_MANIFOLD_VERTEX: return "non-manifold vertex";
+        case RAPS_ERROR_INCONSISTENT_ORIENTATION: return "inconsistent triangle orientation";
+        case RAPS_ERROR_ISOLATED_VERTEX: return "isolated vertex";
+        case RAPS_ERROR_MULTIPLE_COMPONENTS: return "several connected components";
+        case RAPS_ERROR_NO_BOUNDARY: return "no boundary";
+        case RAPS_ERROR_MULTIPLE_BOUNDARIES: return "more than one boundary loop";
+        case RAPS_ERROR_NONZERO_GENUS: return "genus greater than zero";
+        case RAPS_ERROR_TOO_LARGE: return "mesh too large";
+        case RAPS_ERROR_CANCELLED: return "cancelled";
+        case RAPS_ERROR_SOLVER_FAILED: return "solver failed";
+        case RAPS_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RAPS_ERROR_INTERNAL: return "internal error";
+        default: return "unknown status";
+    }
+}
+
+raps_status raps_mesh_create(raps_mesh** out_mesh) {
+    if (!out_mesh) return RAPS_ERROR_INVALID_ARGUMENT;
+    *out_mesh = nullptr;
+    return guarded(nullptr, [&] { *out_mesh = new raps_mesh(); });
+}
+
+void raps_mesh_destroy(raps_mesh* mesh) { delete mesh; }
+
+raps_status raps_mesh_set_positions_f32(raps_mesh* mesh, const float* xyz, size_t vertex_count,
+                                        size_t stride_bytes) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_positions(mesh, xyz, vertex_count, stride_bytes); });
+}
+
+raps_status raps_mesh_set_positions_f64(raps_mesh* mesh, const double* xyz, size_t vertex_count,
+                                        size_t stride_bytes) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_positions(mesh, xyz, vertex_count, stride_bytes); });
+}
+
+raps_status raps_mesh_set_indices_u16(raps_mesh* mesh, const uint16_t* indices,
+                                      size_t index_count) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_indices(mesh, indices, index_count); });
+}
+
+raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* indices,
+                                      size_t index_count) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_indices(mesh, indices, index_count); });
+}
+
+size_t raps_mesh_vertex_count(const raps_mesh* mesh) {
+    return mesh ? mesh->mesh.positions.size() : 0;
+}
+
+size_t raps_mesh_triangle_count(const raps_mesh* mesh) {
+    return mesh ? mesh->mesh.triangles.size() : 0;
+}
+
+const char* raps_mesh_last_error(const raps_mesh* mesh) {
+    return message_of(mesh ? &mesh->last_error : nullptr);
+}
+
+raps_status raps_settings_create(raps_settings** out_settings) {
+    if (!out_settings) return RAPS_ERROR_INVALID_ARGUMENT;
+    *out_settings = nullptr;
+    return guarded(nullptr, [&] { *out_settings = new raps_settings(); });
+}
+
+raps_status raps_settings_clone(const raps_settings* settings, raps_settings** out_settings) {
+    if (!out_settings) return RAPS_ERROR_INVALID_ARGUMENT;
+    *out_settings = nullptr;
+    if (!settings) return RAPS_ERROR_INVALID_ARGUMENT;
+    return guarded(nullptr, [&] {
+        *out_settings = new raps_settings(*settings);
+        (*out_settings)->last_error.clear();
+    });
+}
+
+void raps_settings_destroy(raps_settings* settings) { delete settings; }
+
+raps_status raps_settings_set_int(raps_settings* settings, raps_param param, int64_t value) {
+    return guarded(settings ? &settings->last_error : nullptr, [&] {
+        require(settings != nullptr, "settings is NULL");
+        const ParamInfo& info = checked_param(param, false);
+        if (static_cast<double>(value) < info.min || static_cast<double>(value) > info.max) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        std::string("value ") + std::to_string(value) + " of parameter " +
+                            info.name + " is outside [" + std::to_string(int64_t(info.min)) +
+                            ", " + std::to_string(int64_t(info.max)) + "]");
+        }
+        set_int(settings->settings, param, value);
+    });
+}
+
+raps_status raps_settings_set_float(raps_settings* settings, raps_param param, double value) {
+    return guarded(settings ? &settings->last_error : nullptr, [&] {
+        require(settings != nullptr, "settings is NULL");
+        const ParamInfo& info = checked_param(param, true);
+        if (!(value >= info.min && value <= info.max)) {  // also refuses NaN
+            throw Error(ErrorCode::kInvalidArgument,
+                        std::string("value ") + std::to_string(value) + " of parameter " +
+                            info.name + " is outside (0, " + std::to_string(info.max) + "]");
+        }
+        settings->settings.alpha = value;  // the only float parameter so far
+    });
+}
+
+raps_status raps_settings_get_int(const raps_settings* settings, raps_param param,
+                                  int64_t* out_value) {
+    return guarded(nullptr, [&] {
+        require(settings != nullptr && out_value != nullptr, "NULL pointer");
+        checked_param(param, false);
+        *out_value = get_int(settings->settings, param);
+    });
+}
+
+raps_status raps_settings_get_float(const raps_settings* settings, raps_param param,
+                                    double* out_value) {
+    return guarded(nullptr, [&] {
+        require(settings != nullptr && out_value != nullptr, "NULL pointer");
+        checked_param(param, true);
+        *out_value = settings->settings.alpha;
+    });
+}
+
+raps_status raps_param_info(raps_param param, const char** out_name, int32_t* out_is_float,
+                            double* out_min, double* out_max, double* out_default) {
+    const ParamInfo* info = find_param(param);
+    if (!info) return RAPS_ERROR_INVALID_ARGUMENT;
+    if (out_name) *out_name = info->name;
+    if (out_is_float) *out_is_float = info->is_float ? 1 : 0;
+    if (out_min) *out_min = info->min;
+    if (out_max) *out_max = info->max;
+    if (out_default) *out_default = info->fallback;
+    return RAPS_OK;
+}
+
+raps_status raps_settings_set_progress(raps_settings* settings, raps_progress_fn fn, void* user) {
+    if (!settings) return RAPS_ERROR_INVALID_ARGUMENT;
+    settings->progress = fn;
+    settings->progress_user = user;
+    settings->last_error.clear();
+    return RAPS_OK;
+}
+
+const char* raps_settings_last_error(const raps_settings* settings) {
+    return message_of(settings ? &settings->last_error : nullptr);
+}
+
+raps_status raps_result_create(raps_result** out_result) {
+    if (!out_result) return RAPS_ERROR_INVALID_ARGUMENT;
+    *out_result = nullptr;
+    return guarded(nullptr, [&] { *out_result = new raps_result(); });
+}
+
+void raps_result_destroy(raps_result* result) { delete result; }
+
+raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
+                              raps_result* result) {
+    if (!result) return RAPS_ERROR_INVALID_ARGUMENT;
+    result->has_map = false;
+    result->map = raps::Parameterization();
+    return guarded(&result->last_error, [&] {
+        require(mesh != nullptr, "mesh is NULL");
+        const raps::Settings defaults;
+        const raps::Settings& chosen = settings ? settings->settings : defaults;
+        raps::Progress progress;
+        if (settings && settings->progress) {
+            const raps_progress_fn fn = settings->progress;
+            void* user = settings->progress_user;
+            progress = raps::Progress([fn, user](raps::Phase phase, double fraction) {
+                return fn(user, static_cast<raps_phase>(phase), fraction) != 0;
+            });
+        }
+        result->map = raps::parameterize(mesh->mesh, chosen, progress);
+        result->has_map = true;
+    });
+}
+
+const char* raps_result_last_error(const raps_result* result) {
+    return message_of(result ? &result->last_error : nullptr);
+}
+
+size_t raps_result_vertex_count(const raps_result* result) {
+    return result && result->has_map ? result->map.uv.size() : 0;
+}
+
+size_t raps_result_index_count(const raps_result* result) {
+    return result && result->has_map ? result->map.indices.size() : 0;
+}
+
+raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst, size_t capacity,
+                                     size_t stride_bytes) {
+    return guarded(nullptr, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
+}
+
+raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst, size_t capacity,
+                                     size_t stride_bytes) {
+    return guarded(nullptr, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
+}
+
+raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,
+                                         size_t capacity) {
+    return guarded(nullptr, [&] {
+        require(result != nullptr, "result is NULL");
+        copy_u32(result, result->map.indices, dst, capacity, "indices");
+    });
+}
+
+raps_status raps_result_copy_vertex_remap(const raps_result* result, uint32_t* dst,
+                                          size_t capacity) {
+    return guarded(nullptr, [&] {
+        require(result != nullptr, "result is NULL");
+        copy_u32(result, result->map.vertex_remap, dst, capacity, "output vertices");
+    });
+}
+
+raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats) {
+    if (!result || !stats || stats->struct_size < 8) return RAPS_ERROR_INVALID_ARGUMENT;
+    if (!result->has_map) return RAPS_ERROR_INVALID_OPERATION;
+    const raps::Parameterization& map = result->map;
+    raps_stats full;
+    std::memset(&full, 0, sizeof(full));
+    full.struct_size = static_cast<uint32_t>(std::min<size_t>(stats->struct_size, sizeof(full)));
+    full.vertex_count = map.uv.size();
+    full.triangle_count = map.indices.size() / 3;
+    full.flipped_triangles = static_cast<uint64_t>(map.distortion.flipped_triangles);
+    full.zero_area_triangles = static_cast<uint64_t>(map.distortion.zero_area_triangles);
+    full.negative_weights = static_cast<uint64_t>(map.negative_weights);
+    full.adaptive_solves = static_cast<uint64_t>(map.adaptive_solves);
+    full.area_log_mean = map.distortion.area_log_mean;
+    full.area_max = map.distortion.area_max;
+    full.angle_mean_deg = map.distortion.angle_mean_deg;
+    full.angle_max_deg = map.distortion.angle_max_deg;
+    full.stretch_l2 = map.distortion.stretch_l2;
+    full.stretch_linf = map.distortion.stretch_linf;
+    // Only what fits the caller's (possibly older, shorter) struct.
+    std::memcpy(stats, &full, full.struct_size);
+    return RAPS_OK;
+}
+
+double raps_result_phase_ms(const raps_result* result, raps_phase phase) {
+    if (!result || !result->has_map || phase < 0 || phase >= RAPS_PHASE_COUNT) return 0.0;
+    return result->map.phase_ms[phase];
+}
+
+}  // extern "C"

@@ -1,0 +1,33 @@
+// Progress reporting and cancellation, passed down to every long-running algorithm as an
+// argument (there is no global state). The callback returns false to cancel; report() then
+// throws Error(kCancelled), which unwinds through RAII-owned memory only.
+#pragma once
+
+#include <functional>
+
+#include "core/error.h"
+
+namespace raps {
+
+enum class Phase : int { kValidate = 0, kTopology = 1, kInitialMap = 2, kAdapt = 3, kMetrics = 4 };
+constexpr int kPhaseCount = 5;
+
+class Progress {
+public:
+    using Callback = std::function<bool(Phase, double)>;
+
+    Progress() = default;
+    explicit Progress(Callback callback) : callback_(std::move(callback)) {}
+
+    // Reports that `fraction` (0..1) of `phase` is done; throws Error(kCancelled) on a stop.
+    void report(Phase phase, double fraction) const {
+        if (callback_ && !callback_(phase, fraction)) {
+            throw Error(ErrorCode::kCancelled, "cancelled by the progress callback");
+        }
+    }
+
+private:
+    Callback callback_;
+};
+
+}  // namespace raps

@@ -1,0 +1,26 @@
+// The settings of one run, as plain C++ values. The C API validates and converts the public
+// key/value parameters into this struct; algorithms read only the fields they need.
+#pragma once
+
+#include <cstdint>
+
+namespace raps {
+
+enum class Domain { kDisk };
+enum class WeightScheme { kMeanValue, kCotangent, kUniform };
+enum class Monitor { kNone, kArea, kEdgeLength, kAngle };
+enum class IterationMode { kAccumulate, kReapply };
+enum class BoundaryShape { kCircle, kSquare };
+
+struct Settings {
+    Domain domain = Domain::kDisk;
+    WeightScheme weights = WeightScheme::kMeanValue;
+    Monitor monitor = Monitor::kArea;
+    double alpha = 1.0;
+    int iterations = 1;
+    IterationMode iteration_mode = IterationMode::kAccumulate;
+    BoundaryShape boundary = BoundaryShape::kCircle;
+    int64_t max_triangles = 0x7fffffff;
+};
+
+}  // namespace raps

@@ -1,0 +1,26 @@
+// The input mesh as the algorithms see it: positions converted to double, triangles as vertex
+// triples. Built by the C API from the caller's arrays; never modified afterwards. Indices are
+// int32 because the sparse solver indexes with int32; the C API refuses meshes of 2^31 or more
+// vertices or triangles.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+
+namespace raps {
+
+using Triangle = std::array<int32_t, 3>;
+
+struct TriangleMesh {
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<Triangle> triangles;
+
+    int32_t vertex_count() const { return static_cast<int32_t>(positions.size()); }
+    int32_t triangle_count() const { return static_cast<int32_t>(triangles.size()); }
+};
+
+}  // namespace raps

@@ -1,0 +1,250 @@
+#include "mesh/mesh_topology.h"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+#include "core/error.h"
+
+namespace raps {
+namespace {
+
+std::string edge_name(int32_t a, int32_t b) {
+    return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
+}
+
+bool same_vertex_set(const Triangle& a, const Triangle& b) {
+    Triangle x = a, y = b;
+    std::sort(x.begin(), x.end());
+    std::sort(y.begin(), y.end());
+    return x == y;
+}
+
+// Half-edges grouped by origin vertex (counting sort), so that finding the half-edges between two
+// vertices costs a scan of one vertex's star instead of a global sort.
+struct OutgoingHalfedges {
+    std::vector<int32_t> offsets;
+    std::vector<int32_t> halfedges;
+};
+
+OutgoingHalfedges group_by_origin(const TriangleMesh& mesh) {
+    OutgoingHalfedges out;
+    const int32_t halfedge_count = 3 * mesh.triangle_count();
+    out.offsets.assign(mesh.positions.size() + 1, 0);
+    for (int32_t h = 0; h < halfedge_count; ++h) ++out.offsets[halfedge_origin(mesh, h) + 1];
+    std::partial_sum(out.offsets.begin(), out.offsets.end(), out.offsets.begin());
+    out.halfedges.resize(halfedge_count);
+    std::vector<int32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        out.halfedges[fill[halfedge_origin(mesh, h)]++] = h;
+    }
+    return out;
+}
+
+}  // namespace
+
+Halfedges build_halfedges(const TriangleMesh& mesh) {
+    const OutgoingHalfedges out = group_by_origin(mesh);
+    Halfedges result;
+    result.twin.assign(3 * static_cast<size_t>(mesh.triangle_count()), -1);
+    for (int32_t h = 0; h < 3 * mesh.triangle_count(); ++h) {
+        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+        int32_t same_direction = -1, opposite = -1, opposite_count = 0;
+        for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
+            const int32_t g = out.halfedges[i];
+            if (g != h && halfedge_target(mesh, g) == b) same_direction = g;
+        }
+        for (int32_t i = out.offsets[b]; i < out.offsets[b + 1]; ++i) {
+            const int32_t g = out.halfedges[i];
+            if (halfedge_target(mesh, g) == a) {
+                opposite = g;
+                ++opposite_count;
+            }
+        }
+        if (same_direction >= 0 || opposite_count > 1) {
+            const int32_t other = same_direction >= 0 ? same_direction : opposite;
+            if (same_vertex_set(mesh.triangles[h / 3], mesh.triangles[other / 3])) {
+                throw Error(ErrorCode::kNonManifoldEdge,
+                            "triangles " + std::to_string(h / 3) + " and " +
+                                std::to_string(other / 3) +
+                                " are duplicates (same three vertices), so edge " +
+                                edge_name(a, b) + " has more than two triangles");
+            }
+            if (same_direction >= 0 && opposite < 0) {
+                throw Error(ErrorCode::kInconsistentOrientation,
+                            "triangles " + std::to_string(h / 3) + " and " +
+                                std::to_string(same_direction / 3) +
+                                " both traverse edge " + edge_name(a, b) +
+                                " in the same direction (their winding is inconsistent)");
+            }
+            throw Error(ErrorCode::kNonManifoldEdge,
+                        "edge " + edge_name(a, b) + " is shared by more than two triangles (" +
+                            std::to_string(h / 3) + ", " + std::to_string(other / 3) +
+                            " and more)");
+        }
+        result.twin[h] = opposite;
+    }
+    return result;
+}
+
+void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    // Rotating around the origin v of an outgoing half-edge h: twin(prev(h)) is the next
+    // outgoing half-edge (or -1 at a boundary), next(twin(h)) the previous one. The outgoing
+    // half-edges of a manifold vertex form one such orbit (one fan).
+    const auto& twin = halfedges.twin;
+    const int32_t halfedge_count = static_cast<int32_t>(twin.size());
+    std::vector<char> visited(halfedge_count, 0);
+    std::vector<int32_t> fan_start(mesh.positions.size(), -1);
+    for (int32_t h0 = 0; h0 < halfedge_count; ++h0) {
+        if (visited[h0]) continue;
+        const int32_t v = halfedge_origin(mesh, h0);
+        if (fan_start[v] >= 0) {
+            throw Error(ErrorCode::kNonManifoldVertex,
+                        "vertex " + std::to_string(v) +
+                            " joins separate fans of triangles (e.g. triangles " +
+                            std::to_string(fan_start[v] / 3) + " and " + std::to_string(h0 / 3) +
+                            " meet only at this vertex)");
+        }
+        fan_start[v] = h0;
+        // Walk backwards to the fan's first half-edge (or all the way round), then forwards.
+        int32_t h = h0;
+        while (twin[h] >= 0 && Halfedges::next(twin[h]) != h0) h = Halfedges::next(twin[h]);
+        if (twin[h] >= 0) h = h0;  // closed fan: start anywhere
+        const int32_t start = h;
+        do {
+            visited[h] = 1;
+            const int32_t p = twin[Halfedges::prev(h)];
+            h = p;
+        } while (h >= 0 && h != start);
+    }
+}
+
+std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    std::vector<int32_t> piece(mesh.triangles.size(), -1), representatives, stack;
+    for (int32_t seed = 0; seed < mesh.triangle_count(); ++seed) {
+        if (piece[seed] >= 0) continue;
+        const int32_t id = static_cast<int32_t>(representatives.size());
+        representatives.push_back(seed);
+        piece[seed] = id;
+        stack.push_back(seed);
+        while (!stack.empty()) {
+            const int32_t t = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const int32_t o = halfedges.twin[3 * t + k];
+                if (o >= 0 && piece[o / 3] < 0) {
+                    piece[o / 3] = id;
+                    stack.push_back(o / 3);
+                }
+            }
+        }
+    }
+    return representatives;
+}
+
+std::vector<std::vector<int32_t>> boundary_loops(const TriangleMesh& mesh,
+                                                 const Halfedges& halfedges) {
+    // With manifold vertices every boundary vertex starts exactly one boundary half-edge.
+    std::vector<int32_t> boundary_out(mesh.positions.size(), -1);
+    for (int32_t h = 0; h < static_cast<int32_t>(halfedges.twin.size()); ++h) {
+        if (halfedges.twin[h] < 0) boundary_out[halfedge_origin(mesh, h)] = h;
+    }
+    std::vector<std::vector<int32_t>> loops;
+    std::vector<char> done(mesh.positions.size(), 0);
+    for (int32_t v0 = 0; v0 < mesh.vertex_count(); ++v0) {
+        if (boundary_out[v0] < 0 || done[v0]) continue;
+        std::vector<int32_t> loop;
+        for (int32_t v = v0; !done[v]; v = halfedge_target(mesh, boundary_out[v])) {
+            done[v] = 1;
+            loop.push_back(v);
+        }
+        loops.push_back(std::move(loop));
+    }
+    return loops;
+}
+
+int64_t edge_count(const Halfedges& halfedges) {
+    int64_t count = 0;
+    for (int32_t h = 0; h < static_cast<int32_t>(halfedges.twin.size()); ++h) {
+        if (halfedges.twin[h] < h) ++count;  // boundary (-1) or the first of a twin pair
+    }
+    return count;
+}
+
+std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    check_manifold_vertices(mesh, halfedges);
+    const std::vector<int32_t> pieces = piece_representatives(mesh, halfedges);
+    if (pieces.size() > 1) {
+        throw Error(ErrorCode::kMultipleComponents,
+                    "the mesh has " + std::to_string(pieces.size()) +
+                        " separate pieces (triangles " + std::to_string(pieces[0]) + " and " +
+                        std::to_string(pieces[1]) +
+                        " are not connected through edges); a disk is one piece");
+    }
+    std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
+    if (loops.empty()) {
+        throw Error(ErrorCode::kNoBoundary,
+                    "the mesh is closed (it has no boundary loop); a disk has exactly one");
+    }
+    if (loops.size() > 1) {
+        std::string starts;
+        for (size_t i = 0; i < loops.size() && i < 8; ++i) {
+            starts += (i ? ", " : "") + std::to_string(loops[i][0]);
+        }
+        throw Error(ErrorCode::kMultipleBoundaries,
+                    "the mesh has " + std::to_string(loops.size()) +
+                        " boundary loops (holes), through vertices " + starts +
+                        "; a disk has exactly one");
+    }
+    const int64_t euler = static_cast<int64_t>(mesh.vertex_count()) - edge_count(halfedges) +
+                          mesh.triangle_count();
+    if (euler != 1) {
+        throw Error(ErrorCode::kNonzeroGenus,
+                    "the mesh has handles: genus " + std::to_string((1 - euler) / 2) +
+                        " (V - E + F = " + std::to_string(euler) +
+                        " with one boundary loop; a disk has V - E + F = 1)");
+    }
+    return std::move(loops[0]);
+}
+
+VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    VertexAdjacency adjacency;
+    const int32_t halfedge_count = static_cast<int32_t>(halfedges.twin.size());
+    adjacency.offsets.assign(mesh.positions.size() + 1, 0);
+    // Each undirected edge once: boundary half-edges, and the smaller of each twin pair.
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        if (halfedges.twin[h] > h) continue;
+        ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
+        ++adjacency.offsets[halfedge_target(mesh, h) + 1];
+    }
+    std::partial_sum(adjacency.offsets.begin(), adjacency.offsets.end(),
+                     adjacency.offsets.begin());
+    adjacency.neighbors.resize(adjacency.offsets.back());
+    std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        if (halfedges.twin[h] > h) continue;
+        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+        adjacency.neighbors[fill[a]++] = b;
+        adjacency.neighbors[fill[b]++] = a;
+    }
+    for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
+        std::sort(adjacency.neighbors.begin() + adjacency.offsets[v],
+                  adjacency.neighbors.begin() + adjacency.offsets[v + 1]);
+    }
+    auto slot = [&](int32_t from, int32_t to) {
+        const auto begin = adjacency.neighbors.begin() + adjacency.offsets[from];
+        const auto end = adjacency.neighbors.begin() + adjacency.offsets[from + 1];
+        return static_cast<int32_t>(std::lower_bound(begin, end, to) -
+                                    adjacency.neighbors.begin());
+    };
+    adjacency.forward_slot.resize(halfedge_count);
+    adjacency.backward_slot.resize(halfedge_count);
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+        adjacency.forward_slot[h] = slot(a, b);
+        adjacency.backward_slot[h] = slot(b, a);
+    }
+    return adjacency;
+}
+
+}  // namespace raps

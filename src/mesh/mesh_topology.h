@@ -1,0 +1,66 @@
+// Combinatorial structure of a triangle mesh: half-edges with their twins, manifold and
+// orientation checks, boundary loops, pieces, and the vertex adjacency the Laplace systems use.
+// Knows nothing of positions or maps.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/triangle_mesh.h"
+
+namespace raps {
+
+// Half-edge h = 3 * t + k runs from triangles[t][k] to triangles[t][(k + 1) % 3], so the
+// triangle lies on its left. twin[h] is the opposite half-edge, or -1 on the boundary.
+struct Halfedges {
+    std::vector<int32_t> twin;
+
+    static int32_t next(int32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
+    static int32_t prev(int32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
+};
+
+inline int32_t halfedge_origin(const TriangleMesh& mesh, int32_t h) {
+    return mesh.triangles[h / 3][h % 3];
+}
+inline int32_t halfedge_target(const TriangleMesh& mesh, int32_t h) {
+    return mesh.triangles[h / 3][(h % 3 + 1) % 3];
+}
+
+// Pairs every half-edge with its twin. Throws NON_MANIFOLD_EDGE when an edge has more than two
+// triangles (or a duplicate triangle), INCONSISTENT_ORIENTATION when two triangles traverse an
+// edge in the same direction.
+Halfedges build_halfedges(const TriangleMesh& mesh);
+
+// Throws NON_MANIFOLD_VERTEX when the triangles around a vertex form more than one fan.
+void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges);
+
+// Number of edge-connected pieces, and one triangle of each.
+std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges);
+
+// Boundary loops as vertex sequences, each traversed with the mesh on its left (so a disk's loop
+// runs counter-clockwise around it), starting at its smallest vertex index; loops sorted by that
+// vertex. Needs manifold vertices.
+std::vector<std::vector<int32_t>> boundary_loops(const TriangleMesh& mesh,
+                                                 const Halfedges& halfedges);
+
+// Undirected edge count: interior edges once, boundary edges once.
+int64_t edge_count(const Halfedges& halfedges);
+
+// Checks everything a topological disk needs (manifold, oriented, one piece, one boundary loop,
+// Euler characteristic 1) and returns its boundary loop.
+std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges);
+
+// Symmetric vertex adjacency in compressed rows: the neighbours of v are
+// neighbors[offsets[v] .. offsets[v + 1]), sorted ascending. A "slot" is a position in neighbors,
+// i.e. one directed edge v -> neighbors[slot].
+struct VertexAdjacency {
+    std::vector<int32_t> offsets;
+    std::vector<int32_t> neighbors;
+    // For half-edge h (a -> b): the slot of b in a's row and the slot of a in b's row.
+    std::vector<int32_t> forward_slot;
+    std::vector<int32_t> backward_slot;
+};
+
+VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges);
+
+}  // namespace raps

@@ -1,0 +1,97 @@
+#include "metrics/distortion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace raps {
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+double corner_angle_3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+double corner_angle_uv(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return std::atan2(std::abs(cross2(a, b)), a.dot(b));
+}
+
+}  // namespace
+
+DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
+                                   const std::vector<Eigen::Vector2d>& uv,
+                                   const std::vector<Triangle>& triangles) {
+    const size_t count = triangles.size();
+    std::vector<double> area(count), uv_signed_area(count);
+    double area_sum = 0;
+    for (size_t t = 0; t < count; ++t) {
+        const Triangle& v = triangles[t];
+        area[t] = 0.5 * (positions[v[1]] - positions[v[0]])
+                            .cross(positions[v[2]] - positions[v[0]])
+                            .norm();
+        uv_signed_area[t] = 0.5 * cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        area_sum += area[t];
+    }
+    const double degenerate_3d = 1e-12 * area_sum / static_cast<double>(count);
+    std::vector<size_t> used;
+    used.reserve(count);
+    double total_3d = 0, total_uv = 0;
+    for (size_t t = 0; t < count; ++t) {
+        if (area[t] >= degenerate_3d && area[t] > 0 && std::isfinite(uv_signed_area[t])) {
+            used.push_back(t);
+            total_3d += area[t];
+            total_uv += std::abs(uv_signed_area[t]);
+        }
+    }
+    DistortionStats stats;
+    if (used.empty()) return stats;
+    const double zero_uv = 1e-14 * total_uv / static_cast<double>(used.size());
+    const double infinity = std::numeric_limits<double>::infinity();
+    const double scale = total_uv > 0 ? std::sqrt(total_3d / total_uv) : infinity;
+    double angle_sum = 0, stretch_sum = 0;
+    stats.area_max = 1;
+    stats.stretch_linf = 0;
+    for (size_t t : used) {
+        const Triangle& v = triangles[t];
+        const double a = uv_signed_area[t];
+        if (a < -zero_uv) ++stats.flipped_triangles;
+        if (std::abs(a) <= zero_uv) ++stats.zero_area_triangles;
+        const double weight = area[t] / total_3d;
+        const double r = (std::abs(a) / total_uv) / weight;
+        stats.area_log_mean += weight * std::abs(std::log(r));
+        stats.area_max = std::max(stats.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
+        for (int k = 0; k < 3; ++k) {
+            const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
+            const double difference =
+                std::abs(corner_angle_uv(uv[j] - uv[i], uv[l] - uv[i]) -
+                         corner_angle_3d(positions[j] - positions[i], positions[l] - positions[i]));
+            const double degrees = difference * 180.0 / M_PI;
+            angle_sum += degrees;
+            stats.angle_max_deg = std::max(stats.angle_max_deg, degrees);
+        }
+        // Jacobian of uv with respect to an orthonormal frame of the 3D triangle, and its
+        // singular values in closed form (no squaring, so no cancellation near an isometry).
+        const Eigen::Vector3d e1 = positions[v[1]] - positions[v[0]];
+        const Eigen::Vector3d e2 = positions[v[2]] - positions[v[0]];
+        const Eigen::Vector2d d1 = uv[v[1]] - uv[v[0]], d2 = uv[v[2]] - uv[v[0]];
+        const double length = e1.norm();
+        const double p2x = e2.dot(e1) / length, p2y = 2.0 * area[t] / length;
+        const double j00 = d1.x() / length, j10 = d1.y() / length;
+        const double j01 = (d2.x() - d1.x() * p2x / length) / p2y;
+        const double j11 = (d2.y() - d1.y() * p2x / length) / p2y;
+        const double q = std::hypot(0.5 * (j00 + j11), 0.5 * (j10 - j01));
+        const double s = std::hypot(0.5 * (j00 - j11), 0.5 * (j10 + j01));
+        const double big = scale * (q + s), small = scale * std::abs(q - s);
+        const double stretch_max = 1.0 / small, stretch_min = 1.0 / big;
+        stretch_sum += weight * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);
+        stats.stretch_linf = std::max(stats.stretch_linf, stretch_max);
+    }
+    stats.angle_mean_deg = angle_sum / (3.0 * static_cast<double>(used.size()));
+    stats.stretch_l2 = std::sqrt(stretch_sum);
+    return stats;
+}
+
+}  // namespace raps

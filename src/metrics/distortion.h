@@ -1,0 +1,33 @@
+// The distortion statistics every result carries. The definitions follow the project's reference
+// measurement (shared/tools/uvmetrics.py), so the two can be cross-checked figure by figure:
+// triangles whose 3D area is below 1e-12 of the mean are left out; r_t is the triangle's share
+// of the uv area over its share of the 3D area; stretch is Sander et al. 2001 with the uv scaled
+// so that its area equals the 3D area (an isometry gives 1).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/triangle_mesh.h"
+
+namespace raps {
+
+struct DistortionStats {
+    int64_t flipped_triangles = 0;    // clockwise in uv (the maps here are counter-clockwise)
+    int64_t zero_area_triangles = 0;  // |uv area| <= 1e-14 * mean |uv area|
+    double area_log_mean = 0;         // sum over t of (3D area share) * |log r_t|
+    double area_max = 1;              // max of max(r_t, 1 / r_t); infinite for a zero uv area
+    double angle_mean_deg = 0;        // mean over corners of |uv angle - 3D angle|
+    double angle_max_deg = 0;
+    double stretch_l2 = 1;            // sqrt(sum (3D area share) * (G^2 + g^2) / 2)
+    double stretch_linf = 1;          // max G; G >= g singular values of the 3D-from-uv Jacobian
+};
+
+// Statistics of the map of `triangles` (indices into positions and uv alike).
+DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
+                                   const std::vector<Eigen::Vector2d>& uv,
+                                   const std::vector<Triangle>& triangles);
+
+}  // namespace raps

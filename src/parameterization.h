@@ -1,0 +1,33 @@
+// The one entry point behind the C API: runs the pipeline of the requested domain and measures
+// the result. Data flows one way: mesh in -> validate -> topology -> initial map -> adapt ->
+// metrics -> output.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/phase_timer.h"
+#include "core/progress.h"
+#include "core/settings.h"
+#include "core/triangle_mesh.h"
+#include "metrics/distortion.h"
+
+namespace raps {
+
+struct Parameterization {
+    std::vector<Eigen::Vector2d> uv;     // per output vertex
+    std::vector<uint32_t> indices;       // output triangles, 3 per triangle
+    std::vector<uint32_t> vertex_remap;  // per output vertex: the input vertex it comes from
+    DistortionStats distortion;
+    int64_t negative_weights = 0;
+    int64_t adaptive_solves = 0;
+    PhaseTimes phase_ms{};
+};
+
+// Throws raps::Error (or std::bad_alloc) on failure.
+Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings,
+                              const Progress& progress);
+
+}  // namespace raps

@@ -1,0 +1,115 @@
+#include "planar/error_monitors.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace raps {
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+// Accumulates per-triangle values onto directed edges and averages them.
+class EdgeAverage {
+public:
+    explicit EdgeAverage(size_t slots) : sum_(slots, 0.0), count_(slots, 0) {}
+    void add(int32_t slot, double value) {
+        sum_[slot] += value;
+        ++count_[slot];
+    }
+    std::vector<double> mean() && {
+        for (size_t s = 0; s < sum_.size(); ++s) {
+            sum_[s] = count_[s] ? sum_[s] / count_[s] : 1.0;
+        }
+        return std::move(sum_);
+    }
+
+private:
+    std::vector<double> sum_;
+    std::vector<int> count_;
+};
+
+std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+                                 const std::vector<Eigen::Vector2d>& uv) {
+    const int32_t triangle_count = mesh.triangle_count();
+    std::vector<double> ratio(triangle_count);
+    double total_uv = 0.0, total_3d = 0.0;
+    for (int32_t t = 0; t < triangle_count; ++t) {
+        const Triangle& v = mesh.triangles[t];
+        const double uv_area = 0.5 * cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        const double area = 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                      .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
+                                      .norm();
+        ratio[t] = uv_area / area;
+        total_uv += std::abs(uv_area);
+        total_3d += area;
+    }
+    const double scale = total_3d / total_uv;
+    EdgeAverage average(adjacency.neighbors.size());
+    for (int32_t t = 0; t < triangle_count; ++t) {
+        const double e = std::max(ratio[t] * scale, kMonitorFloor);
+        for (int k = 0; k < 3; ++k) {
+            average.add(adjacency.forward_slot[3 * t + k], e);
+            average.add(adjacency.backward_slot[3 * t + k], e);
+        }
+    }
+    return std::move(average).mean();
+}
+
+std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+                                   const std::vector<Eigen::Vector2d>& uv) {
+    std::vector<double> e(adjacency.neighbors.size());
+    double total_uv = 0.0, total_3d = 0.0;
+    for (int32_t i = 0; i < mesh.vertex_count(); ++i) {
+        for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
+            const int32_t j = adjacency.neighbors[s];
+            const double uv_length = (uv[i] - uv[j]).norm();
+            const double length = (mesh.positions[i] - mesh.positions[j]).norm();
+            e[s] = uv_length / length;
+            total_uv += uv_length;
+            total_3d += length;
+        }
+    }
+    const double scale = total_3d / total_uv;
+    for (double& value : e) value = std::max(value * scale, kMonitorFloor);
+    return e;
+}
+
+std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+                                  const std::vector<Eigen::Vector2d>& uv) {
+    EdgeAverage average(adjacency.neighbors.size());
+    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Triangle& v = mesh.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+            const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
+            const Eigen::Vector3d a = mesh.positions[j] - mesh.positions[i];
+            const Eigen::Vector3d b = mesh.positions[l] - mesh.positions[i];
+            const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+            const Eigen::Vector2d p = uv[j] - uv[i], q = uv[l] - uv[i];
+            // Signed: a flipped triangle has a negative uv angle and gets the floor.
+            const double uv_angle = std::atan2(cross2(p, q), p.dot(q));
+            const double e = std::max(uv_angle / angle, kMonitorFloor);
+            average.add(adjacency.forward_slot[3 * t + k], e);             // i -> j
+            average.add(adjacency.backward_slot[3 * t + (k + 2) % 3], e);  // i -> l
+        }
+    }
+    return std::move(average).mean();
+}
+
+}  // namespace
+
+std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+                                  const std::vector<Eigen::Vector2d>& uv, Monitor monitor) {
+    switch (monitor) {
+        case Monitor::kArea: return area_monitor(mesh, adjacency, uv);
+        case Monitor::kEdgeLength: return length_monitor(mesh, adjacency, uv);
+        case Monitor::kAngle: return angle_monitor(mesh, adjacency, uv);
+        case Monitor::kNone: break;
+    }
+    throw Error(ErrorCode::kInternal, "error_monitor called without a monitor");
+}
+
+}  // namespace raps

@@ -1,0 +1,47 @@
+// The sparse linear system of paper eq. (1) with the boundary fixed:
+//   sum_j W_ij (u_i - u_j) = 0  for every interior vertex i,
+// one unknown per interior vertex, boundary terms moved to the right-hand side. Both uv
+// coordinates are solved with one factorization. The pattern, its fill-reducing order and the
+// symbolic factorization are built once by the constructor; each solve() with new weights (the
+// initial map, then every adaptive step) only refactors numerically.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/triangle_mesh.h"
+#include "mesh/mesh_topology.h"
+#include "solver/multifrontal_lu.h"
+#include "solver/sparse_pattern.h"
+
+namespace raps {
+
+class LaplaceSystem {
+public:
+    LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+                  const std::vector<char>& on_boundary);
+
+    // Solves with `weights` (one per adjacency slot; rows of interior vertices must have a
+    // positive sum) for the interior entries of `uv`, keeping its boundary entries.
+    // Throws Error(kSolverFailed) when the system is singular.
+    void solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,
+               const std::function<void(double)>& progress);
+
+    int32_t unknown_count() const { return pattern_.size; }
+
+private:
+    void solve_with_pivoting(const std::vector<double>& values, double* rhs);
+
+    const VertexAdjacency& adjacency_;
+    std::vector<int32_t> vertex_of_unknown_;
+    std::vector<int32_t> value_of_slot_;  // per slot of an interior row: its entry, or -1
+    std::vector<int32_t> diagonal_of_unknown_;
+    std::vector<int32_t> order_;
+    SparsePattern pattern_;
+    MultifrontalLU lu_;
+};
+
+}  // namespace raps

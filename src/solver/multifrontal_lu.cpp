@@ -1,0 +1,467 @@
+#include "solver/multifrontal_lu.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <Eigen/Core>
+
+namespace raps {
+namespace {
+
+using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
+using Block = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
+
+// Relaxed amalgamation (Ashcraft & Grimes; the thresholds CHOLMOD uses): merging a supernode
+// into its parent stores some explicit zeros but turns many tiny dense kernels into fewer larger
+// ones, which is faster as long as the zeros stay a small fraction.
+bool worth_merging(int64_t columns, double zero_fraction) {
+    return columns <= 4 || (columns <= 16 && zero_fraction < 0.8) ||
+           (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
+}
+
+// Dense partial LU without pivoting of the m x m front F = [F11 F12; F21 F22], F11 k x k:
+// F11 = L11 U11, L21 = F21 U11^-1, U12 = L11^-1 F12, F22 -= L21 U12 (the Schur complement).
+// Blocked so that most of the work is one matrix product. Returns false on a tiny pivot.
+bool partial_lu(double* front, int32_t m, int32_t k, const double* pivot_scale) {
+    constexpr int32_t kPanel = 32;
+    for (int32_t p = 0; p < k; p += kPanel) {
+        const int32_t b = std::min(kPanel, k - p);
+        for (int32_t j = p; j < p + b; ++j) {
+            double* column = front + static_cast<int64_t>(j) * m;
+            const double pivot = column[j];
+            if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
+            const double inverse = 1.0 / pivot;
+            for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
+            for (int32_t c = j + 1; c < p + b; ++c) {
+                double* target = front + static_cast<int64_t>(c) * m;
+                const double factor = target[j];
+                if (factor == 0.0) continue;
+                for (int32_t i = j + 1; i < m; ++i) target[i] -= column[i] * factor;
+            }
+        }
+        const int32_t rest = m - p - b;
+        if (rest == 0) continue;
+        Block panel_diagonal(front + p + static_cast<int64_t>(p) * m, b, b, Eigen::OuterStride<>(m));
+        Block panel_right(front + p + static_cast<int64_t>(p + b) * m, b, rest,
+                          Eigen::OuterStride<>(m));
+        panel_diagonal.triangularView<Eigen::UnitLower>().solveInPlace(panel_right);
+        Block panel_below(front + (p + b) + static_cast<int64_t>(p) * m, rest, b,
+                          Eigen::OuterStride<>(m));
+        Block trailing(front + (p + b) + static_cast<int64_t>(p + b) * m, rest, rest,
+                       Eigen::OuterStride<>(m));
+        trailing.noalias() -= panel_below * panel_right;
+    }
+    return true;
+}
+
+}  // namespace
+
+void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int32_t>& order) {
+    const int32_t n = pattern.size;
+    size_ = n;
+
+    // Elimination tree of the permuted matrix (Liu's algorithm with path compression).
+    std::vector<int32_t> position(n);
+    for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
+    std::vector<int32_t> parent(n, -1), ancestor(n, -1);
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t row = order[i];
+        for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
+            int32_t j = position[pattern.columns[p]];
+            while (j < i) {
+                const int32_t next = ancestor[j];
+                ancestor[j] = i;
+                if (next < 0) {
+                    parent[j] = i;
+                    break;
+                }
+                j = next;
+            }
+        }
+    }
+
+    // Postorder the tree so that every subtree is a contiguous range ending at its root; the
+    // fill is unchanged and supernodes become ranges of consecutive columns.
+    std::vector<int32_t> first_child(n, -1), next_sibling(n, -1);
+    for (int32_t j = n - 1; j >= 0; --j) {
+        if (parent[j] >= 0) {
+            next_sibling[j] = first_child[parent[j]];
+            first_child[parent[j]] = j;
+        }
+    }
+    std::vector<int32_t> postorder;
+    postorder.reserve(n);
+    {
+        std::vector<int32_t> stack;
+        for (int32_t root = 0; root < n; ++root) {
+            if (parent[root] >= 0) continue;
+            stack.push_back(root);
+            while (!stack.empty()) {
+                const int32_t j = stack.back();
+                if (first_child[j] >= 0) {
+                    const int32_t c = first_child[j];
+                    first_child[j] = next_sibling[c];
+                    stack.push_back(c);
+                } else {
+                    stack.pop_back();
+                    postorder.push_back(j);
+                }
+            }
+        }
+    }
+    order_.resize(n);
+    std::vector<int32_t> renumber(n);
+    for (int32_t k = 0; k < n; ++k) {
+        order_[k] = order[postorder[k]];
+        renumber[postorder[k]] = k;
+    }
+    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
+    {
+        std::vector<int32_t> renumbered_parent(n, -1);
+        for (int32_t j = 0; j < n; ++j) {
+            if (parent[j] >= 0) renumbered_parent[renumber[j]] = renumber[parent[j]];
+        }
+        parent.swap(renumbered_parent);
+    }
+
+    // Column counts of L (diagonal included) by traversing the row subtrees: row i of L has an
+    // entry in column j exactly when j lies on a tree path from a column of A's row i up to i.
+    std::vector<int64_t> column_count(n, 1);
+    {
+        std::vector<int32_t> mark(n, -1);
+        for (int32_t i = 0; i < n; ++i) {
+            mark[i] = i;
+            const int32_t row = order_[i];
+            for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
+                for (int32_t j = position[pattern.columns[p]]; j < i && mark[j] != i;
+                     j = parent[j]) {
+                    mark[j] = i;
+                    ++column_count[j];
+                }
+            }
+        }
+    }
+
+    // Fundamental supernodes: chains j -> j + 1 where j is the only child and the structure
+    // shrinks by exactly the diagonal.
+    std::vector<int32_t> child_count(n, 0);
+    for (int32_t j = 0; j < n; ++j) {
+        if (parent[j] >= 0) ++child_count[parent[j]];
+    }
+    std::vector<int32_t> super_first;  // first column of each fundamental supernode
+    for (int32_t j = 0; j < n; ++j) {
+        const bool continues = j > 0 && parent[j - 1] == j && child_count[j] == 1 &&
+                               column_count[j - 1] == column_count[j] + 1;
+        if (!continues) super_first.push_back(j);
+    }
+    super_first.push_back(n);
+
+    // Relaxed amalgamation, from the last supernode down: supernode s merges into the group
+    // that starts right after it when that group holds its parent column.
+    const int32_t fundamental_count = static_cast<int32_t>(super_first.size()) - 1;
+    std::vector<char> merged_with_next(fundamental_count, 0);
+    {
+        // Stats of the group starting at supernode s+1 (the one s may join).
+        int64_t group_columns = 0, group_rows = 0;
+        double group_nonzeros = 0;
+        for (int32_t s = fundamental_count - 1; s >= 0; --s) {
+            const int32_t f = super_first[s], l = super_first[s + 1] - 1;
+            const int64_t cols = l - f + 1;
+            double nonzeros = 0;
+            for (int32_t j = f; j <= l; ++j) nonzeros += static_cast<double>(column_count[j]);
+            const int64_t rows = column_count[f];
+            bool merge = false;
+            if (s + 1 < fundamental_count && parent[l] == super_first[s + 1]) {
+                const int64_t merged_columns = cols + group_columns;
+                const int64_t merged_rows = cols + group_rows;
+                const double entries = static_cast<double>(merged_columns) * merged_rows -
+                                       0.5 * static_cast<double>(merged_columns) *
+                                           static_cast<double>(merged_columns - 1);
+                const double zero_fraction = 1.0 - (nonzeros + group_nonzeros) / entries;
+                merge = worth_merging(merged_columns, zero_fraction);
+                if (merge) {
+                    group_columns = merged_columns;
+                    group_rows = merged_rows;
+                    group_nonzeros += nonzeros;
+                }
+            }
+            merged_with_next[s] = merge;
+            if (!merge) {
+                group_columns = cols;
+                group_rows = rows;
+                group_nonzeros = nonzeros;
+            }
+        }
+    }
+    std::vector<int32_t> supernode_of(n);
+    supernodes_.clear();
+    for (int32_t s = 0; s < fundamental_count; ++s) {
+        if (s == 0 || !merged_with_next[s - 1]) {
+            Supernode node{};
+            node.first_column = super_first[s];
+            supernodes_.push_back(node);
+        }
+        supernodes_.back().columns = super_first[s + 1] - supernodes_.back().first_column;
+    }
+    const int32_t supernode_count = static_cast<int32_t>(supernodes_.size());
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        const Supernode& node = supernodes_[s];
+        for (int32_t j = node.first_column; j < node.first_column + node.columns; ++j) {
+            supernode_of[j] = s;
+        }
+    }
+    std::vector<int32_t> super_parent(supernode_count, -1);
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        const int32_t last = supernodes_[s].first_column + supernodes_[s].columns - 1;
+        if (parent[last] >= 0) super_parent[s] = supernode_of[parent[last]];
+    }
+    // Children lists (postorder keeps them in increasing order, which the stack relies on).
+    std::vector<int32_t> children_count(supernode_count, 0);
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        if (super_parent[s] >= 0) ++children_count[super_parent[s]];
+    }
+    {
+        int32_t offset = 0;
+        for (int32_t s = 0; s < supernode_count; ++s) {
+            supernodes_[s].child_begin = supernodes_[s].child_end = offset;
+            offset += children_count[s];
+        }
+        child_list_.assign(offset, 0);
+        for (int32_t s = 0; s < supernode_count; ++s) {
+            if (super_parent[s] >= 0) {
+                Supernode& p = supernodes_[super_parent[s]];
+                child_list_[p.child_end++] = s;
+            }
+        }
+    }
+
+    // Front structures: the supernode's columns, then the rows below it from A's columns and
+    // from its children's update rows, sorted.
+    row_indices_.clear();
+    std::vector<int32_t> mark(n, -1);
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        Supernode& node = supernodes_[s];
+        const int32_t f = node.first_column, l = f + node.columns - 1;
+        node.row_offset = static_cast<int64_t>(row_indices_.size());
+        for (int32_t j = f; j <= l; ++j) row_indices_.push_back(j);
+        const size_t update_begin = row_indices_.size();
+        for (int32_t j = f; j <= l; ++j) {
+            const int32_t column = order_[j];
+            for (int32_t p = pattern.row_offsets[column]; p < pattern.row_offsets[column + 1];
+                 ++p) {
+                const int32_t i = position[pattern.columns[p]];
+                if (i > l && mark[i] != s) {
+                    mark[i] = s;
+                    row_indices_.push_back(i);
+                }
+            }
+        }
+        for (int32_t c = node.child_begin; c < node.child_end; ++c) {
+            const Supernode& child = supernodes_[child_list_[c]];
+            for (int64_t r = child.row_offset + child.columns;
+                 r < child.row_offset + child.rows; ++r) {
+                const int32_t i = row_indices_[r];
+                if (i > l && mark[i] != s) {
+                    mark[i] = s;
+                    row_indices_.push_back(i);
+                }
+            }
+        }
+        std::sort(row_indices_.begin() + static_cast<int64_t>(update_begin), row_indices_.end());
+        node.rows = static_cast<int32_t>(row_indices_.size() - node.row_offset);
+    }
+
+    // Where each child's update rows land in its parent's front, and where each original entry
+    // lands in the front of the supernode that owns min(row, column).
+    std::vector<int32_t> local(n, -1);
+    relative_rows_.clear();
+    int64_t factor_size = 0, max_front = 0;
+    total_flops_ = 0;
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        Supernode& node = supernodes_[s];
+        node.factor_offset = factor_size;
+        const int64_t m = node.rows, k = node.columns;
+        factor_size += m * k + k * (m - k);
+        max_front = std::max(max_front, m * m);
+        // Flops of the partial LU: 2 k^2 (m - k) for the panels + 2 k (m - k)^2 for the update.
+        total_flops_ += static_cast<double>(k) * static_cast<double>(m) * static_cast<double>(m);
+    }
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        const Supernode& node = supernodes_[s];
+        for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
+        for (int32_t c = node.child_begin; c < node.child_end; ++c) {
+            Supernode& child = supernodes_[child_list_[c]];
+            child.relative_offset = static_cast<int64_t>(relative_rows_.size());
+            for (int64_t r = child.row_offset + child.columns; r < child.row_offset + child.rows;
+                 ++r) {
+                relative_rows_.push_back(local[row_indices_[r]]);
+            }
+        }
+    }
+    // Original entries: A(i, j) goes to the front of the supernode owning column min(i, j), at
+    // (local row of i, local column of j); max(i, j) is in that front because L(max, min) != 0.
+    // From the rows of the supernode's columns we see the entries (j, other) with other at or
+    // after its first column, and fetch the transposed entry (other, j) when other lies beyond it.
+    value_source_.clear();
+    value_target_.clear();
+    value_source_.reserve(pattern.nonzeros());
+    value_target_.reserve(pattern.nonzeros());
+    diagonal_source_.assign(n, -1);
+    for (int32_t s = 0; s < supernode_count; ++s) {
+        Supernode& node = supernodes_[s];
+        const int32_t f = node.first_column, l = f + node.columns - 1;
+        for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
+        node.value_begin = static_cast<int64_t>(value_source_.size());
+        for (int32_t j = f; j <= l; ++j) {
+            const int32_t row = order_[j];
+            for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
+                const int32_t other = position[pattern.columns[p]];
+                if (other < f) continue;
+                if (other == j) diagonal_source_[j] = p;
+                value_source_.push_back(p);
+                value_target_.push_back(local[j] + static_cast<int64_t>(local[other]) * node.rows);
+                if (other <= l) continue;
+                const int32_t other_row = order_[other];
+                const auto begin = pattern.columns.begin() + pattern.row_offsets[other_row];
+                const auto end = pattern.columns.begin() + pattern.row_offsets[other_row + 1];
+                value_source_.push_back(std::lower_bound(begin, end, row) -
+                                        pattern.columns.begin());
+                value_target_.push_back(local[other] + static_cast<int64_t>(local[j]) * node.rows);
+            }
+        }
+        node.value_end = static_cast<int64_t>(value_source_.size());
+    }
+
+    // Peak of the contribution-block stack, simulated in the factorization's order.
+    {
+        int64_t stack = 0;
+        stack_peak_ = 0;
+        std::vector<int64_t> stack_sizes;
+        for (int32_t s = 0; s < supernode_count; ++s) {
+            const Supernode& node = supernodes_[s];
+            for (int32_t c = node.child_begin; c < node.child_end; ++c) {
+                stack -= stack_sizes.back();
+                stack_sizes.pop_back();
+            }
+            const int64_t update = node.rows - node.columns;
+            stack_sizes.push_back(update * update);
+            stack += update * update;
+            stack_peak_ = std::max(stack_peak_, stack);
+        }
+    }
+    factors_.assign(factor_size, 0.0);
+    front_.assign(max_front, 0.0);
+    stack_.assign(stack_peak_, 0.0);
+}
+
+bool MultifrontalLU::factorize(const double* values, const std::function<void(double)>& progress) {
+    std::vector<double> pivot_scale(size_);
+    for (int32_t j = 0; j < size_; ++j) {
+        pivot_scale[j] = diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
+        if (!(pivot_scale[j] > 0.0)) pivot_scale[j] = 1e-300;
+    }
+    int64_t stack_top = 0;
+    std::vector<int64_t> block_starts;
+    double flops_done = 0, next_report = 0.01 * total_flops_;
+    for (const Supernode& node : supernodes_) {
+        const int32_t m = node.rows, k = node.columns;
+        double* front = front_.data();
+        std::fill(front, front + static_cast<int64_t>(m) * m, 0.0);
+        for (int64_t e = node.value_begin; e < node.value_end; ++e) {
+            front[value_target_[e]] += values[value_source_[e]];
+        }
+        // Children's contribution blocks sit on top of the stack in child order.
+        const int32_t child_total = node.child_end - node.child_begin;
+        for (int32_t c = 0; c < child_total; ++c) {
+            const Supernode& child = supernodes_[child_list_[node.child_begin + c]];
+            const int64_t start = block_starts[block_starts.size() - child_total + c];
+            const int32_t update = child.rows - child.columns;
+            const int32_t* relative = relative_rows_.data() + child.relative_offset;
+            const double* block = stack_.data() + start;
+            for (int32_t jj = 0; jj < update; ++jj) {
+                double* target = front + static_cast<int64_t>(relative[jj]) * m;
+                const double* source = block + static_cast<int64_t>(jj) * update;
+                for (int32_t ii = 0; ii < update; ++ii) target[relative[ii]] += source[ii];
+            }
+        }
+        if (child_total > 0) {
+            stack_top = block_starts[block_starts.size() - child_total];
+            block_starts.resize(block_starts.size() - child_total);
+        }
+        if (!partial_lu(front, m, k, pivot_scale.data() + node.first_column)) return false;
+        double* lower = factors_.data() + node.factor_offset;
+        for (int32_t c = 0; c < k; ++c) {
+            std::copy(front + static_cast<int64_t>(c) * m, front + static_cast<int64_t>(c + 1) * m,
+                      lower + static_cast<int64_t>(c) * m);
+        }
+        double* upper = lower + static_cast<int64_t>(m) * k;  // k x (m - k), column-major
+        for (int32_t c = k; c < m; ++c) {
+            std::copy(front + static_cast<int64_t>(c) * m, front + static_cast<int64_t>(c) * m + k,
+                      upper + static_cast<int64_t>(c - k) * k);
+        }
+        const int32_t update = m - k;
+        if (update > 0) {
+            block_starts.push_back(stack_top);
+            double* block = stack_.data() + stack_top;
+            for (int32_t c = 0; c < update; ++c) {
+                const double* source = front + static_cast<int64_t>(k + c) * m + k;
+                std::copy(source, source + update, block + static_cast<int64_t>(c) * update);
+            }
+            stack_top += static_cast<int64_t>(update) * update;
+        }
+        flops_done += static_cast<double>(k) * m * m;
+        if (progress && flops_done >= next_report) {
+            progress(flops_done / total_flops_);
+            next_report = flops_done + 0.01 * total_flops_;
+        }
+    }
+    return true;
+}
+
+void MultifrontalLU::solve(double* b, int rhs_count) const {
+    const int32_t n = size_;
+    // Permute into elimination order.
+    Matrix x(n, rhs_count);
+    for (int c = 0; c < rhs_count; ++c) {
+        for (int32_t k = 0; k < n; ++k) x(k, c) = b[static_cast<int64_t>(c) * n + order_[k]];
+    }
+    Matrix gathered;
+    // Forward: L y = b, children before parents.
+    for (const Supernode& node : supernodes_) {
+        const int32_t m = node.rows, k = node.columns, update = m - k;
+        const double* lower = factors_.data() + node.factor_offset;
+        Eigen::Map<const Matrix> panel(lower, m, k);
+        auto xs = x.middleRows(node.first_column, k);
+        panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
+        if (update == 0) continue;
+        gathered.noalias() = panel.bottomRows(update) * xs;
+        const int32_t* rows = row_indices_.data() + node.row_offset + k;
+        for (int c = 0; c < rhs_count; ++c) {
+            for (int32_t r = 0; r < update; ++r) x(rows[r], c) -= gathered(r, c);
+        }
+    }
+    // Backward: U x = y, parents before children.
+    for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
+        const Supernode& node = *it;
+        const int32_t m = node.rows, k = node.columns, update = m - k;
+        const double* lower = factors_.data() + node.factor_offset;
+        Eigen::Map<const Matrix> panel(lower, m, k);
+        auto xs = x.middleRows(node.first_column, k);
+        if (update > 0) {
+            Eigen::Map<const Matrix> upper(lower + static_cast<int64_t>(m) * k, k, update);
+            const int32_t* rows = row_indices_.data() + node.row_offset + k;
+            gathered.resize(update, rhs_count);
+            for (int c = 0; c < rhs_count; ++c) {
+                for (int32_t r = 0; r < update; ++r) gathered(r, c) = x(rows[r], c);
+            }
+            xs.noalias() -= upper * gathered;
+        }
+        panel.topRows(k).triangularView<Eigen::Upper>().solveInPlace(xs);
+    }
+    for (int c = 0; c < rhs_count; ++c) {
+        for (int32_t k = 0; k < n; ++k) b[static_cast<int64_t>(c) * n + order_[k]] = x(k, c);
+    }
+}
+
+}  // namespace raps

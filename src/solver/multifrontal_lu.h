@@ -1,0 +1,65 @@
+// Sparse LU factorization without pivoting for structurally symmetric matrices, by the
+// multifrontal method (Duff & Reid 1983; Liu 1992) with relaxed supernodes (Ashcraft & Grimes
+// 1989). The Laplace systems of section 3 with positive weights are M-matrices (row diagonally
+// dominant, irreducible, boundary rows strictly dominant), for which elimination without pivoting
+// is stable in any order, so the symbolic analysis - ordering, elimination tree, supernodes,
+// front structures - is done once and reused by every numeric factorization (the initial map and
+// each adaptive step). Matrices that need pivoting are reported by factorize() returning false.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "solver/sparse_pattern.h"
+
+namespace raps {
+
+class MultifrontalLU {
+public:
+    // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated).
+    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order);
+
+    // Numeric factorization of the values of `pattern` (in its column order). Returns false when
+    // a pivot is zero or tiny against its row's original diagonal (the matrix needs pivoting).
+    // `progress` receives the fraction of the work done (by flops), about every 1%.
+    bool factorize(const double* values, const std::function<void(double)>& progress);
+
+    // Solves A X = B in place; b holds `rhs_count` columns of size() entries each.
+    void solve(double* b, int rhs_count) const;
+
+    int32_t size() const { return size_; }
+    int64_t factor_entries() const { return static_cast<int64_t>(factors_.size()); }
+    double factor_flops() const { return total_flops_; }
+
+private:
+    struct Supernode {
+        int32_t first_column;  // in elimination order; columns first .. first + columns - 1
+        int32_t columns;
+        int32_t rows;            // front size: the supernode's columns plus its update rows
+        int64_t row_offset;      // into row_indices_: the front's rows, its columns first
+        int64_t factor_offset;   // into factors_: L panel (rows x columns), then U panel
+        int32_t child_begin;     // children are child_list_[child_begin .. child_end)
+        int32_t child_end;
+        int64_t relative_offset; // into relative_rows_: this front's update rows in its parent
+        int64_t value_begin;     // its original entries: value_source_/value_target_ ranges
+        int64_t value_end;
+    };
+
+    int32_t size_ = 0;
+    std::vector<int32_t> order_;             // elimination position -> unknown
+    std::vector<Supernode> supernodes_;      // in postorder: children before parents
+    std::vector<int32_t> child_list_;
+    std::vector<int32_t> row_indices_;       // elimination positions
+    std::vector<int32_t> relative_rows_;
+    std::vector<int64_t> value_source_;      // index into the caller's values
+    std::vector<int64_t> value_target_;      // position in the front, column-major
+    std::vector<int32_t> diagonal_source_;   // per elimination position: index of its diagonal
+    std::vector<double> factors_;
+    std::vector<double> front_;               // workspace: the largest front
+    std::vector<double> stack_;               // contribution blocks waiting for their parent
+    int64_t stack_peak_ = 0;
+    double total_flops_ = 0;
+};
+
+}  // namespace raps
