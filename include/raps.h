@@ -73,7 +73,8 @@
 #define RAPS_VERSION_MINOR 1
 #define RAPS_VERSION_PATCH 0
 /* MAJOR*10000 + MINOR*100 + PATCH, as a compile-time number to compare with raps_version(). */
-#define RAPS_VERSION ((RAPS_VERSION_MAJOR * 10000) + (RAPS_VERSION_MINOR * 100) + RAPS_VERSION_PATCH)
+#define RAPS_VERSION \
+    ((RAPS_VERSION_MAJOR * 10000) + (RAPS_VERSION_MINOR * 100) + RAPS_VERSION_PATCH)
 
 #ifdef __cplusplus
 extern "C" {
@@ -282,9 +283,8 @@ RAPS_API raps_status raps_settings_get_float(const raps_settings* settings, raps
 /* Facts about a parameter, without a settings handle: its name ("alpha", ...), whether it is a
  * float (1) or an int (0), its inclusive bounds and its default. Any out pointer may be NULL.
  * Errors: INVALID_ARGUMENT (unknown parameter). Thread-safe. */
-RAPS_API raps_status raps_param_info(raps_param param, const char** out_name,
-                                     int32_t* out_is_float, double* out_min, double* out_max,
-                                     double* out_default);
+RAPS_API raps_status raps_param_info(raps_param param, const char** out_name, int32_t* out_is_float,
+                                     double* out_min, double* out_max, double* out_default);
 
 /* Progress phases, reported to the progress callback and timed in raps_result_phase_ms. */
 typedef int32_t raps_phase;

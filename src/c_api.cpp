@@ -43,6 +43,7 @@ RAPS_CHECK_CODE(kInternal, RAPS_ERROR_INTERNAL);
 
 struct raps_mesh {
     raps::TriangleMesh mesh;
+    bool indices_are_u16 = false;  // then at most 65536 vertices can be reached
     std::string last_error;
 };
 
@@ -140,29 +141,50 @@ const ParamInfo& checked_param(raps_param id, bool want_float) {
 
 int64_t get_int(const raps::Settings& s, raps_param id) {
     switch (id) {
-        case RAPS_PARAM_DOMAIN: return static_cast<int64_t>(s.domain);
-        case RAPS_PARAM_WEIGHTS: return static_cast<int64_t>(s.weights);
-        case RAPS_PARAM_MONITOR: return static_cast<int64_t>(s.monitor);
-        case RAPS_PARAM_ITERATIONS: return s.iterations;
-        case RAPS_PARAM_ITERATION_MODE: return static_cast<int64_t>(s.iteration_mode);
-        case RAPS_PARAM_BOUNDARY: return static_cast<int64_t>(s.boundary);
-        case RAPS_PARAM_MAX_TRIANGLES: return s.max_triangles;
-        default: throw Error(ErrorCode::kInternal, "int parameter without a field");
+        case RAPS_PARAM_DOMAIN:
+            return static_cast<int64_t>(s.domain);
+        case RAPS_PARAM_WEIGHTS:
+            return static_cast<int64_t>(s.weights);
+        case RAPS_PARAM_MONITOR:
+            return static_cast<int64_t>(s.monitor);
+        case RAPS_PARAM_ITERATIONS:
+            return s.iterations;
+        case RAPS_PARAM_ITERATION_MODE:
+            return static_cast<int64_t>(s.iteration_mode);
+        case RAPS_PARAM_BOUNDARY:
+            return static_cast<int64_t>(s.boundary);
+        case RAPS_PARAM_MAX_TRIANGLES:
+            return s.max_triangles;
+        default:
+            throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
 }
 
 void set_int(raps::Settings& s, raps_param id, int64_t v) {
     switch (id) {
-        case RAPS_PARAM_DOMAIN: s.domain = static_cast<raps::Domain>(v); break;
-        case RAPS_PARAM_WEIGHTS: s.weights = static_cast<raps::WeightScheme>(v); break;
-        case RAPS_PARAM_MONITOR: s.monitor = static_cast<raps::Monitor>(v); break;
-        case RAPS_PARAM_ITERATIONS: s.iterations = static_cast<int>(v); break;
+        case RAPS_PARAM_DOMAIN:
+            s.domain = static_cast<raps::Domain>(v);
+            break;
+        case RAPS_PARAM_WEIGHTS:
+            s.weights = static_cast<raps::WeightScheme>(v);
+            break;
+        case RAPS_PARAM_MONITOR:
+            s.monitor = static_cast<raps::Monitor>(v);
+            break;
+        case RAPS_PARAM_ITERATIONS:
+            s.iterations = static_cast<int>(v);
+            break;
         case RAPS_PARAM_ITERATION_MODE:
             s.iteration_mode = static_cast<raps::IterationMode>(v);
             break;
-        case RAPS_PARAM_BOUNDARY: s.boundary = static_cast<raps::BoundaryShape>(v); break;
-        case RAPS_PARAM_MAX_TRIANGLES: s.max_triangles = v; break;
-        default: throw Error(ErrorCode::kInternal, "int parameter without a field");
+        case RAPS_PARAM_BOUNDARY:
+            s.boundary = static_cast<raps::BoundaryShape>(v);
+            break;
+        case RAPS_PARAM_MAX_TRIANGLES:
+            s.max_triangles = v;
+            break;
+        default:
+            throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
 }
 
@@ -179,9 +201,9 @@ void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) 
     }
     if (stride == 0) stride = 3 * sizeof(T);
     if (stride < 3 * sizeof(T)) {
-        throw Error(ErrorCode::kInvalidArgument,
-                    "stride_bytes " + std::to_string(stride) + " is smaller than one point (" +
-                        std::to_string(3 * sizeof(T)) + " bytes)");
+        throw Error(ErrorCode::kInvalidArgument, "stride_bytes " + std::to_string(stride) +
+                                                     " is smaller than one point (" +
+                                                     std::to_string(3 * sizeof(T)) + " bytes)");
     }
     std::vector<Eigen::Vector3d> positions(count);
     const unsigned char* bytes = reinterpret_cast<const unsigned char*>(xyz);
@@ -206,8 +228,8 @@ void read_indices(raps_mesh* mesh, const T* indices, size_t count) {
     require(indices != nullptr, "indices pointer is NULL");
     if (count == 0) throw Error(ErrorCode::kEmptyMesh, "index_count is 0");
     if (count % 3 != 0) {
-        throw Error(ErrorCode::kIndexCount, "index_count " + std::to_string(count) +
-                                                " is not a multiple of 3");
+        throw Error(ErrorCode::kIndexCount,
+                    "index_count " + std::to_string(count) + " is not a multiple of 3");
     }
     if (count / 3 > static_cast<size_t>(kMaxElements)) {
         throw Error(ErrorCode::kTooLarge, "too many triangles (raps accepts at most 2^31 - 1)");
@@ -222,6 +244,7 @@ void read_indices(raps_mesh* mesh, const T* indices, size_t count) {
         triangles[i / 3][i % 3] = static_cast<int32_t>(indices[i]);
     }
     mesh->mesh.triangles = std::move(triangles);
+    mesh->indices_are_u16 = sizeof(T) == 2;
 }
 
 template <typename T>
@@ -249,9 +272,9 @@ void copy_u32(const raps_result* result, const std::vector<uint32_t>& source, ui
     require(dst != nullptr, "dst is NULL");
     if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
     if (capacity < source.size()) {
-        throw Error(ErrorCode::kInvalidArgument,
-                    "capacity " + std::to_string(capacity) + " is smaller than the " +
-                        std::to_string(source.size()) + " " + what);
+        throw Error(ErrorCode::kInvalidArgument, "capacity " + std::to_string(capacity) +
+                                                     " is smaller than the " +
+                                                     std::to_string(source.size()) + " " + what);
     }
     std::copy(source.begin(), source.end(), dst);
 }
@@ -264,7 +287,9 @@ const char* message_of(const std::string* last_error) {
 
 extern "C" {
 
-uint32_t raps_version(void) { return RAPS_VERSION; }
+uint32_t raps_version(void) {
+    return RAPS_VERSION;
+}
 
 const char* raps_version_string(void) {
 #define RAPS_STRINGIFY2(x) #x
@@ -277,29 +302,52 @@ const char* raps_version_string(void) {
 
 const char* raps_status_string(raps_status status) {
     switch (status) {
-        case RAPS_OK: return "ok";
-        case RAPS_ERROR_INVALID_ARGUMENT: return "invalid argument";
-        case RAPS_ERROR_OUT_OF_MEMORY: return "out of memory";
-        case RAPS_ERROR_EMPTY_MESH: return "empty mesh";
-        case RAPS_ERROR_INDEX_COUNT: return "index count is not a multiple of 3";
-        case RAPS_ERROR_INDEX_OUT_OF_RANGE: return "index out of range";
-        case RAPS_ERROR_NON_FINITE_POSITION: return "non-finite position";
-        case RAPS_ERROR_REPEATED_VERTEX: return "triangle with a repeated vertex";
-        case RAPS_ERROR_ZERO_AREA_TRIANGLE: return "zero-area triangle";
-        case RAPS_ERROR_NON_MANIFOLD_EDGE: return "non-manifold edge";
-        case RAPS_ERROR_NON_MANIFOLD_VERTEX: return "non-manifold vertex";
-        case RAPS_ERROR_INCONSISTENT_ORIENTATION: return "inconsistent triangle orientation";
-        case RAPS_ERROR_ISOLATED_VERTEX: return "isolated vertex";
-        case RAPS_ERROR_MULTIPLE_COMPONENTS: return "several connected components";
-        case RAPS_ERROR_NO_BOUNDARY: return "no boundary";
-        case RAPS_ERROR_MULTIPLE_BOUNDARIES: return "more than one boundary loop";
-        case RAPS_ERROR_NONZERO_GENUS: return "genus greater than zero";
-        case RAPS_ERROR_TOO_LARGE: return "mesh too large";
-        case RAPS_ERROR_CANCELLED: return "cancelled";
-        case RAPS_ERROR_SOLVER_FAILED: return "solver failed";
-        case RAPS_ERROR_INVALID_OPERATION: return "invalid operation";
-        case RAPS_ERROR_INTERNAL: return "internal error";
-        default: return "unknown status";
+        case RAPS_OK:
+            return "ok";
+        case RAPS_ERROR_INVALID_ARGUMENT:
+            return "invalid argument";
+        case RAPS_ERROR_OUT_OF_MEMORY:
+            return "out of memory";
+        case RAPS_ERROR_EMPTY_MESH:
+            return "empty mesh";
+        case RAPS_ERROR_INDEX_COUNT:
+            return "index count is not a multiple of 3";
+        case RAPS_ERROR_INDEX_OUT_OF_RANGE:
+            return "index out of range";
+        case RAPS_ERROR_NON_FINITE_POSITION:
+            return "non-finite position";
+        case RAPS_ERROR_REPEATED_VERTEX:
+            return "triangle with a repeated vertex";
+        case RAPS_ERROR_ZERO_AREA_TRIANGLE:
+            return "zero-area triangle";
+        case RAPS_ERROR_NON_MANIFOLD_EDGE:
+            return "non-manifold edge";
+        case RAPS_ERROR_NON_MANIFOLD_VERTEX:
+            return "non-manifold vertex";
+        case RAPS_ERROR_INCONSISTENT_ORIENTATION:
+            return "inconsistent triangle orientation";
+        case RAPS_ERROR_ISOLATED_VERTEX:
+            return "isolated vertex";
+        case RAPS_ERROR_MULTIPLE_COMPONENTS:
+            return "several connected components";
+        case RAPS_ERROR_NO_BOUNDARY:
+            return "no boundary";
+        case RAPS_ERROR_MULTIPLE_BOUNDARIES:
+            return "more than one boundary loop";
+        case RAPS_ERROR_NONZERO_GENUS:
+            return "genus greater than zero";
+        case RAPS_ERROR_TOO_LARGE:
+            return "mesh too large";
+        case RAPS_ERROR_CANCELLED:
+            return "cancelled";
+        case RAPS_ERROR_SOLVER_FAILED:
+            return "solver failed";
+        case RAPS_ERROR_INVALID_OPERATION:
+            return "invalid operation";
+        case RAPS_ERROR_INTERNAL:
+            return "internal error";
+        default:
+            return "unknown status";
     }
 }
 
@@ -309,7 +357,9 @@ raps_status raps_mesh_create(raps_mesh** out_mesh) {
     return guarded(nullptr, [&] { *out_mesh = new raps_mesh(); });
 }
 
-void raps_mesh_destroy(raps_mesh* mesh) { delete mesh; }
+void raps_mesh_destroy(raps_mesh* mesh) {
+    delete mesh;
+}
 
 raps_status raps_mesh_set_positions_f32(raps_mesh* mesh, const float* xyz, size_t vertex_count,
                                         size_t stride_bytes) {
@@ -363,7 +413,9 @@ raps_status raps_settings_clone(const raps_settings* settings, raps_settings** o
     });
 }
 
-void raps_settings_destroy(raps_settings* settings) { delete settings; }
+void raps_settings_destroy(raps_settings* settings) {
+    delete settings;
+}
 
 raps_status raps_settings_set_int(raps_settings* settings, raps_param param, int64_t value) {
     return guarded(settings ? &settings->last_error : nullptr, [&] {
@@ -372,8 +424,8 @@ raps_status raps_settings_set_int(raps_settings* settings, raps_param param, int
         if (static_cast<double>(value) < info.min || static_cast<double>(value) > info.max) {
             throw Error(ErrorCode::kInvalidArgument,
                         std::string("value ") + std::to_string(value) + " of parameter " +
-                            info.name + " is outside [" + std::to_string(int64_t(info.min)) +
-                            ", " + std::to_string(int64_t(info.max)) + "]");
+                            info.name + " is outside [" + std::to_string(int64_t(info.min)) + ", " +
+                            std::to_string(int64_t(info.max)) + "]");
         }
         set_int(settings->settings, param, value);
     });
@@ -440,7 +492,9 @@ raps_status raps_result_create(raps_result** out_result) {
     return guarded(nullptr, [&] { *out_result = new raps_result(); });
 }
 
-void raps_result_destroy(raps_result* result) { delete result; }
+void raps_result_destroy(raps_result* result) {
+    delete result;
+}
 
 raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
                               raps_result* result) {
@@ -449,6 +503,12 @@ raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settin
     result->map = raps::Parameterization();
     return guarded(&result->last_error, [&] {
         require(mesh != nullptr, "mesh is NULL");
+        if (mesh->indices_are_u16 && mesh->mesh.positions.size() > 65536) {
+            throw Error(ErrorCode::kTooLarge,
+                        "the mesh has " + std::to_string(mesh->mesh.positions.size()) +
+                            " vertices but uint16 indices reach only 65536; use "
+                            "raps_mesh_set_indices_u32");
+        }
         const raps::Settings defaults;
         const raps::Settings& chosen = settings ? settings->settings : defaults;
         raps::Progress progress;

@@ -15,10 +15,9 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                                                : "the mesh has no triangles (set its indices)");
     }
     if (mesh.triangle_count() > settings.max_triangles) {
-        throw Error(ErrorCode::kTooLarge,
-                    "the mesh has " + std::to_string(mesh.triangle_count()) +
-                        " triangles, more than RAPS_PARAM_MAX_TRIANGLES = " +
-                        std::to_string(settings.max_triangles));
+        throw Error(ErrorCode::kTooLarge, "the mesh has " + std::to_string(mesh.triangle_count()) +
+                                              " triangles, more than RAPS_PARAM_MAX_TRIANGLES = " +
+                                              std::to_string(settings.max_triangles));
     }
     Parameterization out;
     DiskMap map = parameterize_disk(mesh, settings, progress, out.phase_ms);

@@ -91,7 +91,8 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
         if (keyword == "v") {
             std::string_view coordinate;
             for (int c = 0; c < 3; ++c) {
-                if (!tokens.next(coordinate)) fail(path, line_number, "vertex with fewer than 3 coordinates");
+                if (!tokens.next(coordinate))
+                    fail(path, line_number, "vertex with fewer than 3 coordinates");
                 mesh.positions.push_back(parse_double(coordinate, path, line_number));
             }
         } else if (keyword == "f") {
@@ -103,7 +104,8 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
                 const long long resolved =
                     index > 0 ? index - 1 : static_cast<long long>(mesh.vertex_count()) + index;
                 if (index == 0 || resolved < 0 || resolved > 0xffffffffLL) {
-                    fail(path, line_number, "vertex index " + std::to_string(index) + " is invalid");
+                    fail(path, line_number,
+                         "vertex index " + std::to_string(index) + " is invalid");
                 }
                 mesh.corners.push_back(static_cast<uint32_t>(resolved));
                 ++corners;

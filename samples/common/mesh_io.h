@@ -10,7 +10,7 @@
 namespace raps_samples {
 
 struct PolygonMesh {
-    std::vector<double> positions;         // x, y, z per vertex
+    std::vector<double> positions;          // x, y, z per vertex
     std::vector<uint32_t> polygon_offsets;  // polygon p: corners [offsets[p], offsets[p + 1])
     std::vector<uint32_t> corners;          // vertex index per polygon corner
 

@@ -53,11 +53,14 @@ struct Choice {
 
 const std::map<std::string, std::vector<Choice>> kChoices = {
     {"--weights",
-     {{"mvc", RAPS_WEIGHTS_MEAN_VALUE}, {"cotan", RAPS_WEIGHTS_COTANGENT},
+     {{"mvc", RAPS_WEIGHTS_MEAN_VALUE},
+      {"cotan", RAPS_WEIGHTS_COTANGENT},
       {"uniform", RAPS_WEIGHTS_UNIFORM}}},
     {"--monitor",
-     {{"none", RAPS_MONITOR_NONE}, {"area", RAPS_MONITOR_AREA},
-      {"length", RAPS_MONITOR_EDGE_LENGTH}, {"angle", RAPS_MONITOR_ANGLE}}},
+     {{"none", RAPS_MONITOR_NONE},
+      {"area", RAPS_MONITOR_AREA},
+      {"length", RAPS_MONITOR_EDGE_LENGTH},
+      {"angle", RAPS_MONITOR_ANGLE}}},
     {"--iteration-mode",
      {{"accumulate", RAPS_ITERATION_ACCUMULATE}, {"reapply", RAPS_ITERATION_REAPPLY}}},
     {"--boundary", {{"circle", RAPS_BOUNDARY_CIRCLE}, {"square", RAPS_BOUNDARY_SQUARE}}},
@@ -78,10 +81,18 @@ std::string json_string(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {
         switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
             default:
                 if (static_cast<unsigned char>(c) < 0x20) {
                     char buffer[8];
@@ -131,14 +142,16 @@ struct Failure : std::runtime_error {
     raps_status status;
 };
 
-void check(raps_status status, const char* message) {
-    if (status != RAPS_OK) throw Failure(status, message);
+// Takes the message getter rather than the message: it must be read after the call fails.
+template <typename Message>
+void check(raps_status status, Message&& message) {
+    if (status != RAPS_OK) throw Failure(status, message());
 }
 
 int run(int argc, char** argv) {
     std::string input, output;
     Handles h;
-    check(raps_settings_create(&h.settings), "cannot create settings");
+    check(raps_settings_create(&h.settings), [] { return "cannot create settings"; });
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&]() -> std::string {
@@ -159,7 +172,7 @@ int run(int argc, char** argv) {
             for (const Choice& c : kChoices.at(arg)) {
                 if (name == c.name) {
                     check(raps_settings_set_int(h.settings, kChoiceParams.at(arg), c.value),
-                          raps_settings_last_error(h.settings));
+                          [&] { return raps_settings_last_error(h.settings); });
                     found = true;
                 }
             }
@@ -180,7 +193,8 @@ int run(int argc, char** argv) {
                     throw UsageError(arg + " needs a whole number, not '" + text + "'");
                 }
                 status = raps_settings_set_int(
-                    h.settings, arg == "--iterations" ? RAPS_PARAM_ITERATIONS : RAPS_PARAM_MAX_TRIANGLES,
+                    h.settings,
+                    arg == "--iterations" ? RAPS_PARAM_ITERATIONS : RAPS_PARAM_MAX_TRIANGLES,
                     static_cast<int64_t>(number));
             }
             if (status != RAPS_OK) throw UsageError(raps_settings_last_error(h.settings));
@@ -200,18 +214,21 @@ int run(int argc, char** argv) {
     const std::vector<uint32_t> triangles = polygons.triangles();
     const double read_ms = elapsed_ms(read_start);
 
-    check(raps_mesh_create(&h.mesh), "cannot create a mesh");
+    check(raps_mesh_create(&h.mesh), [] { return "cannot create a mesh"; });
     if (polygons.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, input + ": no vertices");
     if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, input + ": no faces");
-    check(raps_mesh_set_positions_f64(h.mesh, polygons.positions.data(), polygons.vertex_count(), 0),
-          raps_mesh_last_error(h.mesh));
+    check(
+        raps_mesh_set_positions_f64(h.mesh, polygons.positions.data(), polygons.vertex_count(), 0),
+        [&] { return raps_mesh_last_error(h.mesh); });
     check(raps_mesh_set_indices_u32(h.mesh, triangles.data(), triangles.size()),
-          raps_mesh_last_error(h.mesh));
-    check(raps_result_create(&h.result), "cannot create a result");
-    check(raps_parameterize(h.mesh, h.settings, h.result), raps_result_last_error(h.result));
+          [&] { return raps_mesh_last_error(h.mesh); });
+    check(raps_result_create(&h.result), [] { return "cannot create a result"; });
+    check(raps_parameterize(h.mesh, h.settings, h.result),
+          [&] { return raps_result_last_error(h.result); });
 
     std::vector<double> uvs(2 * raps_result_vertex_count(h.result));
-    check(raps_result_copy_uvs_f64(h.result, uvs.data(), uvs.size() / 2, 0), "cannot copy uvs");
+    check(raps_result_copy_uvs_f64(h.result, uvs.data(), uvs.size() / 2, 0),
+          [] { return "cannot copy uvs"; });
     const auto write_start = std::chrono::steady_clock::now();
     raps_samples::write_obj(output, polygons, uvs, polygons.corners,
                             std::string("raps-param ") + raps_version_string() + " from " + input);
@@ -219,7 +236,7 @@ int run(int argc, char** argv) {
 
     raps_stats stats;
     stats.struct_size = sizeof(stats);
-    check(raps_result_get_stats(h.result, &stats), "cannot read statistics");
+    check(raps_result_get_stats(h.result, &stats), [] { return "cannot read statistics"; });
     int64_t weights, monitor, iterations, mode, boundary, max_triangles;
     double alpha;
     raps_settings_get_int(h.settings, RAPS_PARAM_WEIGHTS, &weights);
@@ -242,8 +259,8 @@ int run(int argc, char** argv) {
             choice_name("--monitor", monitor) + "\", \"alpha\": " + json_number(alpha) +
             ", \"iterations\": " + std::to_string(iterations) + ", \"iteration_mode\": \"" +
             choice_name("--iteration-mode", mode) + "\", \"boundary\": \"" +
-            choice_name("--boundary", boundary) + "\", \"max_triangles\": " +
-            std::to_string(max_triangles) + "}";
+            choice_name("--boundary", boundary) +
+            "\", \"max_triangles\": " + std::to_string(max_triangles) + "}";
     json += ", \"stats\": {\"flipped_triangles\": " + std::to_string(stats.flipped_triangles) +
             ", \"zero_area_triangles\": " + std::to_string(stats.zero_area_triangles) +
             ", \"negative_weights\": " + std::to_string(stats.negative_weights) +
@@ -268,9 +285,10 @@ int run(int argc, char** argv) {
 }
 
 void report_error(const char* kind, raps_status status, const std::string& message) {
-    std::printf("{\"error\": {\"kind\": \"%s\", \"status\": %d, \"status_name\": %s, \"message\": %s}}\n",
-                kind, status, json_string(raps_status_string(status)).c_str(),
-                json_string(message).c_str());
+    std::printf(
+        "{\"error\": {\"kind\": \"%s\", \"status\": %d, \"status_name\": %s, \"message\": %s}}\n",
+        kind, status, json_string(raps_status_string(status)).c_str(),
+        json_string(message).c_str());
     std::fprintf(stderr, "raps-param: %s\n", message.c_str());
 }
 

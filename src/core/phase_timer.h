@@ -11,9 +11,11 @@ namespace raps {
 using PhaseTimes = std::array<double, kPhaseCount>;  // milliseconds per Phase
 
 class PhaseTimer {
-public:
+  public:
     PhaseTimer(Phase phase, const Progress& progress, PhaseTimes& times)
-        : phase_(phase), progress_(progress), times_(times),
+        : phase_(phase),
+          progress_(progress),
+          times_(times),
           start_(std::chrono::steady_clock::now()) {
         progress_.report(phase_, 0.0);
     }
@@ -26,7 +28,7 @@ public:
     PhaseTimer(const PhaseTimer&) = delete;
     PhaseTimer& operator=(const PhaseTimer&) = delete;
 
-private:
+  private:
     void record() {
         if (recorded_) return;
         recorded_ = true;

@@ -13,7 +13,7 @@ enum class Phase : int { kValidate = 0, kTopology = 1, kInitialMap = 2, kAdapt =
 constexpr int kPhaseCount = 5;
 
 class Progress {
-public:
+  public:
     using Callback = std::function<bool(Phase, double)>;
 
     Progress() = default;
@@ -26,7 +26,7 @@ public:
         }
     }
 
-private:
+  private:
     Callback callback_;
 };
 

@@ -73,14 +73,14 @@ Halfedges build_halfedges(const TriangleMesh& mesh) {
             if (same_direction >= 0 && opposite < 0) {
                 throw Error(ErrorCode::kInconsistentOrientation,
                             "triangles " + std::to_string(h / 3) + " and " +
-                                std::to_string(same_direction / 3) +
-                                " both traverse edge " + edge_name(a, b) +
+                                std::to_string(same_direction / 3) + " both traverse edge " +
+                                edge_name(a, b) +
                                 " in the same direction (their winding is inconsistent)");
             }
-            throw Error(ErrorCode::kNonManifoldEdge,
-                        "edge " + edge_name(a, b) + " is shared by more than two triangles (" +
-                            std::to_string(h / 3) + ", " + std::to_string(other / 3) +
-                            " and more)");
+            throw Error(ErrorCode::kNonManifoldEdge, "edge " + edge_name(a, b) +
+                                                         " is shared by more than two triangles (" +
+                                                         std::to_string(h / 3) + ", " +
+                                                         std::to_string(other / 3) + " and more)");
         }
         result.twin[h] = opposite;
     }
@@ -196,8 +196,8 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
                         " boundary loops (holes), through vertices " + starts +
                         "; a disk has exactly one");
     }
-    const int64_t euler = static_cast<int64_t>(mesh.vertex_count()) - edge_count(halfedges) +
-                          mesh.triangle_count();
+    const int64_t euler =
+        static_cast<int64_t>(mesh.vertex_count()) - edge_count(halfedges) + mesh.triangle_count();
     if (euler != 1) {
         throw Error(ErrorCode::kNonzeroGenus,
                     "the mesh has handles: genus " + std::to_string((1 - euler) / 2) +
@@ -217,8 +217,7 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
         ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
         ++adjacency.offsets[halfedge_target(mesh, h) + 1];
     }
-    std::partial_sum(adjacency.offsets.begin(), adjacency.offsets.end(),
-                     adjacency.offsets.begin());
+    std::partial_sum(adjacency.offsets.begin(), adjacency.offsets.end(), adjacency.offsets.begin());
     adjacency.neighbors.resize(adjacency.offsets.back());
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
@@ -234,8 +233,7 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     auto slot = [&](int32_t from, int32_t to) {
         const auto begin = adjacency.neighbors.begin() + adjacency.offsets[from];
         const auto end = adjacency.neighbors.begin() + adjacency.offsets[from + 1];
-        return static_cast<int32_t>(std::lower_bound(begin, end, to) -
-                                    adjacency.neighbors.begin());
+        return static_cast<int32_t>(std::lower_bound(begin, end, to) - adjacency.neighbors.begin());
     };
     adjacency.forward_slot.resize(halfedge_count);
     adjacency.backward_slot.resize(halfedge_count);

@@ -54,8 +54,7 @@ void check_no_zero_area_triangles(const TriangleMesh& mesh) {
                         "triangle " + std::to_string(t) + " has zero area (its vertices " +
                             std::to_string(mesh.triangles[t][0]) + ", " +
                             std::to_string(mesh.triangles[t][1]) + ", " +
-                            std::to_string(mesh.triangles[t][2]) +
-                            " coincide or are collinear)");
+                            std::to_string(mesh.triangles[t][2]) + " coincide or are collinear)");
         }
     }
 }

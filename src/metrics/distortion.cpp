@@ -29,9 +29,9 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
     double area_sum = 0;
     for (size_t t = 0; t < count; ++t) {
         const Triangle& v = triangles[t];
-        area[t] = 0.5 * (positions[v[1]] - positions[v[0]])
-                            .cross(positions[v[2]] - positions[v[0]])
-                            .norm();
+        area[t] =
+            0.5 *
+            (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
         uv_signed_area[t] = 0.5 * cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
         area_sum += area[t];
     }

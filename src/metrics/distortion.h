@@ -21,8 +21,8 @@ struct DistortionStats {
     double area_max = 1;              // max of max(r_t, 1 / r_t); infinite for a zero uv area
     double angle_mean_deg = 0;        // mean over corners of |uv angle - 3D angle|
     double angle_max_deg = 0;
-    double stretch_l2 = 1;            // sqrt(sum (3D area share) * (G^2 + g^2) / 2)
-    double stretch_linf = 1;          // max G; G >= g singular values of the 3D-from-uv Jacobian
+    double stretch_l2 = 1;    // sqrt(sum (3D area share) * (G^2 + g^2) / 2)
+    double stretch_linf = 1;  // max G; G >= g singular values of the 3D-from-uv Jacobian
 };
 
 // Statistics of the map of `triangles` (indices into positions and uv alike).

@@ -12,10 +12,14 @@ Eigen::Vector2d square_point(double s) {
     const int side = std::min(3, static_cast<int>(s));
     const double t = s - side;
     switch (side) {
-        case 0: return {t, 0.0};
-        case 1: return {1.0, t};
-        case 2: return {1.0 - t, 1.0};
-        default: return {0.0, 1.0 - t};
+        case 0:
+            return {t, 0.0};
+        case 1:
+            return {1.0, t};
+        case 2:
+            return {1.0 - t, 1.0};
+        default:
+            return {0.0, 1.0 - t};
     }
 }
 
@@ -28,8 +32,8 @@ std::vector<Eigen::Vector2d> convex_boundary(const TriangleMesh& mesh,
     // cumulative[i]: chord length from loop[0] to loop[i]; cumulative[n]: the whole loop.
     std::vector<double> cumulative(n + 1, 0.0);
     for (size_t i = 0; i < n; ++i) {
-        cumulative[i + 1] = cumulative[i] +
-                            (mesh.positions[loop[(i + 1) % n]] - mesh.positions[loop[i]]).norm();
+        cumulative[i + 1] =
+            cumulative[i] + (mesh.positions[loop[(i + 1) % n]] - mesh.positions[loop[i]]).norm();
     }
     const double total = cumulative[n];
     std::vector<Eigen::Vector2d> uv(n);
@@ -54,7 +58,8 @@ std::vector<Eigen::Vector2d> convex_boundary(const TriangleMesh& mesh,
         corner[c] = std::clamp(i, corner[c - 1] + 1, n - 4 + c);
     }
     for (int side = 0; side < 4; ++side) {
-        const double begin = cumulative[corner[side]], length = cumulative[corner[side + 1]] - begin;
+        const double begin = cumulative[corner[side]],
+                     length = cumulative[corner[side + 1]] - begin;
         for (size_t i = corner[side]; i < corner[side + 1]; ++i) {
             uv[i] = square_point(side + (cumulative[i] - begin) / length);
         }

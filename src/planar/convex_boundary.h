@@ -15,7 +15,6 @@ namespace raps {
 // boundary polygon, counter-clockwise: the circle of radius 0.5 centred at (0.5, 0.5), or the
 // unit square with its corners at the loop vertices nearest to each quarter of the length.
 std::vector<Eigen::Vector2d> convex_boundary(const TriangleMesh& mesh,
-                                             const std::vector<int32_t>& loop,
-                                             BoundaryShape shape);
+                                             const std::vector<int32_t>& loop, BoundaryShape shape);
 
 }  // namespace raps

@@ -38,7 +38,8 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
     const std::vector<double> base_weights = laplacian_weights(mesh, adjacency, settings.weights);
     {
         PhaseTimer timer(Phase::kInitialMap, progress, times);
-        const std::vector<Eigen::Vector2d> boundary = convex_boundary(mesh, loop, settings.boundary);
+        const std::vector<Eigen::Vector2d> boundary =
+            convex_boundary(mesh, loop, settings.boundary);
         for (size_t i = 0; i < loop.size(); ++i) map.uv[loop[i]] = boundary[i];
         for (double w : base_weights) map.negative_weights += w < 0.0;
         system.solve(base_weights, map.uv,

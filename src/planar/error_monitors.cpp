@@ -14,7 +14,7 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 // Accumulates per-triangle values onto directed edges and averages them.
 class EdgeAverage {
-public:
+  public:
     explicit EdgeAverage(size_t slots) : sum_(slots, 0.0), count_(slots, 0) {}
     void add(int32_t slot, double value) {
         sum_[slot] += value;
@@ -27,7 +27,7 @@ public:
         return std::move(sum_);
     }
 
-private:
+  private:
     std::vector<double> sum_;
     std::vector<int> count_;
 };
@@ -104,10 +104,14 @@ std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacenc
 std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                                   const std::vector<Eigen::Vector2d>& uv, Monitor monitor) {
     switch (monitor) {
-        case Monitor::kArea: return area_monitor(mesh, adjacency, uv);
-        case Monitor::kEdgeLength: return length_monitor(mesh, adjacency, uv);
-        case Monitor::kAngle: return angle_monitor(mesh, adjacency, uv);
-        case Monitor::kNone: break;
+        case Monitor::kArea:
+            return area_monitor(mesh, adjacency, uv);
+        case Monitor::kEdgeLength:
+            return length_monitor(mesh, adjacency, uv);
+        case Monitor::kAngle:
+            return angle_monitor(mesh, adjacency, uv);
+        case Monitor::kNone:
+            break;
     }
     throw Error(ErrorCode::kInternal, "error_monitor called without a monitor");
 }

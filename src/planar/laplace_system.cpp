@@ -48,7 +48,8 @@ LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& ad
         pattern_.row_offsets.push_back(static_cast<int32_t>(pattern_.columns.size()));
     }
     std::vector<Eigen::Vector3d> coordinates(n);
-    for (int32_t row = 0; row < n; ++row) coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
+    for (int32_t row = 0; row < n; ++row)
+        coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
     order_ = nested_dissection_order(pattern_, coordinates);
     lu_.analyze(pattern_, order_);
 }
@@ -94,7 +95,8 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
         if (!std::isfinite(rhs[row]) || !std::isfinite(rhs[n + row])) {
             throw Error(ErrorCode::kSolverFailed,
                         "the Laplace system is numerically singular (non-finite solution at "
-                        "vertex " + std::to_string(vertex_of_unknown_[row]) + ")");
+                        "vertex " +
+                            std::to_string(vertex_of_unknown_[row]) + ")");
         }
         uv[vertex_of_unknown_[row]] = Eigen::Vector2d(rhs[row], rhs[n + row]);
     }

@@ -20,7 +20,7 @@
 namespace raps {
 
 class LaplaceSystem {
-public:
+  public:
     LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                   const std::vector<char>& on_boundary);
 
@@ -32,7 +32,7 @@ public:
 
     int32_t unknown_count() const { return pattern_.size; }
 
-private:
+  private:
     void solve_with_pivoting(const std::vector<double>& values, double* rhs);
 
     const VertexAdjacency& adjacency_;

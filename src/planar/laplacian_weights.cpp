@@ -17,8 +17,8 @@ std::vector<double> laplacian_weights(const TriangleMesh& mesh, const VertexAdja
             const Eigen::Vector3d a = mesh.positions[j] - mesh.positions[i];
             const Eigen::Vector3d b = mesh.positions[l] - mesh.positions[i];
             const double sine = a.cross(b).norm(), cosine = a.dot(b);  // both times |a||b|
-            const int32_t h_ij = 3 * t + k;            // half-edge i -> j
-            const int32_t h_li = 3 * t + (k + 2) % 3;  // half-edge l -> i
+            const int32_t h_ij = 3 * t + k;                            // half-edge i -> j
+            const int32_t h_li = 3 * t + (k + 2) % 3;                  // half-edge l -> i
             if (scheme == WeightScheme::kMeanValue) {
                 // tan(theta / 2) = sin / (1 + cos), free of trigonometric calls and stable for
                 // small angles; theta < pi for a triangle of nonzero area.

@@ -42,7 +42,8 @@ bool partial_lu(double* front, int32_t m, int32_t k, const double* pivot_scale) 
         }
         const int32_t rest = m - p - b;
         if (rest == 0) continue;
-        Block panel_diagonal(front + p + static_cast<int64_t>(p) * m, b, b, Eigen::OuterStride<>(m));
+        Block panel_diagonal(front + p + static_cast<int64_t>(p) * m, b, b,
+                             Eigen::OuterStride<>(m));
         Block panel_right(front + p + static_cast<int64_t>(p + b) * m, b, rest,
                           Eigen::OuterStride<>(m));
         panel_diagonal.triangularView<Eigen::UnitLower>().solveInPlace(panel_right);
@@ -259,8 +260,8 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
         }
         for (int32_t c = node.child_begin; c < node.child_end; ++c) {
             const Supernode& child = supernodes_[child_list_[c]];
-            for (int64_t r = child.row_offset + child.columns;
-                 r < child.row_offset + child.rows; ++r) {
+            for (int64_t r = child.row_offset + child.columns; r < child.row_offset + child.rows;
+                 ++r) {
                 const int32_t i = row_indices_[r];
                 if (i > l && mark[i] != s) {
                     mark[i] = s;

@@ -16,7 +16,7 @@
 namespace raps {
 
 class MultifrontalLU {
-public:
+  public:
     // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated).
     void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order);
 
@@ -32,32 +32,32 @@ public:
     int64_t factor_entries() const { return static_cast<int64_t>(factors_.size()); }
     double factor_flops() const { return total_flops_; }
 
-private:
+  private:
     struct Supernode {
         int32_t first_column;  // in elimination order; columns first .. first + columns - 1
         int32_t columns;
-        int32_t rows;            // front size: the supernode's columns plus its update rows
-        int64_t row_offset;      // into row_indices_: the front's rows, its columns first
-        int64_t factor_offset;   // into factors_: L panel (rows x columns), then U panel
-        int32_t child_begin;     // children are child_list_[child_begin .. child_end)
+        int32_t rows;           // front size: the supernode's columns plus its update rows
+        int64_t row_offset;     // into row_indices_: the front's rows, its columns first
+        int64_t factor_offset;  // into factors_: L panel (rows x columns), then U panel
+        int32_t child_begin;    // children are child_list_[child_begin .. child_end)
         int32_t child_end;
-        int64_t relative_offset; // into relative_rows_: this front's update rows in its parent
-        int64_t value_begin;     // its original entries: value_source_/value_target_ ranges
+        int64_t relative_offset;  // into relative_rows_: this front's update rows in its parent
+        int64_t value_begin;      // its original entries: value_source_/value_target_ ranges
         int64_t value_end;
     };
 
     int32_t size_ = 0;
-    std::vector<int32_t> order_;             // elimination position -> unknown
-    std::vector<Supernode> supernodes_;      // in postorder: children before parents
+    std::vector<int32_t> order_;         // elimination position -> unknown
+    std::vector<Supernode> supernodes_;  // in postorder: children before parents
     std::vector<int32_t> child_list_;
-    std::vector<int32_t> row_indices_;       // elimination positions
+    std::vector<int32_t> row_indices_;  // elimination positions
     std::vector<int32_t> relative_rows_;
-    std::vector<int64_t> value_source_;      // index into the caller's values
-    std::vector<int64_t> value_target_;      // position in the front, column-major
-    std::vector<int32_t> diagonal_source_;   // per elimination position: index of its diagonal
+    std::vector<int64_t> value_source_;     // index into the caller's values
+    std::vector<int64_t> value_target_;     // position in the front, column-major
+    std::vector<int32_t> diagonal_source_;  // per elimination position: index of its diagonal
     std::vector<double> factors_;
-    std::vector<double> front_;               // workspace: the largest front
-    std::vector<double> stack_;               // contribution blocks waiting for their parent
+    std::vector<double> front_;  // workspace: the largest front
+    std::vector<double> stack_;  // contribution blocks waiting for their parent
     int64_t stack_peak_ = 0;
     double total_flops_ = 0;
 };

@@ -15,7 +15,7 @@ namespace {
 constexpr int32_t kLeafSize = 256;
 
 class Dissection {
-public:
+  public:
     Dissection(const SparsePattern& pattern, const std::vector<Eigen::Vector3d>& coordinates)
         : pattern_(pattern),
           coordinates_(coordinates),
@@ -32,7 +32,7 @@ public:
         return std::move(order_);
     }
 
-private:
+  private:
     // Orders the unknowns in ids: both halves first, then the separator between them, so that
     // eliminating either half creates no fill in the other.
     void dissect(std::vector<int32_t>& ids) {
@@ -138,7 +138,8 @@ private:
         }
         // count[b]: vertices in bin b; left_touch[b] / right_touch[b]: difference arrays of the
         // one-sided separator sizes for the cut between bins b - 1 and b.
-        std::vector<int64_t> count(kBins + 1, 0), left_touch(kBins + 2, 0), right_touch(kBins + 2, 0);
+        std::vector<int64_t> count(kBins + 1, 0), left_touch(kBins + 2, 0),
+            right_touch(kBins + 2, 0);
         for (int32_t i : ids) {
             int lowest = bin_[i], highest = bin_[i];
             for (int32_t p = pattern_.row_offsets[i]; p < pattern_.row_offsets[i + 1]; ++p) {
@@ -186,7 +187,8 @@ private:
             const int32_t i = ids[k];
             for (int32_t p = pattern_.row_offsets[i]; p < pattern_.row_offsets[i + 1]; ++p) {
                 const int32_t j = pattern_.columns[p];
-                if (part_[j] == leaf_label) entries.emplace_back(static_cast<int>(k), local_[j], 1.0);
+                if (part_[j] == leaf_label)
+                    entries.emplace_back(static_cast<int>(k), local_[j], 1.0);
             }
         }
         const int size = static_cast<int>(ids.size());

@@ -1,0 +1,178 @@
+"""raps-param's contract: OBJ/OFF in, OBJ out with the input's vertices and faces in order plus
+one vt per vertex; one JSON object on stdout; clear errors, exit codes, and no output file on
+failure. Its statistics are cross-checked against the project's reference metrics tool,
+shared/tools/uvmetrics.py.
+
+usage: test_raps_param.py RAPS_PARAM SHARED_DATA_DIR
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+RAPS_PARAM = None
+DATA = None
+
+
+def run(*args):
+    p = subprocess.run([RAPS_PARAM, *args], capture_output=True, text=True, timeout=600)
+    return p.returncode, p.stdout, p.stderr
+
+
+def obj_records(path):
+    v, vt, f = [], [], []
+    with open(path) as fh:
+        for line in fh:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == 'v':
+                v.append(tuple(map(float, parts[1:4])))
+            elif parts[0] == 'vt':
+                vt.append(tuple(map(float, parts[1:3])))
+            elif parts[0] == 'f':
+                f.append([tuple(int(x) for x in c.split('/')) for c in parts[1:]])
+    return v, vt, f
+
+
+class RapsParamTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.out = os.path.join(self.dir.name, 'out.obj')
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def mesh(self, name):
+        return os.path.join(DATA, 'meshes', name)
+
+    def test_obj_out_keeps_vertices_and_faces_in_order(self):
+        rc, out, err = run(self.mesh('alligator.obj'), '-o', self.out)
+        self.assertEqual(rc, 0, err)
+        v_in, _, f_in = obj_records(self.mesh('alligator.obj'))
+        v_out, vt_out, f_out = obj_records(self.out)
+        self.assertEqual(v_out, v_in)
+        self.assertEqual(len(vt_out), len(v_out))
+        self.assertEqual([[c[0] for c in face] for face in f_out], [[c[0] for c in face] for face in f_in])
+        for face in f_out:
+            for c in face:
+                self.assertEqual(c[0], c[1])  # one uv per vertex: vt index = v index
+        for u, w in vt_out:
+            self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= w <= 1.0)
+
+    def test_polygons_are_written_back_as_polygons(self):
+        # halftunnel.off is all quads, but has 3 boundary loops: use a quad disk made here.
+        src = os.path.join(self.dir.name, 'quads.obj')
+        with open(src, 'w') as fh:
+            n = 6
+            for j in range(n + 1):
+                for i in range(n + 1):
+                    fh.write(f'v {i} {j} {0.1 * i * j}\n')
+            for j in range(n):
+                for i in range(n):
+                    a = j * (n + 1) + i + 1
+                    fh.write(f'f {a} {a + 1} {a + n + 2} {a + n + 1}\n')
+        rc, out, err = run(src, '-o', self.out)
+        self.assertEqual(rc, 0, err)
+        stats = json.loads(out)
+        self.assertEqual(stats['polygons'], 36)
+        self.assertEqual(stats['triangles'], 72)
+        _, _, f_out = obj_records(self.out)
+        self.assertEqual(len(f_out), 36)
+        self.assertTrue(all(len(face) == 4 for face in f_out))
+
+    def test_json_reports_settings_stats_and_phase_times(self):
+        rc, out, err = run(self.mesh('lion.off'), '-o', self.out, '--weights', 'uniform',
+                           '--monitor', 'length', '--alpha', '1.5', '--iterations', '2',
+                           '--iteration-mode', 'reapply', '--boundary', 'square')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual(d['settings'], {'domain': 'disk', 'weights': 'uniform', 'monitor': 'length',
+                                         'alpha': 1.5, 'iterations': 2, 'iteration_mode': 'reapply',
+                                         'boundary': 'square', 'max_triangles': 2147483647})
+        self.assertEqual(d['vertices'], 8356)
+        self.assertEqual(d['triangles'], 16674)
+        self.assertEqual(d['stats']['flipped_triangles'], 0)
+        self.assertEqual(d['stats']['adaptive_solves'], 2)
+        for phase in ('read', 'validate', 'topology', 'initial_map', 'adapt', 'metrics', 'write'):
+            self.assertGreaterEqual(d['time_ms'][phase], 0.0)
+
+    def test_statistics_match_the_reference_metrics(self):
+        tool = os.path.join(DATA, '..', 'tools', 'uvmetrics.py')
+        for mesh, flags in (('camelhead.off', []), ('face.obj', ['--monitor', 'none']),
+                            ('alligator.obj', ['--monitor', 'angle', '--alpha', '2'])):
+            rc, out, err = run(self.mesh(mesh), '-o', self.out, *flags)
+            self.assertEqual(rc, 0, err)
+            ours = json.loads(out)['stats']
+            p = subprocess.run(['/usr/bin/python3', tool, '--raster', '0', self.out],
+                               capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            ref = json.loads(p.stdout)
+            self.assertEqual(ours['flipped_triangles'], ref['n_flipped'])
+            self.assertEqual(ours['zero_area_triangles'], ref['n_degenerate_uv'])
+            for key, ref_key in (('area_log_mean', 'area_mean_abs_log'), ('area_max', 'area_max'),
+                                 ('angle_mean_deg', 'angle_mean_deg'), ('angle_max_deg', 'angle_max_deg'),
+                                 ('stretch_l2', 'stretch_l2'), ('stretch_linf', 'stretch_linf')):
+                # The OBJ stores uv with float-to-text rounding: agree to 1e-6 relative.
+                self.assertAlmostEqual(ours[key], ref[ref_key], delta=1e-6 * max(1.0, abs(ref[ref_key])),
+                                       msg=f'{mesh} {key}')
+
+    def test_bad_input_fails_cleanly_without_output(self):
+        closed = self.mesh('bunny.off')
+        rc, out, err = run(closed, '-o', self.out)
+        self.assertEqual(rc, 1)
+        d = json.loads(out)
+        self.assertEqual(d['error']['status_name'], 'no boundary')
+        self.assertIn('closed', d['error']['message'])
+        self.assertIn('closed', err)
+        self.assertFalse(os.path.exists(self.out))
+        self.assertEqual(os.listdir(self.dir.name), [])  # no temporary file left behind
+
+    def test_an_existing_output_survives_a_failed_run(self):
+        with open(self.out, 'w') as fh:
+            fh.write('keep me\n')
+        rc, _, _ = run(self.mesh('teapot.obj'), '-o', self.out)
+        self.assertEqual(rc, 1)
+        with open(self.out) as fh:
+            self.assertEqual(fh.read(), 'keep me\n')
+
+    def test_malformed_files_are_reported_with_their_line(self):
+        src = os.path.join(self.dir.name, 'broken.obj')
+        with open(src, 'w') as fh:
+            fh.write('v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n')
+        rc, out, err = run(src, '-o', self.out)
+        self.assertEqual(rc, 1)
+        self.assertIn('broken.obj:3', err)
+        with open(src, 'w') as fh:
+            fh.write('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n')
+        rc, out, err = run(src, '-o', self.out)
+        self.assertEqual(rc, 1)
+        self.assertEqual(json.loads(out)['error']['status_name'], 'index out of range')
+        rc, out, err = run(os.path.join(self.dir.name, 'missing.obj'), '-o', self.out)
+        self.assertEqual(rc, 1)
+        self.assertIn('cannot open', err)
+        self.assertFalse(os.path.exists(self.out))
+
+    def test_usage_errors_exit_2(self):
+        for args in ([], [self.mesh('lion.off')], [self.mesh('lion.off'), '-o', self.out, '--monitor', 'bogus'],
+                     [self.mesh('lion.off'), '-o', self.out, '--alpha', '-1'],
+                     [self.mesh('lion.off'), '-o', self.out, '--iterations', '2.5'],
+                     [self.mesh('lion.off'), '-o', self.out, '--frobnicate']):
+            rc, out, err = run(*args)
+            self.assertEqual(rc, 2, args)
+            self.assertIn('error', json.loads(out))
+            self.assertFalse(os.path.exists(self.out))
+
+    def test_help_documents_every_flag(self):
+        rc, out, _ = run('--help')
+        self.assertEqual(rc, 0)
+        for flag in ('--output', '--weights', '--monitor', '--alpha', '--iterations',
+                     '--iteration-mode', '--boundary', '--max-triangles', '--version'):
+            self.assertIn(flag, out)
+
+
+if __name__ == '__main__':
+    RAPS_PARAM, DATA = sys.argv[1], os.path.abspath(sys.argv[2])
+    unittest.main(argv=sys.argv[:1], verbosity=2)
