@@ -248,8 +248,10 @@ void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vect
         for (uint32_t c = mesh.polygon_offsets[f]; c < mesh.polygon_offsets[f + 1]; ++c) {
             out += ' ';
             out += std::to_string(mesh.corners[c] + 1);
-            out += '/';
-            out += std::to_string(uv_corners[c] + 1);
+            if (!uv_corners.empty()) {
+                out += '/';
+                out += std::to_string(uv_corners[c] + 1);
+            }
         }
         out += '\n';
     }

@@ -26,7 +26,8 @@ struct PolygonMesh {
 PolygonMesh read_mesh(const std::string& path);
 
 // Writes OBJ: `v` for every vertex, `vt` for every uv pair, and each polygon as
-// `f v/vt ...` with uv_corners[i] the vt index of corner i (0-based). Written to a temporary
+// `f v/vt ...` with uv_corners[i] the vt index of corner i (0-based); with no uvs, `f v ...`.
+// Written to a temporary
 // file in the same folder and renamed, so `path` never holds a partial file. Throws
 // std::runtime_error on failure.
 void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,

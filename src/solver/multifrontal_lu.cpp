@@ -20,39 +20,58 @@ bool worth_merging(int64_t columns, double zero_fraction) {
            (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
 }
 
-// Dense partial LU without pivoting of the m x m front F = [F11 F12; F21 F22], F11 k x k:
-// F11 = L11 U11, L21 = F21 U11^-1, U12 = L11^-1 F12, F22 -= L21 U12 (the Schur complement).
-// Blocked so that most of the work is one matrix product. Returns false on a tiny pivot.
-bool partial_lu(double* front, int32_t m, int32_t k, const double* pivot_scale) {
-    constexpr int32_t kPanel = 32;
-    for (int32_t p = 0; p < k; p += kPanel) {
-        const int32_t b = std::min(kPanel, k - p);
-        for (int32_t j = p; j < p + b; ++j) {
-            double* column = front + static_cast<int64_t>(j) * m;
-            const double pivot = column[j];
-            if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
-            const double inverse = 1.0 / pivot;
-            for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
-            for (int32_t c = j + 1; c < p + b; ++c) {
-                double* target = front + static_cast<int64_t>(c) * m;
-                const double factor = target[j];
-                if (factor == 0.0) continue;
-                for (int32_t i = j + 1; i < m; ++i) target[i] -= column[i] * factor;
-            }
+// Unblocked LU without pivoting of the columns [first, first + count) of the m-row front, rows
+// from `first` down. Returns false on a pivot that is zero or tiny against its row's scale.
+bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count,
+                  const double* pivot_scale) {
+    for (int32_t j = first; j < first + count; ++j) {
+        double* column = front + static_cast<int64_t>(j) * m;
+        const double pivot = column[j];
+        if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
+        const double inverse = 1.0 / pivot;
+        for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
+        for (int32_t c = j + 1; c < first + count; ++c) {
+            double* target = front + static_cast<int64_t>(c) * m;
+            const double factor = target[j];
+            if (factor == 0.0) continue;
+            for (int32_t i = j + 1; i < m; ++i) target[i] -= column[i] * factor;
         }
-        const int32_t rest = m - p - b;
-        if (rest == 0) continue;
-        Block panel_diagonal(front + p + static_cast<int64_t>(p) * m, b, b,
-                             Eigen::OuterStride<>(m));
-        Block panel_right(front + p + static_cast<int64_t>(p + b) * m, b, rest,
-                          Eigen::OuterStride<>(m));
-        panel_diagonal.triangularView<Eigen::UnitLower>().solveInPlace(panel_right);
-        Block panel_below(front + (p + b) + static_cast<int64_t>(p) * m, rest, b,
-                          Eigen::OuterStride<>(m));
-        Block trailing(front + (p + b) + static_cast<int64_t>(p + b) * m, rest, rest,
-                       Eigen::OuterStride<>(m));
-        trailing.noalias() -= panel_below * panel_right;
     }
+    return true;
+}
+
+// Recursive LU of a column panel (Toledo 1997): factor the left half, update the right half
+// with one triangular solve and one matrix product, factor the right half. Nearly all the work
+// lands in matrix products, unlike a column-by-column loop.
+bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count,
+                  const double* pivot_scale) {
+    constexpr int32_t kUnblocked = 8;
+    if (count <= kUnblocked) return unblocked_lu(front, m, first, count, pivot_scale);
+    const int32_t left = count / 2, right = count - left, mid = first + left;
+    if (!recursive_lu(front, m, first, left, pivot_scale)) return false;
+    Block l11(front + first + static_cast<int64_t>(first) * m, left, left, Eigen::OuterStride<>(m));
+    Block a12(front + first + static_cast<int64_t>(mid) * m, left, right, Eigen::OuterStride<>(m));
+    l11.triangularView<Eigen::UnitLower>().solveInPlace(a12);
+    Block l21(front + mid + static_cast<int64_t>(first) * m, m - mid, left,
+              Eigen::OuterStride<>(m));
+    Block a22(front + mid + static_cast<int64_t>(mid) * m, m - mid, right, Eigen::OuterStride<>(m));
+    a22.noalias() -= l21 * a12;
+    return recursive_lu(front, m, mid, right, pivot_scale);
+}
+
+// Dense partial LU without pivoting of the m x m front F = [F11 F12; F21 F22], F11 k x k:
+// F11 = L11 U11, L21 = F21 U11^-1, U12 = L11^-1 F12, then the Schur complement
+// F22 -= L21 U12 as one matrix product of inner dimension k. Returns false on a tiny pivot.
+bool partial_lu(double* front, int32_t m, int32_t k, const double* pivot_scale) {
+    if (!recursive_lu(front, m, 0, k, pivot_scale)) return false;
+    const int32_t rest = m - k;
+    if (rest == 0) return true;
+    Block l11(front, k, k, Eigen::OuterStride<>(m));
+    Block u12(front + static_cast<int64_t>(k) * m, k, rest, Eigen::OuterStride<>(m));
+    l11.triangularView<Eigen::UnitLower>().solveInPlace(u12);
+    Block l21(front + k, rest, k, Eigen::OuterStride<>(m));
+    Block f22(front + k + static_cast<int64_t>(k) * m, rest, rest, Eigen::OuterStride<>(m));
+    f22.noalias() -= l21 * u12;
     return true;
 }
 

@@ -1,0 +1,219 @@
+// raps-bench: times the whole planar pipeline through the C API on the shared disk meshes and on
+// a large mesh it builds itself (face.obj subdivided 1-to-4 twice: 827K triangles), and prints
+// per phase the median of several runs, triangles per second and peak memory.
+//
+//   raps-bench [--data DIR] [--runs N] [--large-runs N] [--subdivide K] [--monitor area|none]
+//
+// Every case runs in its own child process (fork), so the peak resident memory reported is that
+// case's alone. Numbers are printed, never judged: speed targets live here, not in tests.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mesh_io.h"
+#include "raps.h"
+
+namespace {
+
+struct Case {
+    std::string name;
+    std::string file;
+    int subdivisions;
+};
+
+// 1-to-4 midpoint subdivision, shared edge midpoints created once.
+void subdivide(std::vector<double>& positions, std::vector<uint32_t>& triangles) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
+    auto middle = [&](uint32_t a, uint32_t b) {
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        const auto it = midpoint.find(key);
+        if (it != midpoint.end()) return it->second;
+        const uint32_t id = static_cast<uint32_t>(positions.size() / 3);
+        for (int c = 0; c < 3; ++c)
+            positions.push_back(0.5 * (positions[3 * a + c] + positions[3 * b + c]));
+        midpoint.emplace(key, id);
+        return id;
+    };
+    std::vector<uint32_t> next;
+    next.reserve(4 * triangles.size());
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+        const uint32_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
+        const uint32_t children[] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
+        next.insert(next.end(), children, children + 12);
+    }
+    triangles.swap(next);
+}
+
+// What one child process reports back through its pipe.
+struct Sample {
+    double phase_ms[RAPS_PHASE_COUNT];
+    double total_ms;
+    double area_log_mean;
+    uint64_t flipped;
+    uint64_t triangles;
+    int ok;
+};
+
+Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t>& triangles,
+                int32_t monitor) {
+    Sample sample{};
+    raps_mesh* mesh = nullptr;
+    raps_settings* settings = nullptr;
+    raps_result* result = nullptr;
+    raps_mesh_create(&mesh);
+    raps_settings_create(&settings);
+    raps_result_create(&result);
+    raps_settings_set_int(settings, RAPS_PARAM_MONITOR, monitor);
+    const auto start = std::chrono::steady_clock::now();
+    raps_mesh_set_positions_f64(mesh, positions.data(), positions.size() / 3, 0);
+    raps_mesh_set_indices_u32(mesh, triangles.data(), triangles.size());
+    const raps_status status = raps_parameterize(mesh, settings, result);
+    sample.total_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (status == RAPS_OK) {
+        raps_stats stats;
+        stats.struct_size = sizeof(stats);
+        raps_result_get_stats(result, &stats);
+        for (int p = 0; p < RAPS_PHASE_COUNT; ++p)
+            sample.phase_ms[p] = raps_result_phase_ms(result, p);
+        sample.area_log_mean = stats.area_log_mean;
+        sample.flipped = stats.flipped_triangles;
+        sample.triangles = stats.triangle_count;
+        sample.ok = 1;
+    } else {
+        std::fprintf(stderr, "raps-bench: %s\n", raps_result_last_error(result));
+    }
+    raps_result_destroy(result);
+    raps_settings_destroy(settings);
+    raps_mesh_destroy(mesh);
+    return sample;
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// Runs `runs` samples in one child process (after loading the mesh there, so the parent stays
+// small), returning them and the child's peak resident set in MB.
+std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, int32_t monitor) {
+    int fds[2];
+    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid == 0) {
+        close(fds[0]);
+        try {
+            const raps_samples::PolygonMesh mesh = raps_samples::read_mesh(c.file);
+            std::vector<double> positions = mesh.positions;
+            std::vector<uint32_t> triangles = mesh.triangles();
+            for (int s = 0; s < c.subdivisions; ++s) subdivide(positions, triangles);
+            for (int r = 0; r < runs; ++r) {
+                const Sample sample = run_once(positions, triangles, monitor);
+                if (write(fds[1], &sample, sizeof(sample)) != static_cast<ssize_t>(sizeof(sample)))
+                    _exit(3);
+            }
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "raps-bench: %s\n", e.what());
+            _exit(2);
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    std::vector<Sample> samples;
+    Sample sample;
+    while (read(fds[0], &sample, sizeof(sample)) == static_cast<ssize_t>(sizeof(sample))) {
+        samples.push_back(sample);
+    }
+    close(fds[0]);
+    int status = 0;
+    struct rusage usage;
+    wait4(pid, &status, 0, &usage);
+    return {samples, usage.ru_maxrss / 1024.0};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string data = RAPS_SHARED_DATA_DIR;
+    int runs = 7, large_runs = 3, subdivisions = 2;
+    int32_t monitor = RAPS_MONITOR_AREA;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) {
+                std::fprintf(stderr, "%s needs a value\n", arg.c_str());
+                std::exit(2);
+            }
+            return argv[++i];
+        };
+        if (arg == "--data")
+            data = value();
+        else if (arg == "--runs")
+            runs = std::max(1, std::atoi(value().c_str()));
+        else if (arg == "--large-runs")
+            large_runs = std::max(1, std::atoi(value().c_str()));
+        else if (arg == "--subdivide")
+            subdivisions = std::max(0, std::atoi(value().c_str()));
+        else if (arg == "--monitor")
+            monitor = value() == "none" ? RAPS_MONITOR_NONE : RAPS_MONITOR_AREA;
+        else {
+            std::fprintf(stderr,
+                         "usage: raps-bench [--data DIR] [--runs N] [--large-runs N] "
+                         "[--subdivide K] [--monitor area|none]\n");
+            return 2;
+        }
+    }
+    std::vector<Case> cases = {{"alligator", data + "/meshes/alligator.obj", 0},
+                               {"camelhead", data + "/meshes/camelhead.off", 0},
+                               {"lion", data + "/meshes/lion.off", 0},
+                               {"face", data + "/meshes/face.obj", 0}};
+    if (subdivisions > 0) {
+        cases.push_back({"face/" + std::to_string(1 << (2 * subdivisions)),
+                         data + "/meshes/face.obj", subdivisions});
+    }
+    std::printf(
+        "raps %s, mean value weights + %s, one thread; median of runs per case\n\n",
+        raps_version_string(),
+        monitor == RAPS_MONITOR_AREA ? "1 area-adaptive solve (alpha 1)" : "no adaptive step");
+    std::printf(
+        "| mesh | triangles | runs | validate ms | topology ms | initial map ms | adapt ms | "
+        "metrics ms | total ms | Mtri/s | peak MB | area mean abs log | flips |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const Case& c : cases) {
+        const int n = c.subdivisions > 0 ? large_runs : runs;
+        const auto [samples, peak_mb] = run_case(c, n, monitor);
+        if (samples.empty() || !samples[0].ok) {
+            std::printf("| %s | failed |\n", c.name.c_str());
+            continue;
+        }
+        std::vector<double> phase[RAPS_PHASE_COUNT], total;
+        for (const Sample& s : samples) {
+            for (int p = 0; p < RAPS_PHASE_COUNT; ++p) phase[p].push_back(s.phase_ms[p]);
+            total.push_back(s.total_ms);
+        }
+        const double total_ms = median(total);
+        std::printf(
+            "| %s | %llu | %zu | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.3f | "
+            "%llu |\n",
+            c.name.c_str(), static_cast<unsigned long long>(samples[0].triangles), samples.size(),
+            median(phase[0]), median(phase[1]), median(phase[2]), median(phase[3]),
+            median(phase[4]), total_ms, samples[0].triangles / total_ms / 1000.0, peak_mb,
+            samples[0].area_log_mean, static_cast<unsigned long long>(samples[0].flipped));
+        std::fflush(stdout);
+    }
+    return 0;
+}
