@@ -322,7 +322,18 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
     // Original entries: A(i, j) goes to the front of the supernode owning column min(i, j), at
     // (local row of i, local column of j); max(i, j) is in that front because L(max, min) != 0.
     // From the rows of the supernode's columns we see the entries (j, other) with other at or
-    // after its first column, and fetch the transposed entry (other, j) when other lies beyond it.
+    // after its first column, and take the transposed entry (other, j) when other lies beyond.
+    // transposed[p] is the index of the entry mirroring entry p; rows are sorted, so visiting
+    // rows in order meets each row's entries in order.
+    std::vector<int64_t> transposed(pattern.nonzeros());
+    {
+        std::vector<int64_t> cursor(pattern.row_offsets.begin(), pattern.row_offsets.end() - 1);
+        for (int32_t row = 0; row < n; ++row) {
+            for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
+                transposed[p] = cursor[pattern.columns[p]]++;
+            }
+        }
+    }
     value_source_.clear();
     value_target_.clear();
     value_source_.reserve(pattern.nonzeros());
@@ -342,11 +353,7 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
                 value_source_.push_back(p);
                 value_target_.push_back(local[j] + static_cast<int64_t>(local[other]) * node.rows);
                 if (other <= l) continue;
-                const int32_t other_row = order_[other];
-                const auto begin = pattern.columns.begin() + pattern.row_offsets[other_row];
-                const auto end = pattern.columns.begin() + pattern.row_offsets[other_row + 1];
-                value_source_.push_back(std::lower_bound(begin, end, row) -
-                                        pattern.columns.begin());
+                value_source_.push_back(transposed[p]);
                 value_target_.push_back(local[other] + static_cast<int64_t>(local[j]) * node.rows);
             }
         }
@@ -370,9 +377,12 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
             stack_peak_ = std::max(stack_peak_, stack);
         }
     }
-    factors_.assign(factor_size, 0.0);
-    front_.assign(max_front, 0.0);
-    stack_.assign(stack_peak_, 0.0);
+    // Left uninitialized: factorize() writes every entry before reading it, and zero-filling
+    // hundreds of megabytes measured 0.19 s of a 0.5 s analysis at 413K unknowns.
+    factors_.reset(new double[factor_size]);
+    factor_size_ = factor_size;
+    front_.reset(new double[max_front]);
+    stack_.reset(new double[std::max<int64_t>(stack_peak_, 1)]);
 }
 
 bool MultifrontalLU::factorize(const double* values, const std::function<void(double)>& progress) {
@@ -386,7 +396,7 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
     double flops_done = 0, next_report = 0.01 * total_flops_;
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
-        double* front = front_.data();
+        double* front = front_.get();
         std::fill(front, front + static_cast<int64_t>(m) * m, 0.0);
         for (int64_t e = node.value_begin; e < node.value_end; ++e) {
             front[value_target_[e]] += values[value_source_[e]];
@@ -398,7 +408,7 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
             const int64_t start = block_starts[block_starts.size() - child_total + c];
             const int32_t update = child.rows - child.columns;
             const int32_t* relative = relative_rows_.data() + child.relative_offset;
-            const double* block = stack_.data() + start;
+            const double* block = stack_.get() + start;
             for (int32_t jj = 0; jj < update; ++jj) {
                 double* target = front + static_cast<int64_t>(relative[jj]) * m;
                 const double* source = block + static_cast<int64_t>(jj) * update;
@@ -410,7 +420,7 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
             block_starts.resize(block_starts.size() - child_total);
         }
         if (!partial_lu(front, m, k, pivot_scale.data() + node.first_column)) return false;
-        double* lower = factors_.data() + node.factor_offset;
+        double* lower = factors_.get() + node.factor_offset;
         for (int32_t c = 0; c < k; ++c) {
             std::copy(front + static_cast<int64_t>(c) * m, front + static_cast<int64_t>(c + 1) * m,
                       lower + static_cast<int64_t>(c) * m);
@@ -423,7 +433,7 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
         const int32_t update = m - k;
         if (update > 0) {
             block_starts.push_back(stack_top);
-            double* block = stack_.data() + stack_top;
+            double* block = stack_.get() + stack_top;
             for (int32_t c = 0; c < update; ++c) {
                 const double* source = front + static_cast<int64_t>(k + c) * m + k;
                 std::copy(source, source + update, block + static_cast<int64_t>(c) * update);
@@ -450,7 +460,7 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
     // Forward: L y = b, children before parents.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
-        const double* lower = factors_.data() + node.factor_offset;
+        const double* lower = factors_.get() + node.factor_offset;
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
@@ -465,7 +475,7 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
     for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
-        const double* lower = factors_.data() + node.factor_offset;
+        const double* lower = factors_.get() + node.factor_offset;
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         if (update > 0) {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "solver/sparse_pattern.h"
@@ -29,7 +30,7 @@ class MultifrontalLU {
     void solve(double* b, int rhs_count) const;
 
     int32_t size() const { return size_; }
-    int64_t factor_entries() const { return static_cast<int64_t>(factors_.size()); }
+    int64_t factor_entries() const { return factor_size_; }
     double factor_flops() const { return total_flops_; }
 
   private:
@@ -55,9 +56,10 @@ class MultifrontalLU {
     std::vector<int64_t> value_source_;     // index into the caller's values
     std::vector<int64_t> value_target_;     // position in the front, column-major
     std::vector<int32_t> diagonal_source_;  // per elimination position: index of its diagonal
-    std::vector<double> factors_;
-    std::vector<double> front_;  // workspace: the largest front
-    std::vector<double> stack_;  // contribution blocks waiting for their parent
+    std::unique_ptr<double[]> factors_;     // per supernode: L panel, then U panel
+    int64_t factor_size_ = 0;
+    std::unique_ptr<double[]> front_;  // workspace: the largest front
+    std::unique_ptr<double[]> stack_;  // contribution blocks waiting for their parent
     int64_t stack_peak_ = 0;
     double total_flops_ = 0;
 };
