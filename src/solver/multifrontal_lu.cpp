@@ -1,5 +1,7 @@
 #include "solver/multifrontal_lu.h"
 
+#include "solver/dense_lu.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -20,66 +22,12 @@ bool worth_merging(int64_t columns, double zero_fraction) {
            (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
 }
 
-// Unblocked LU without pivoting of the columns [first, first + count) of the m-row front, rows
-// from `first` down. Returns false on a pivot that is zero or tiny against its row's scale.
-bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count,
-                  const double* pivot_scale) {
-    for (int32_t j = first; j < first + count; ++j) {
-        double* column = front + static_cast<int64_t>(j) * m;
-        const double pivot = column[j];
-        if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
-        const double inverse = 1.0 / pivot;
-        for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
-        for (int32_t c = j + 1; c < first + count; ++c) {
-            double* target = front + static_cast<int64_t>(c) * m;
-            const double factor = target[j];
-            if (factor == 0.0) continue;
-            for (int32_t i = j + 1; i < m; ++i) target[i] -= column[i] * factor;
-        }
-    }
-    return true;
-}
-
-// Recursive LU of a column panel (Toledo 1997): factor the left half, update the right half
-// with one triangular solve and one matrix product, factor the right half. Nearly all the work
-// lands in matrix products, unlike a column-by-column loop.
-bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count,
-                  const double* pivot_scale) {
-    constexpr int32_t kUnblocked = 8;
-    if (count <= kUnblocked) return unblocked_lu(front, m, first, count, pivot_scale);
-    const int32_t left = count / 2, right = count - left, mid = first + left;
-    if (!recursive_lu(front, m, first, left, pivot_scale)) return false;
-    Block l11(front + first + static_cast<int64_t>(first) * m, left, left, Eigen::OuterStride<>(m));
-    Block a12(front + first + static_cast<int64_t>(mid) * m, left, right, Eigen::OuterStride<>(m));
-    l11.triangularView<Eigen::UnitLower>().solveInPlace(a12);
-    Block l21(front + mid + static_cast<int64_t>(first) * m, m - mid, left,
-              Eigen::OuterStride<>(m));
-    Block a22(front + mid + static_cast<int64_t>(mid) * m, m - mid, right, Eigen::OuterStride<>(m));
-    a22.noalias() -= l21 * a12;
-    return recursive_lu(front, m, mid, right, pivot_scale);
-}
-
-// Dense partial LU without pivoting of the m x m front F = [F11 F12; F21 F22], F11 k x k:
-// F11 = L11 U11, L21 = F21 U11^-1, U12 = L11^-1 F12, then the Schur complement
-// F22 -= L21 U12 as one matrix product of inner dimension k. Returns false on a tiny pivot.
-bool partial_lu(double* front, int32_t m, int32_t k, const double* pivot_scale) {
-    if (!recursive_lu(front, m, 0, k, pivot_scale)) return false;
-    const int32_t rest = m - k;
-    if (rest == 0) return true;
-    Block l11(front, k, k, Eigen::OuterStride<>(m));
-    Block u12(front + static_cast<int64_t>(k) * m, k, rest, Eigen::OuterStride<>(m));
-    l11.triangularView<Eigen::UnitLower>().solveInPlace(u12);
-    Block l21(front + k, rest, k, Eigen::OuterStride<>(m));
-    Block f22(front + k + static_cast<int64_t>(k) * m, rest, rest, Eigen::OuterStride<>(m));
-    f22.noalias() -= l21 * u12;
-    return true;
-}
-
 }  // namespace
 
 void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int32_t>& order) {
     const int32_t n = pattern.size;
     size_ = n;
+    partial_lu_ = fastest_partial_lu();
 
     // Elimination tree of the permuted matrix (Liu's algorithm with path compression).
     std::vector<int32_t> position(n);
@@ -419,7 +367,7 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
             stack_top = block_starts[block_starts.size() - child_total];
             block_starts.resize(block_starts.size() - child_total);
         }
-        if (!partial_lu(front, m, k, pivot_scale.data() + node.first_column)) return false;
+        if (!partial_lu_(front, m, k, pivot_scale.data() + node.first_column)) return false;
         double* lower = factors_.get() + node.factor_offset;
         for (int32_t c = 0; c < k; ++c) {
             std::copy(front + static_cast<int64_t>(c) * m, front + static_cast<int64_t>(c + 1) * m,

@@ -48,6 +48,7 @@ class MultifrontalLU {
     };
 
     int32_t size_ = 0;
+    bool (*partial_lu_)(double*, int32_t, int32_t, const double*) = nullptr;
     std::vector<int32_t> order_;         // elimination position -> unknown
     std::vector<Supernode> supernodes_;  // in postorder: children before parents
     std::vector<int32_t> child_list_;

@@ -1,0 +1,81 @@
+// The dense partial LU, included by dense_lu.cpp and dense_lu_avx2.cpp with RAPS_PARTIAL_LU set
+// to the variant's name. Each variant is compiled with its own private copy of Eigen (the
+// build renames Eigen's namespace per file), so the two never share a template instance.
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Core>
+
+namespace raps {
+namespace {
+
+using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
+using Block = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
+
+// Eigen sizes its matrix-product blocks from the processor's cache sizes, which changes the
+// order of summation from one machine to another. Pinned to Eigen's own x86 defaults, the
+// results depend only on the build, not on the machine's caches.
+void pin_cache_sizes() {
+    static const bool pinned = [] {
+        Eigen::setCpuCacheSizes(32 * 1024, 256 * 1024, 2 * 1024 * 1024);
+        return true;
+    }();
+    (void)pinned;
+}
+
+// Unblocked LU of the columns [first, first + count) of the m-row front, rows from `first`.
+bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count,
+                  const double* pivot_scale) {
+    for (int32_t j = first; j < first + count; ++j) {
+        double* column = front + static_cast<int64_t>(j) * m;
+        const double pivot = column[j];
+        if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
+        const double inverse = 1.0 / pivot;
+        for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
+        for (int32_t c = j + 1; c < first + count; ++c) {
+            double* target = front + static_cast<int64_t>(c) * m;
+            const double factor = target[j];
+            if (factor == 0.0) continue;
+            for (int32_t i = j + 1; i < m; ++i) target[i] -= column[i] * factor;
+        }
+    }
+    return true;
+}
+
+// Recursive LU of a column panel (Toledo 1997): factor the left half, update the right half
+// with one triangular solve and one matrix product, factor the right half. Nearly all the work
+// lands in matrix products, unlike a column-by-column loop.
+bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count,
+                  const double* pivot_scale) {
+    constexpr int32_t kUnblocked = 8;
+    if (count <= kUnblocked) return unblocked_lu(front, m, first, count, pivot_scale);
+    const int32_t left = count / 2, right = count - left, mid = first + left;
+    if (!recursive_lu(front, m, first, left, pivot_scale)) return false;
+    Block l11(front + first + static_cast<int64_t>(first) * m, left, left, Eigen::OuterStride<>(m));
+    Block a12(front + first + static_cast<int64_t>(mid) * m, left, right, Eigen::OuterStride<>(m));
+    l11.triangularView<Eigen::UnitLower>().solveInPlace(a12);
+    Block l21(front + mid + static_cast<int64_t>(first) * m, m - mid, left,
+              Eigen::OuterStride<>(m));
+    Block a22(front + mid + static_cast<int64_t>(mid) * m, m - mid, right, Eigen::OuterStride<>(m));
+    a22.noalias() -= l21 * a12;
+    return recursive_lu(front, m, mid, right, pivot_scale);
+}
+
+}  // namespace
+
+bool RAPS_PARTIAL_LU(double* front, int32_t m, int32_t k, const double* pivot_scale) {
+    pin_cache_sizes();
+    if (!recursive_lu(front, m, 0, k, pivot_scale)) return false;
+    const int32_t rest = m - k;
+    if (rest == 0) return true;
+    // The Schur complement as one product of inner dimension k.
+    Block l11(front, k, k, Eigen::OuterStride<>(m));
+    Block u12(front + static_cast<int64_t>(k) * m, k, rest, Eigen::OuterStride<>(m));
+    l11.triangularView<Eigen::UnitLower>().solveInPlace(u12);
+    Block l21(front + k, rest, k, Eigen::OuterStride<>(m));
+    Block f22(front + k + static_cast<int64_t>(k) * m, rest, rest, Eigen::OuterStride<>(m));
+    f22.noalias() -= l21 * u12;
+    return true;
+}
+
+}  // namespace raps
