@@ -45,18 +45,21 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh) {
 
 Halfedges build_halfedges(const TriangleMesh& mesh) {
     const OutgoingHalfedges out = group_by_origin(mesh);
+    const int32_t halfedge_count = 3 * mesh.triangle_count();
+    std::vector<int32_t> target(halfedge_count);
+    for (int32_t h = 0; h < halfedge_count; ++h) target[h] = halfedge_target(mesh, h);
     Halfedges result;
-    result.twin.assign(3 * static_cast<size_t>(mesh.triangle_count()), -1);
-    for (int32_t h = 0; h < 3 * mesh.triangle_count(); ++h) {
-        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+    result.twin.assign(halfedge_count, -1);
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        const int32_t a = halfedge_origin(mesh, h), b = target[h];
         int32_t same_direction = -1, opposite = -1, opposite_count = 0;
         for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
             const int32_t g = out.halfedges[i];
-            if (g != h && halfedge_target(mesh, g) == b) same_direction = g;
+            if (g != h && target[g] == b) same_direction = g;
         }
         for (int32_t i = out.offsets[b]; i < out.offsets[b + 1]; ++i) {
             const int32_t g = out.halfedges[i];
-            if (halfedge_target(mesh, g) == a) {
+            if (target[g] == a) {
                 opposite = g;
                 ++opposite_count;
             }

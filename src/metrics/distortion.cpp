@@ -11,12 +11,14 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() * b.y() - a.y() * b.x();
 }
 
-double corner_angle_3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
-double corner_angle_uv(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return std::atan2(std::abs(cross2(a, b)), a.dot(b));
+// |uv angle - 3D angle| at a corner from the sine and cosine of each (both scaled by the side
+// lengths, which atan2 ignores): one atan2 of the difference instead of two angles.
+double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    const double sine_3d = a.cross(b).norm(), cosine_3d = a.dot(b);
+    const double sine_uv = std::abs(cross2(p, q)), cosine_uv = p.dot(q);
+    return std::abs(std::atan2(sine_uv * cosine_3d - cosine_uv * sine_3d,
+                               cosine_uv * cosine_3d + sine_uv * sine_3d));
 }
 
 }  // namespace
@@ -65,10 +67,10 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         stats.area_max = std::max(stats.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
         for (int k = 0; k < 3; ++k) {
             const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
-            const double difference =
-                std::abs(corner_angle_uv(uv[j] - uv[i], uv[l] - uv[i]) -
-                         corner_angle_3d(positions[j] - positions[i], positions[l] - positions[i]));
-            const double degrees = difference * 180.0 / M_PI;
+            const double degrees =
+                angle_difference(positions[j] - positions[i], positions[l] - positions[i],
+                                 uv[j] - uv[i], uv[l] - uv[i]) *
+                180.0 / M_PI;
             angle_sum += degrees;
             stats.angle_max_deg = std::max(stats.angle_max_deg, degrees);
         }
@@ -82,8 +84,8 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         const double j00 = d1.x() / length, j10 = d1.y() / length;
         const double j01 = (d2.x() - d1.x() * p2x / length) / p2y;
         const double j11 = (d2.y() - d1.y() * p2x / length) / p2y;
-        const double q = std::hypot(0.5 * (j00 + j11), 0.5 * (j10 - j01));
-        const double s = std::hypot(0.5 * (j00 - j11), 0.5 * (j10 + j01));
+        const double q = 0.5 * std::sqrt((j00 + j11) * (j00 + j11) + (j10 - j01) * (j10 - j01));
+        const double s = 0.5 * std::sqrt((j00 - j11) * (j00 - j11) + (j10 + j01) * (j10 + j01));
         const double big = scale * (q + s), small = scale * std::abs(q - s);
         const double stretch_max = 1.0 / small, stretch_min = 1.0 / big;
         stretch_sum += weight * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);

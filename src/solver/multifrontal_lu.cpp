@@ -327,10 +327,10 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
     }
     // Left uninitialized: factorize() writes every entry before reading it, and zero-filling
     // hundreds of megabytes measured 0.19 s of a 0.5 s analysis at 413K unknowns.
-    factors_.reset(new double[factor_size]);
+    factors_ = allocate(factor_size);
     factor_size_ = factor_size;
-    front_.reset(new double[max_front]);
-    stack_.reset(new double[std::max<int64_t>(stack_peak_, 1)]);
+    front_ = allocate(max_front);
+    stack_ = allocate(stack_peak_);
 }
 
 bool MultifrontalLU::factorize(const double* values, const std::function<void(double)>& progress) {

@@ -7,9 +7,11 @@
 // each adaptive step). Matrices that need pivoting are reported by factorize() returning false.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <new>
 #include <vector>
 
 #include "solver/sparse_pattern.h"
@@ -57,10 +59,21 @@ class MultifrontalLU {
     std::vector<int64_t> value_source_;     // index into the caller's values
     std::vector<int64_t> value_target_;     // position in the front, column-major
     std::vector<int32_t> diagonal_source_;  // per elimination position: index of its diagonal
-    std::unique_ptr<double[]> factors_;     // per supernode: L panel, then U panel
+    // Uninitialized and 64-byte aligned: the vectorized kernels peel differently at different
+    // alignments, which changes the order of summation, so an allocation that happened to land
+    // at another address mod 32 gave results differing in the last bits from run to run.
+    struct AlignedDelete {
+        void operator()(double* p) const { ::operator delete[](p, std::align_val_t(64)); }
+    };
+    using Buffer = std::unique_ptr<double[], AlignedDelete>;
+    static Buffer allocate(int64_t count) {
+        const size_t bytes = static_cast<size_t>(std::max<int64_t>(count, 1)) * sizeof(double);
+        return Buffer(static_cast<double*>(::operator new[](bytes, std::align_val_t(64))));
+    }
+    Buffer factors_;  // per supernode: L panel, then U panel
     int64_t factor_size_ = 0;
-    std::unique_ptr<double[]> front_;  // workspace: the largest front
-    std::unique_ptr<double[]> stack_;  // contribution blocks waiting for their parent
+    Buffer front_;  // workspace: the largest front
+    Buffer stack_;  // contribution blocks waiting for their parent
     int64_t stack_peak_ = 0;
     double total_flops_ = 0;
 };
