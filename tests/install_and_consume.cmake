@@ -35,8 +35,12 @@ message(STATUS "find_package consumer: ${last_output}")
 # 2. pkg-config: compile and link with the flags it prints, nothing else.
 find_program(PKG_CONFIG pkg-config REQUIRED)
 find_program(CC NAMES cc gcc clang REQUIRED)
+set(static_flag "")
+if(STATIC)
+  set(static_flag --static)  # a static libraps needs its private libraries (the C++ runtime)
+endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pc_dir}
-                ${PKG_CONFIG} --cflags --libs raps
+                ${PKG_CONFIG} --cflags --libs ${static_flag} raps
                 OUTPUT_VARIABLE flags RESULT_VARIABLE rc OUTPUT_STRIP_TRAILING_WHITESPACE)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "pkg-config --cflags --libs raps failed")
