@@ -2,10 +2,8 @@
 
 #include <cmath>
 
-#include <Eigen/SparseLU>
 
 #include "core/error.h"
-#include "solver/nested_dissection.h"
 
 namespace raps {
 
@@ -21,8 +19,8 @@ LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& ad
         }
     }
     const int32_t n = static_cast<int32_t>(vertex_of_unknown_.size());
-    pattern_.size = n;
-    pattern_.row_offsets.assign(1, 0);
+    SparsePattern pattern;
+    pattern.size = n;
     value_of_slot_.assign(adjacency.neighbors.size(), -1);
     diagonal_of_unknown_.resize(n);
     for (int32_t row = 0; row < n; ++row) {
@@ -34,31 +32,29 @@ LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& ad
             const int32_t column = unknown_of_vertex[adjacency.neighbors[s]];
             if (column < 0) continue;
             if (!diagonal_placed && column > row) {
-                diagonal_of_unknown_[row] = static_cast<int32_t>(pattern_.columns.size());
-                pattern_.columns.push_back(row);
+                diagonal_of_unknown_[row] = static_cast<int32_t>(pattern.columns.size());
+                pattern.columns.push_back(row);
                 diagonal_placed = true;
             }
-            value_of_slot_[s] = static_cast<int32_t>(pattern_.columns.size());
-            pattern_.columns.push_back(column);
+            value_of_slot_[s] = static_cast<int32_t>(pattern.columns.size());
+            pattern.columns.push_back(column);
         }
         if (!diagonal_placed) {
-            diagonal_of_unknown_[row] = static_cast<int32_t>(pattern_.columns.size());
-            pattern_.columns.push_back(row);
+            diagonal_of_unknown_[row] = static_cast<int32_t>(pattern.columns.size());
+            pattern.columns.push_back(row);
         }
-        pattern_.row_offsets.push_back(static_cast<int32_t>(pattern_.columns.size()));
+        pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
     }
     std::vector<Eigen::Vector3d> coordinates(n);
-    for (int32_t row = 0; row < n; ++row)
-        coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
-    order_ = nested_dissection_order(pattern_, coordinates);
-    lu_.analyze(pattern_, order_);
+    for (int32_t row = 0; row < n; ++row) coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
+    solver_ = std::make_unique<SparseSolver>(std::move(pattern), coordinates);
 }
 
 void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,
                           const std::function<void(double)>& progress) {
-    const int32_t n = pattern_.size;
+    const int32_t n = unknown_count();
     if (n == 0) return;  // every vertex is on the boundary
-    std::vector<double> values(pattern_.columns.size(), 0.0);
+    std::vector<double> values(solver_->pattern().columns.size(), 0.0);
     std::vector<double> rhs(2 * static_cast<size_t>(n), 0.0);
     for (int32_t row = 0; row < n; ++row) {
         const int32_t v = vertex_of_unknown_[row];
@@ -86,11 +82,7 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
             }
         }
     }
-    if (lu_.factorize(values.data(), progress)) {
-        lu_.solve(rhs.data(), 2);
-    } else {
-        solve_with_pivoting(values, rhs.data());
-    }
+    solver_->solve(values, rhs.data(), 2, progress);
     for (int32_t row = 0; row < n; ++row) {
         if (!std::isfinite(rhs[row]) || !std::isfinite(rhs[n + row])) {
             throw Error(ErrorCode::kSolverFailed,
@@ -99,45 +91,6 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
                             std::to_string(vertex_of_unknown_[row]) + ")");
         }
         uv[vertex_of_unknown_[row]] = Eigen::Vector2d(rhs[row], rhs[n + row]);
-    }
-}
-
-// Weights that are not all positive (cotangent weights on obtuse triangles, or those adapted
-// from them) can make the system need pivoting; Eigen's SparseLU pivots. It is given the matrix
-// already permuted into the nested-dissection order with its natural ordering: its built-in
-// AMD and METIS orderings are applied inverted (they return the elimination order in the
-// Cholesky convention), which measured 3x the fill of COLAMD on face.obj instead of less.
-void LaplaceSystem::solve_with_pivoting(const std::vector<double>& values, double* rhs) {
-    const int32_t n = pattern_.size;
-    std::vector<int32_t> position(n);
-    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
-    std::vector<Eigen::Triplet<double, int>> entries;
-    entries.reserve(values.size());
-    for (int32_t row = 0; row < n; ++row) {
-        for (int32_t p = pattern_.row_offsets[row]; p < pattern_.row_offsets[row + 1]; ++p) {
-            entries.emplace_back(position[row], position[pattern_.columns[p]], values[p]);
-        }
-    }
-    Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix(n, n);
-    matrix.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::NaturalOrdering<int>>
-        lu;
-    lu.compute(matrix);
-    if (lu.info() != Eigen::Success) {
-        throw Error(ErrorCode::kSolverFailed,
-                    "the Laplace system is singular (" + lu.lastErrorMessage() +
-                        "); weights that are not all positive, such as cotangent weights on "
-                        "obtuse triangles, can cause this");
-    }
-    Eigen::MatrixXd b(n, 2);
-    for (int32_t row = 0; row < n; ++row) {
-        b(position[row], 0) = rhs[row];
-        b(position[row], 1) = rhs[n + row];
-    }
-    const Eigen::MatrixXd x = lu.solve(b);
-    for (int32_t row = 0; row < n; ++row) {
-        rhs[row] = x(position[row], 0);
-        rhs[n + row] = x(position[row], 1);
     }
 }
 

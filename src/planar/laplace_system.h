@@ -14,34 +14,29 @@
 
 #include "core/triangle_mesh.h"
 #include "mesh/mesh_topology.h"
-#include "solver/multifrontal_lu.h"
-#include "solver/sparse_pattern.h"
+#include "solver/sparse_solver.h"
 
 namespace raps {
 
 class LaplaceSystem {
-  public:
+public:
     LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                   const std::vector<char>& on_boundary);
 
     // Solves with `weights` (one per adjacency slot; rows of interior vertices must have a
-    // positive sum) for the interior entries of `uv`, keeping its boundary entries.
+    // nonzero sum) for the interior entries of `uv`, keeping its boundary entries.
     // Throws Error(kSolverFailed) when the system is singular.
     void solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,
                const std::function<void(double)>& progress);
 
-    int32_t unknown_count() const { return pattern_.size; }
+    int32_t unknown_count() const { return static_cast<int32_t>(vertex_of_unknown_.size()); }
 
-  private:
-    void solve_with_pivoting(const std::vector<double>& values, double* rhs);
-
+private:
     const VertexAdjacency& adjacency_;
     std::vector<int32_t> vertex_of_unknown_;
     std::vector<int32_t> value_of_slot_;  // per slot of an interior row: its entry, or -1
     std::vector<int32_t> diagonal_of_unknown_;
-    std::vector<int32_t> order_;
-    SparsePattern pattern_;
-    MultifrontalLU lu_;
+    std::unique_ptr<SparseSolver> solver_;
 };
 
 }  // namespace raps

@@ -1,0 +1,146 @@
+#include "atlas/atlas_surface.h"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+
+#include "mesh/mesh_topology.h"
+
+namespace raps {
+namespace {
+
+int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
+    while (parent[v] != v) {
+        parent[v] = parent[parent[v]];
+        v = parent[v];
+    }
+    return v;
+}
+
+}  // namespace
+
+AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded) {
+    AtlasSurface surface;
+    const int32_t input_count = input.triangle_count();
+
+    // Areas, for the zero-area test (same threshold as the metrics: 1e-12 of the mean).
+    std::vector<double> area(input_count);
+    double total = 0;
+    for (int32_t t = 0; t < input_count; ++t) {
+        const Triangle& v = input.triangles[t];
+        area[t] = 0.5 * (input.positions[v[1]] - input.positions[v[0]])
+                            .cross(input.positions[v[2]] - input.positions[v[0]])
+                            .norm();
+        total += area[t];
+    }
+    const double zero_area = 1e-12 * total / std::max(input_count, 1);
+
+    // Exact duplicates (same welded vertices in the same rotation) follow their first copy.
+    // A copy wound the other way is the back of a two-sided surface and keeps its own chart.
+    std::vector<std::pair<std::array<int32_t, 3>, int32_t>> keys;
+    std::vector<int32_t> kept;  // input triangles that become surface triangles
+    for (int32_t t = 0; t < input_count; ++t) {
+        const Triangle& v = input.triangles[t];
+        std::array<int32_t, 3> w = {welded[v[0]], welded[v[1]], welded[v[2]]};
+        if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0] || !(area[t] > zero_area)) {
+            surface.aside_triangles.push_back(t);
+            surface.aside_primary.push_back(-1);
+            continue;
+        }
+        std::rotate(w.begin(), std::min_element(w.begin(), w.end()), w.end());
+        keys.emplace_back(w, t);
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<int32_t> primary_of(input_count, -1);
+    for (size_t i = 0; i < keys.size(); ++i) {
+        if (i > 0 && keys[i].first == keys[i - 1].first) {
+            primary_of[keys[i].second] = primary_of[keys[i - 1].second] >= 0
+                                             ? primary_of[keys[i - 1].second]
+                                             : keys[i - 1].second;
+        }
+    }
+    std::vector<int32_t> surface_of_input(input_count, -1);
+    for (int32_t t = 0; t < input_count; ++t) {
+        const Triangle& v = input.triangles[t];
+        if (welded[v[0]] == welded[v[1]] || welded[v[1]] == welded[v[2]] ||
+            welded[v[2]] == welded[v[0]] || !(area[t] > zero_area)) {
+            continue;
+        }
+        if (primary_of[t] >= 0) continue;
+        surface_of_input[t] = static_cast<int32_t>(kept.size());
+        kept.push_back(t);
+    }
+    for (int32_t t = 0; t < input_count; ++t) {
+        if (primary_of[t] >= 0) {
+            surface.aside_triangles.push_back(t);
+            surface.aside_primary.push_back(surface_of_input[primary_of[t]]);
+        }
+    }
+
+    // Half-edges over welded vertices; an edge is an interior edge of the surface only when it
+    // has exactly one half-edge in each direction.
+    const int32_t count = static_cast<int32_t>(kept.size());
+    TriangleMesh welded_mesh;
+    welded_mesh.positions = input.positions;
+    welded_mesh.triangles.resize(count);
+    for (int32_t s = 0; s < count; ++s) {
+        const Triangle& v = input.triangles[kept[s]];
+        welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
+    }
+    std::vector<int32_t> order(3 * static_cast<size_t>(count));
+    std::iota(order.begin(), order.end(), 0);
+    auto key = [&](int32_t h) {
+        const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
+        return std::make_pair(std::min(a, b), std::max(a, b));
+    };
+    std::sort(order.begin(), order.end(), [&](int32_t x, int32_t y) {
+        const auto kx = key(x), ky = key(y);
+        return kx < ky || (kx == ky && x < y);
+    });
+    surface.twin.assign(order.size(), -1);
+    for (size_t i = 0; i < order.size();) {
+        size_t j = i;
+        while (j < order.size() && key(order[j]) == key(order[i])) ++j;
+        if (j - i == 2) {
+            const int32_t h = order[i], g = order[i + 1];
+            if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g)) {
+                surface.twin[h] = g;
+                surface.twin[g] = h;
+            }
+        }
+        i = j;
+    }
+
+    // Surface vertices: corners joined across interior edges, one class per fan.
+    std::vector<int32_t> parent(order.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto unite = [&](int32_t a, int32_t b) {
+        a = find_root(parent, a);
+        b = find_root(parent, b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    };
+    for (int32_t h = 0; h < 3 * count; ++h) {
+        const int32_t g = surface.twin[h];
+        if (g < h) continue;
+        // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
+        // the corner after g; the corners at b are the corner after h and g's own corner.
+        unite(h, Halfedges::next(g));
+        unite(Halfedges::next(h), g);
+    }
+    std::vector<int32_t> vertex_of_class(order.size(), -1);
+    surface.mesh.triangles.resize(count);
+    for (int32_t c = 0; c < 3 * count; ++c) {
+        const int32_t root = find_root(parent, c);
+        if (vertex_of_class[root] < 0) {
+            vertex_of_class[root] = static_cast<int32_t>(surface.welded_vertex.size());
+            const int32_t w = welded_mesh.triangles[c / 3][c % 3];
+            surface.welded_vertex.push_back(w);
+            surface.mesh.positions.push_back(input.positions[w]);
+        }
+        surface.mesh.triangles[c / 3][c % 3] = vertex_of_class[root];
+    }
+    surface.input_triangle = std::move(kept);
+    return surface;
+}
+
+}  // namespace raps

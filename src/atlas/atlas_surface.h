@@ -1,0 +1,32 @@
+// Step 2 of the atlas pipeline: turn any triangle soup into a manifold, consistently oriented
+// surface that charts can be grown on. Vertices are welded by position; edges shared by more
+// than two triangles, or traversed twice in the same direction, become cuts; each vertex is
+// split into one surface vertex per fan of triangles around it. Triangles that cannot take part
+// (repeated welded vertex, zero area, an exact duplicate of another) are kept aside: they still
+// get uvs, on the chart of a neighbour.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/triangle_mesh.h"
+
+namespace raps {
+
+struct AtlasSurface {
+    TriangleMesh mesh;                     // surface vertices and the triangles charts are made of
+    std::vector<int32_t> twin;             // per half-edge 3t+k (as in mesh_topology.h); -1: cut
+    std::vector<int32_t> input_triangle;   // per surface triangle
+    std::vector<int32_t> welded_vertex;    // per surface vertex: its welded input vertex
+    // Input triangles that are not surface triangles, each with the surface triangle whose uvs
+    // it shares (duplicates) or -1 (degenerate: placed by the atlas on a neighbouring chart).
+    std::vector<int32_t> aside_triangles;
+    std::vector<int32_t> aside_primary;
+};
+
+// `welded[v]`: the representative of input vertex v (vertex_welding.h).
+AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded);
+
+}  // namespace raps

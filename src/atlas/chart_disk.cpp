@@ -1,0 +1,151 @@
+#include "atlas/chart_disk.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "mesh/mesh_topology.h"
+
+namespace raps {
+namespace {
+
+int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
+    while (parent[v] != v) {
+        parent[v] = parent[parent[v]];
+        v = parent[v];
+    }
+    return v;
+}
+
+// Local twins of the chart's triangles: the surface's, kept inside the chart and off seams.
+std::vector<int32_t> local_twins(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                                 const std::vector<int32_t>& local_of, const std::vector<char>& seam) {
+    std::vector<int32_t> twin(3 * triangles.size(), -1);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t h = 3 * triangles[i] + k, o = surface.twin[h];
+            if (o < 0 || seam[h] || local_of[o / 3] < 0) continue;
+            twin[3 * i + k] = 3 * local_of[o / 3] + o % 3;
+        }
+    }
+    return twin;
+}
+
+// Chart vertices: corners joined across uncut edges, one vertex per class.
+void build_vertices(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                    const std::vector<int32_t>& twin, ChartDisk& disk) {
+    const int32_t corners = static_cast<int32_t>(twin.size());
+    std::vector<int32_t> parent(corners);
+    std::iota(parent.begin(), parent.end(), 0);
+    for (int32_t h = 0; h < corners; ++h) {
+        const int32_t g = twin[h];
+        if (g < h) continue;
+        for (auto [a, b] : {std::make_pair(h, Halfedges::next(g)), std::make_pair(Halfedges::next(h), g)}) {
+            a = find_root(parent, a);
+            b = find_root(parent, b);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+    }
+    std::vector<int32_t> vertex_of_class(corners, -1);
+    disk.mesh.positions.clear();
+    disk.surface_vertex.clear();
+    disk.mesh.triangles.assign(triangles.size(), Triangle{});
+    for (int32_t c = 0; c < corners; ++c) {
+        const int32_t root = find_root(parent, c);
+        if (vertex_of_class[root] < 0) {
+            vertex_of_class[root] = static_cast<int32_t>(disk.surface_vertex.size());
+            const int32_t v = surface.mesh.triangles[triangles[c / 3]][c % 3];
+            disk.surface_vertex.push_back(v);
+            disk.mesh.positions.push_back(surface.mesh.positions[v]);
+        }
+        disk.mesh.triangles[c / 3][c % 3] = vertex_of_class[root];
+    }
+}
+
+bool is_disk(const ChartDisk& disk, const Halfedges& halfedges) {
+    const std::vector<std::vector<int32_t>> loops = boundary_loops(disk.mesh, halfedges);
+    const int64_t euler = static_cast<int64_t>(disk.mesh.vertex_count()) - edge_count(halfedges) +
+                          disk.mesh.triangle_count();
+    return loops.size() == 1 && euler == 1;
+}
+
+}  // namespace
+
+bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                     const std::vector<char>& seam, ChartDisk& disk) {
+    std::vector<int32_t> local_of(surface.mesh.triangles.size(), -1);
+    for (size_t i = 0; i < triangles.size(); ++i) local_of[triangles[i]] = static_cast<int32_t>(i);
+    disk.surface_triangle = triangles;
+    Halfedges halfedges;
+    halfedges.twin = local_twins(surface, triangles, local_of, seam);
+    build_vertices(surface, triangles, halfedges.twin, disk);
+    if (!is_disk(disk, halfedges)) {
+        // Spanning tree of the triangles (breadth first from triangle 0); every uncut edge it
+        // does not cross is a cut candidate.
+        const int32_t corners = static_cast<int32_t>(halfedges.twin.size());
+        std::vector<char> crossed(corners, 0), visited(triangles.size(), 0);
+        std::vector<int32_t> frontier = {0};
+        visited[0] = 1;
+        for (size_t i = 0; i < frontier.size(); ++i) {
+            for (int k = 0; k < 3; ++k) {
+                const int32_t h = 3 * frontier[i] + k, o = halfedges.twin[h];
+                if (o < 0 || visited[o / 3]) continue;
+                visited[o / 3] = 1;
+                crossed[h] = crossed[o] = 1;
+                frontier.push_back(o / 3);
+            }
+        }
+        if (frontier.size() != triangles.size()) return false;  // not connected
+        // Prune: drop candidate edges with an end that is neither on the boundary nor touched
+        // by another candidate, until none is left dangling.
+        const int32_t n = disk.mesh.vertex_count();
+        std::vector<int32_t> degree(n, 0);
+        std::vector<char> boundary(n, 0), cut(corners, 0);
+        for (int32_t h = 0; h < corners; ++h) {
+            const int32_t a = halfedge_origin(disk.mesh, h), b = halfedge_target(disk.mesh, h);
+            if (halfedges.twin[h] < 0) {
+                boundary[a] = boundary[b] = 1;
+            } else if (!crossed[h] && h < halfedges.twin[h]) {
+                cut[h] = 1;
+                ++degree[a];
+                ++degree[b];
+            }
+        }
+        std::vector<std::vector<int32_t>> incident(n);
+        for (int32_t h = 0; h < corners; ++h) {
+            if (!cut[h]) continue;
+            incident[halfedge_origin(disk.mesh, h)].push_back(h);
+            incident[halfedge_target(disk.mesh, h)].push_back(h);
+        }
+        std::vector<int32_t> dangling;
+        for (int32_t v = 0; v < n; ++v) {
+            if (degree[v] == 1 && !boundary[v]) dangling.push_back(v);
+        }
+        while (!dangling.empty()) {
+            const int32_t v = dangling.back();
+            dangling.pop_back();
+            if (degree[v] != 1 || boundary[v]) continue;
+            for (int32_t h : incident[v]) {
+                if (!cut[h]) continue;
+                cut[h] = 0;
+                const int32_t a = halfedge_origin(disk.mesh, h), b = halfedge_target(disk.mesh, h);
+                --degree[a];
+                --degree[b];
+                const int32_t other = a == v ? b : a;
+                if (degree[other] == 1 && !boundary[other]) dangling.push_back(other);
+            }
+        }
+        for (int32_t h = 0; h < corners; ++h) {
+            if (cut[h]) {
+                const int32_t o = halfedges.twin[h];
+                halfedges.twin[h] = halfedges.twin[o] = -1;
+            }
+        }
+        build_vertices(surface, triangles, halfedges.twin, disk);
+        if (!is_disk(disk, halfedges)) return false;
+    }
+    std::vector<std::vector<int32_t>> loops = boundary_loops(disk.mesh, halfedges);
+    disk.boundary_loop = std::move(loops[0]);
+    return true;
+}
+
+}  // namespace raps

@@ -1,0 +1,28 @@
+// Step 3b: a chart as a mesh of its own, cut open into a topological disk. Hard edges inside the
+// chart become seams; a chart that is still not a disk (holes, handles) is cut along the edges
+// that a spanning tree of its triangles does not cross, pruned of dangling branches (the cut
+// graph of Erickson & Har-Peled 2002; Gu, Gortler & Hoppe 2002, geometry images): what remains
+// joins every hole to the outer boundary and opens every handle.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "atlas/atlas_surface.h"
+
+namespace raps {
+
+struct ChartDisk {
+    TriangleMesh mesh;                      // the chart's own vertices and triangles
+    std::vector<int32_t> surface_triangle;  // per chart triangle
+    std::vector<int32_t> surface_vertex;    // per chart vertex
+    std::vector<int32_t> boundary_loop;     // the disk's boundary, mesh on its left
+};
+
+// The chart made of `triangles` (surface triangle ids). seam[h] marks half-edges of the surface
+// that must not be crossed even inside the chart (hard edges). Returns false when the chart
+// could not be made a disk (it is then split by the caller).
+bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                     const std::vector<char>& seam, ChartDisk& disk);
+
+}  // namespace raps

@@ -1,0 +1,229 @@
+#include "atlas/chart_segmentation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+
+namespace raps {
+namespace {
+
+struct Geometry {
+    std::vector<Eigen::Vector3d> normal;    // unit normal per triangle
+    std::vector<Eigen::Vector3d> centroid;  // per triangle
+    std::vector<double> area;               // per triangle
+    std::vector<double> defect;             // |angle defect| per vertex (0 on boundaries)
+    std::vector<int32_t> fan_offsets, fan;  // triangles around each vertex
+    std::vector<char> barrier;              // per half-edge: charts may not grow across it
+};
+
+Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settings) {
+    const TriangleMesh& mesh = surface.mesh;
+    const int32_t count = mesh.triangle_count();
+    Geometry g;
+    g.normal.resize(count);
+    g.centroid.resize(count);
+    g.area.resize(count);
+    std::vector<double> angle_sum(mesh.positions.size(), 0.0);
+    std::vector<char> on_boundary(mesh.positions.size(), 0);
+    for (int32_t t = 0; t < count; ++t) {
+        const Triangle& v = mesh.triangles[t];
+        const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                      .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
+        g.area[t] = 0.5 * n.norm();
+        g.normal[t] = n.normalized();
+        g.centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
+        for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d a = mesh.positions[v[(k + 1) % 3]] - mesh.positions[v[k]];
+            const Eigen::Vector3d b = mesh.positions[v[(k + 2) % 3]] - mesh.positions[v[k]];
+            angle_sum[v[k]] += std::atan2(a.cross(b).norm(), a.dot(b));
+            if (surface.twin[3 * t + k] < 0) {
+                on_boundary[v[k]] = 1;
+                on_boundary[v[(k + 1) % 3]] = 1;
+            }
+        }
+    }
+    g.defect.resize(mesh.positions.size());
+    for (size_t v = 0; v < g.defect.size(); ++v) {
+        g.defect[v] = on_boundary[v] ? 0.0 : std::abs(2.0 * M_PI - angle_sum[v]);
+    }
+    g.fan_offsets.assign(mesh.positions.size() + 1, 0);
+    for (const Triangle& t : mesh.triangles) {
+        for (int32_t v : t) ++g.fan_offsets[v + 1];
+    }
+    std::partial_sum(g.fan_offsets.begin(), g.fan_offsets.end(), g.fan_offsets.begin());
+    g.fan.resize(g.fan_offsets.back());
+    std::vector<int32_t> fill(g.fan_offsets.begin(), g.fan_offsets.end() - 1);
+    for (int32_t t = 0; t < count; ++t) {
+        for (int32_t v : mesh.triangles[t]) g.fan[fill[v]++] = t;
+    }
+    const double hard_cosine = std::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
+    g.barrier.assign(3 * static_cast<size_t>(count), 0);
+    for (int32_t h = 0; h < 3 * count; ++h) {
+        const int32_t o = surface.twin[h];
+        g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
+                                 g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
+    }
+    return g;
+}
+
+class Grower {
+public:
+    Grower(const AtlasSurface& surface, const Geometry& geometry,
+           const SegmentationSettings& settings)
+        : surface_(surface), g_(geometry), settings_(settings),
+          min_cosine_(std::cos(settings.max_normal_deviation_deg * M_PI / 180.0)) {}
+
+    // Grows charts from `seeds` until every triangle has one (adding seeds where none can grow).
+    std::vector<int32_t> grow(std::vector<int32_t> seeds) {
+        const int32_t count = surface_.mesh.triangle_count();
+        chart_.assign(count, -1);
+        distance_.assign(count, 0.0);
+        charts_.clear();
+        queue_ = {};
+        for (int32_t seed : seeds) start_chart(seed);
+        int32_t next_unassigned = 0;
+        for (;;) {
+            drain();
+            while (next_unassigned < count && chart_[next_unassigned] >= 0) ++next_unassigned;
+            if (next_unassigned == count) break;
+            start_chart(next_unassigned);
+        }
+        return chart_;
+    }
+
+    // The triangle of each chart farthest (in hops) from the chart's boundary: its centre.
+    std::vector<int32_t> centres(const std::vector<int32_t>& chart) const {
+        const int32_t count = surface_.mesh.triangle_count();
+        const int32_t chart_count = *std::max_element(chart.begin(), chart.end()) + 1;
+        std::vector<int32_t> depth(count, -1), frontier;
+        for (int32_t t = 0; t < count; ++t) {
+            for (int k = 0; k < 3; ++k) {
+                const int32_t o = surface_.twin[3 * t + k];
+                if (o < 0 || chart[o / 3] != chart[t] || g_.barrier[3 * t + k]) {
+                    depth[t] = 0;
+                    frontier.push_back(t);
+                    break;
+                }
+            }
+        }
+        for (size_t i = 0; i < frontier.size(); ++i) {
+            const int32_t t = frontier[i];
+            for (int k = 0; k < 3; ++k) {
+                const int32_t o = surface_.twin[3 * t + k];
+                if (o >= 0 && !g_.barrier[3 * t + k] && chart[o / 3] == chart[t] && depth[o / 3] < 0) {
+                    depth[o / 3] = depth[t] + 1;
+                    frontier.push_back(o / 3);
+                }
+            }
+        }
+        std::vector<int32_t> best(chart_count, -1);
+        for (int32_t t = 0; t < count; ++t) {
+            const int32_t c = chart[t];
+            if (best[c] < 0 || depth[t] > depth[best[c]]) best[c] = t;
+        }
+        return best;
+    }
+
+private:
+    struct Chart {
+        Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
+        double curvature = 0;
+    };
+    struct Candidate {
+        double distance;
+        int32_t triangle, chart;
+        bool operator<(const Candidate& o) const {  // min-heap on distance, then triangle
+            return distance > o.distance || (distance == o.distance && triangle > o.triangle);
+        }
+    };
+
+    void start_chart(int32_t seed) {
+        const int32_t c = static_cast<int32_t>(charts_.size());
+        charts_.emplace_back();
+        if (chart_[seed] >= 0) return;  // an empty chart; renumbered away later
+        assign(seed, c, 0.0);
+    }
+
+    void assign(int32_t t, int32_t c, double distance) {
+        chart_[t] = c;
+        distance_[t] = distance;
+        Chart& chart = charts_[c];
+        chart.normal_sum += g_.area[t] * g_.normal[t];
+        chart.curvature += curvature_gain(t, c);
+        for (int k = 0; k < 3; ++k) {
+            const int32_t o = surface_.twin[3 * t + k];
+            if (o < 0 || g_.barrier[3 * t + k] || chart_[o / 3] >= 0) continue;
+            const double step = (g_.centroid[o / 3] - g_.centroid[t]).norm();
+            queue_.push({distance + step, o / 3, c});
+        }
+    }
+
+    // Curvature that becomes interior to chart c if t joins it: vertices of t whose other
+    // triangles all belong to c already.
+    double curvature_gain(int32_t t, int32_t c) const {
+        double gain = 0;
+        for (int32_t v : surface_.mesh.triangles[t]) {
+            bool enclosed = true;
+            for (int32_t i = g_.fan_offsets[v]; i < g_.fan_offsets[v + 1] && enclosed; ++i) {
+                const int32_t u = g_.fan[i];
+                enclosed = u == t || chart_[u] == c;
+            }
+            if (enclosed) gain += g_.defect[v];
+        }
+        return gain;
+    }
+
+    bool accepts(int32_t t, int32_t c) const {
+        const Chart& chart = charts_[c];
+        if (g_.normal[t].dot(chart.normal_sum.normalized()) < min_cosine_) return false;
+        return chart.curvature + curvature_gain(t, c) <= settings_.max_curvature;
+    }
+
+    void drain() {
+        while (!queue_.empty()) {
+            const Candidate next = queue_.top();
+            queue_.pop();
+            if (chart_[next.triangle] >= 0) continue;
+            if (accepts(next.triangle, next.chart)) assign(next.triangle, next.chart, next.distance);
+        }
+    }
+
+    const AtlasSurface& surface_;
+    const Geometry& g_;
+    const SegmentationSettings& settings_;
+    const double min_cosine_;
+    std::vector<int32_t> chart_;
+    std::vector<double> distance_;
+    std::vector<Chart> charts_;
+    std::priority_queue<Candidate> queue_;
+};
+
+// Renumbers charts 0.. in order of their first triangle, dropping empty ids.
+std::vector<int32_t> compact_ids(std::vector<int32_t> chart) {
+    std::vector<int32_t> renamed;
+    const int32_t max_id = chart.empty() ? -1 : *std::max_element(chart.begin(), chart.end());
+    renamed.assign(max_id + 1, -1);
+    int32_t next = 0;
+    for (int32_t& c : chart) {
+        if (renamed[c] < 0) renamed[c] = next++;
+        c = renamed[c];
+    }
+    return chart;
+}
+
+}  // namespace
+
+std::vector<int32_t> segment_charts(const AtlasSurface& surface,
+                                    const SegmentationSettings& settings) {
+    if (surface.mesh.triangles.empty()) return {};
+    const Geometry geometry = measure(surface, settings);
+    Grower grower(surface, geometry, settings);
+    std::vector<int32_t> chart = compact_ids(grower.grow({0}));
+    for (int i = 0; i < settings.lloyd_iterations; ++i) {
+        chart = compact_ids(grower.grow(grower.centres(chart)));
+    }
+    return chart;
+}
+
+}  // namespace raps

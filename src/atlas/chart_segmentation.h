@@ -1,0 +1,28 @@
+// Step 3 of the atlas pipeline: grow charts over the surface. Charts grow from seeds in order of
+// geodesic distance (so they come out compact, a geodesic Voronoi diagram of the seeds) and
+// stop at what would make them hard to flatten: a triangle whose normal deviates too far from
+// the chart's mean normal, Gaussian curvature beyond a budget (the integrated curvature inside a
+// chart is what a flattening must absorb as distortion), a hard edge, a cut. Triangles no chart
+// can take become new seeds. Lloyd iterations then move every seed to its chart's centre and
+// regrow, which evens the charts out (as xatlas and Cohen-Steiner et al. 2004 do).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "atlas/atlas_surface.h"
+
+namespace raps {
+
+struct SegmentationSettings {
+    double max_normal_deviation_deg = 75.0;  // triangle normal vs the chart's mean normal
+    double max_curvature = 1.0;              // sum of |angle defect| of a chart's inner vertices
+    double hard_edge_angle_deg = 180.0;      // dihedral angle above which an edge is a seam
+    int lloyd_iterations = 3;
+};
+
+// Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
+std::vector<int32_t> segment_charts(const AtlasSurface& surface,
+                                    const SegmentationSettings& settings);
+
+}  // namespace raps

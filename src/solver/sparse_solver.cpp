@@ -1,0 +1,71 @@
+#include "solver/sparse_solver.h"
+
+#include <string>
+
+#include <Eigen/SparseLU>
+
+#include "core/error.h"
+#include "solver/nested_dissection.h"
+
+namespace raps {
+
+SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates)
+    : pattern_(std::move(pattern)) {
+    order_ = nested_dissection_order(pattern_, coordinates);
+    lu_.analyze(pattern_, order_);
+}
+
+void SparseSolver::solve(const std::vector<double>& values, double* rhs, int rhs_count,
+                         const std::function<void(double)>& progress) {
+    if (pattern_.size == 0) return;
+    if (lu_.factorize(values.data(), progress)) {
+        lu_.solve(rhs, rhs_count);
+    } else {
+        solve_with_pivoting(values, rhs, rhs_count);
+    }
+    for (int64_t i = 0; i < static_cast<int64_t>(pattern_.size) * rhs_count; ++i) {
+        if (!std::isfinite(rhs[i])) {
+            throw Error(ErrorCode::kSolverFailed,
+                        "the sparse system is numerically singular (non-finite solution)");
+        }
+    }
+}
+
+// Eigen's SparseLU pivots. It is given the matrix already permuted into the nested-dissection
+// order with its natural ordering: its built-in AMD and METIS orderings are applied inverted
+// (they return the elimination order in the Cholesky convention), which measured 3x the fill
+// of COLAMD on face.obj instead of less.
+void SparseSolver::solve_with_pivoting(const std::vector<double>& values, double* rhs,
+                                       int rhs_count) const {
+    const int32_t n = pattern_.size;
+    std::vector<int32_t> position(n);
+    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
+    std::vector<Eigen::Triplet<double, int>> entries;
+    entries.reserve(values.size());
+    for (int32_t row = 0; row < n; ++row) {
+        for (int32_t p = pattern_.row_offsets[row]; p < pattern_.row_offsets[row + 1]; ++p) {
+            entries.emplace_back(position[row], position[pattern_.columns[p]], values[p]);
+        }
+    }
+    Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix(n, n);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SparseLU<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::NaturalOrdering<int>>
+        lu;
+    lu.compute(matrix);
+    if (lu.info() != Eigen::Success) {
+        throw Error(ErrorCode::kSolverFailed,
+                    "the system is singular (" + lu.lastErrorMessage() +
+                        "); weights that are not all positive, such as cotangent weights on "
+                        "obtuse triangles, can cause this");
+    }
+    Eigen::MatrixXd b(n, rhs_count);
+    for (int c = 0; c < rhs_count; ++c) {
+        for (int32_t row = 0; row < n; ++row) b(position[row], c) = rhs[static_cast<int64_t>(c) * n + row];
+    }
+    const Eigen::MatrixXd x = lu.solve(b);
+    for (int c = 0; c < rhs_count; ++c) {
+        for (int32_t row = 0; row < n; ++row) rhs[static_cast<int64_t>(c) * n + row] = x(position[row], c);
+    }
+}
+
+}  // namespace raps

@@ -1,0 +1,38 @@
+// A square sparse system with a fixed, structurally symmetric pattern, solved many times with
+// new values: ordering and symbolic analysis once (nested dissection + multifrontal LU without
+// pivoting), then for each new set of values a numeric factorization and solves for several
+// right-hand sides. Values that need pivoting (a tiny pivot) fall back to Eigen's SparseLU.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/multifrontal_lu.h"
+#include "solver/sparse_pattern.h"
+
+namespace raps {
+
+class SparseSolver {
+public:
+    // coordinates[i]: a point in space for unknown i, for the fill-reducing order.
+    SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates);
+
+    // Solves A X = B in place: `values` in the pattern's order, `rhs` holds rhs_count columns of
+    // size() entries. Throws Error(kSolverFailed) for a singular system.
+    void solve(const std::vector<double>& values, double* rhs, int rhs_count,
+               const std::function<void(double)>& progress);
+
+    const SparsePattern& pattern() const { return pattern_; }
+    int32_t size() const { return pattern_.size; }
+
+private:
+    void solve_with_pivoting(const std::vector<double>& values, double* rhs, int rhs_count) const;
+
+    SparsePattern pattern_;
+    std::vector<int32_t> order_;
+    MultifrontalLU lu_;
+};
+
+}  // namespace raps
