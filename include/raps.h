@@ -210,14 +210,43 @@ enum {
     RAPS_PARAM_BOUNDARY = 7,
     /* int. Largest triangle count accepted, 1..2^31-1; larger meshes get RAPS_ERROR_TOO_LARGE
      * before any work is done. Default 2^31-1. */
-    RAPS_PARAM_MAX_TRIANGLES = 8
+    RAPS_PARAM_MAX_TRIANGLES = 8,
+    /* int. Threads a run may use, 0..1024; 0 = every hardware thread. The output is
+     * bit-identical whatever the value. Default 0. */
+    RAPS_PARAM_THREADS = 9,
+
+    /* Atlas domain (RAPS_DOMAIN_ATLAS); ignored by the others. */
+    /* int. Texels on the atlas's longer side, 16..16384. Default 1024. */
+    RAPS_PARAM_ATLAS_RESOLUTION = 32,
+    /* int. Texels kept free between charts (and at the atlas's border), 0..64. Default 2. */
+    RAPS_PARAM_ATLAS_PADDING = 33,
+    /* float. Vertices closer than this (in position units) are welded before charts are made,
+     * >= 0; 0 welds identical positions only. Default 0. */
+    RAPS_PARAM_WELD_TOLERANCE = 34,
+    /* float, degrees in [0, 180]. Edges whose two triangles' normals differ by more become chart
+     * seams; 180 turns this off. Default 180. */
+    RAPS_PARAM_HARD_EDGE_ANGLE = 35,
+    /* float in [1, 10]. Charts are split until the atlas's L2 stretch (Sander et al. 2001) is at
+     * most this. Default 1.008. */
+    RAPS_PARAM_ATLAS_MAX_L2_STRETCH = 36,
+    /* float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
+     * larger ones are split. Default 2.9. */
+    RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37
 };
 
 /* RAPS_PARAM_DOMAIN values */
 enum {
     /* A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
      * boundary on the convex shape of RAPS_PARAM_BOUNDARY. One output vertex per input vertex. */
-    RAPS_DOMAIN_DISK = 0
+    RAPS_DOMAIN_DISK = 0,
+    /* Any triangle mesh (several pieces, holes, handles, non-manifold or inconsistently wound
+     * parts, zero-area and duplicate triangles): cut into charts, each mapped (a free-boundary
+     * conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
+     * are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
+     * output triangles are the input triangles, in input order, with a chart id each. uvs are
+     * normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
+     * as a texture of that size maps them. */
+    RAPS_DOMAIN_ATLAS = 2
 };
 
 /* RAPS_PARAM_WEIGHTS values */
@@ -290,18 +319,22 @@ RAPS_API raps_status raps_param_info(raps_param param, const char** out_name, in
 typedef int32_t raps_phase;
 enum {
     RAPS_PHASE_VALIDATE = 0,    /* checking the input */
-    RAPS_PHASE_TOPOLOGY = 1,    /* edges, boundary loop, system pattern and ordering */
-    RAPS_PHASE_INITIAL_MAP = 2, /* boundary, base weights, first solve (paper sections 3, 5) */
+    RAPS_PHASE_TOPOLOGY = 1,    /* edges, boundary loop, system pattern and ordering; atlas: welding */
+    RAPS_PHASE_INITIAL_MAP = 2, /* boundary, base weights, first solve (paper sections 3, 5); atlas:
+                                 * every chart's map, its adaptive step included */
     RAPS_PHASE_ADAPT = 3,       /* monitors and adaptive solves (section 6) */
     RAPS_PHASE_METRICS = 4,     /* distortion statistics */
-    RAPS_PHASE_COUNT = 5        /* number of phases in this version */
+    RAPS_PHASE_SEGMENT = 5,     /* atlas: growing charts */
+    RAPS_PHASE_PACK = 6,        /* atlas: packing charts */
+    RAPS_PHASE_COUNT = 7        /* number of phases in this version */
 };
 
 /* Progress callback: called with the phase and the fraction of it done, in [0, 1], at least at
  * the start and end of every phase and about every 1% of the long ones. Return nonzero to go on,
  * 0 to cancel: the run then stops soon and returns RAPS_ERROR_CANCELLED. It is called on the
- * thread that called raps_parameterize; calls for one run never overlap. When one settings
- * handle is shared by concurrent runs, the callback receives calls from each of them. */
+ * thread that called raps_parameterize or, with RAPS_PARAM_THREADS != 1, on the run's worker
+ * threads; calls for one run never overlap. When one settings handle is shared by concurrent
+ * runs, the callback receives calls from each of them. */
 typedef int32_t (*raps_progress_fn)(void* user, raps_phase phase, double fraction);
 
 /* Sets the progress callback (NULL: none) and the pointer passed to it. Errors: INVALID_ARGUMENT
@@ -358,9 +391,14 @@ RAPS_API raps_status raps_result_copy_indices_u32(const raps_result* result, uin
 /* Copy, per output vertex, the input vertex it comes from; capacity >= vertex_count. */
 RAPS_API raps_status raps_result_copy_vertex_remap(const raps_result* result, uint32_t* dst,
                                                    size_t capacity);
+/* Copy, per output triangle, its chart (0 .. raps_stats.chart_count - 1); capacity >=
+ * index_count / 3. Disk domain: every triangle is in chart 0. */
+RAPS_API raps_status raps_result_copy_chart_ids(const raps_result* result, uint32_t* dst,
+                                                size_t capacity);
 
 /* Distortion statistics of a result. Definitions (r_t, the per-triangle area ratio, is
- * (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area):
+ * (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area; the
+ * atlas domain measures in texel space, where its map is isotropic):
  * Caller sets struct_size = sizeof(raps_stats) before the call; the library fills only the
  * fields that fit in struct_size, so a caller built against an older, shorter raps_stats keeps
  * working. Fields are only ever appended. */
@@ -379,6 +417,11 @@ typedef struct raps_stats {
     double angle_max_deg;         /* max of the same */
     double stretch_l2;            /* Sander et al. 2001 L2 stretch, uv scaled to the 3D area */
     double stretch_linf;          /* Sander's Linf stretch (largest singular value); isometry 1 */
+    uint64_t relaxation_sweeps;   /* sphere domain: sweeps of the spherical relaxation; else 0 */
+    uint64_t chart_count;         /* charts (1 for the disk domain) */
+    uint64_t atlas_width;         /* atlas domain: texels; 0 otherwise */
+    uint64_t atlas_height;
+    double utilization;           /* uv area over the unit square ([0,1]^2 after normalising) */
 } raps_stats;
 
 /* Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size < 8),

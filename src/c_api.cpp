@@ -14,7 +14,7 @@
 #include "parameterization.h"
 #include "raps.h"
 
-static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8, "raps_stats layout is part of the ABI");
+static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8, "raps_stats layout is ABI");
 
 #define RAPS_CHECK_CODE(name, value) \
     static_assert(static_cast<int32_t>(raps::ErrorCode::name) == (value), #value)
@@ -104,7 +104,7 @@ struct ParamInfo {
 };
 
 constexpr ParamInfo kParams[] = {
-    {RAPS_PARAM_DOMAIN, "domain", false, RAPS_DOMAIN_DISK, RAPS_DOMAIN_DISK, RAPS_DOMAIN_DISK},
+    {RAPS_PARAM_DOMAIN, "domain", false, RAPS_DOMAIN_DISK, RAPS_DOMAIN_ATLAS, RAPS_DOMAIN_DISK},
     {RAPS_PARAM_WEIGHTS, "weights", false, RAPS_WEIGHTS_MEAN_VALUE, RAPS_WEIGHTS_UNIFORM,
      RAPS_WEIGHTS_MEAN_VALUE},
     {RAPS_PARAM_MONITOR, "monitor", false, RAPS_MONITOR_NONE, RAPS_MONITOR_ANGLE,
@@ -116,7 +116,36 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_BOUNDARY, "boundary", false, RAPS_BOUNDARY_CIRCLE, RAPS_BOUNDARY_SQUARE,
      RAPS_BOUNDARY_CIRCLE},
     {RAPS_PARAM_MAX_TRIANGLES, "max_triangles", false, 1, kMaxElements, kMaxElements},
+    {RAPS_PARAM_THREADS, "threads", false, 0, 1024, 0},
+    {RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", false, 16, 16384, 1024},
+    {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 2},
+    {RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", true, 0.0, 1.7976931348623157e308, 0.0},
+    {RAPS_PARAM_HARD_EDGE_ANGLE, "hard_edge_angle", true, 0.0, 180.0, 180.0},
+    {RAPS_PARAM_ATLAS_MAX_L2_STRETCH, "atlas_max_l2_stretch", true, 1.0, 10.0, 1.008},
+    {RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, "atlas_max_linf_stretch", true, 1.0, 1000.0, 2.9},
 };
+
+// Values inside a parameter's bounds that it still does not take.
+bool is_valid_value(raps_param id, int64_t v) {
+    return id != RAPS_PARAM_DOMAIN || v == RAPS_DOMAIN_DISK || v == RAPS_DOMAIN_ATLAS;
+}
+
+double* float_field(raps::Settings& s, raps_param id) {
+    switch (id) {
+        case RAPS_PARAM_ALPHA:
+            return &s.alpha;
+        case RAPS_PARAM_WELD_TOLERANCE:
+            return &s.weld_tolerance;
+        case RAPS_PARAM_HARD_EDGE_ANGLE:
+            return &s.hard_edge_angle_deg;
+        case RAPS_PARAM_ATLAS_MAX_L2_STRETCH:
+            return &s.atlas_target_l2;
+        case RAPS_PARAM_ATLAS_MAX_LINF_STRETCH:
+            return &s.atlas_max_linf;
+        default:
+            throw Error(ErrorCode::kInternal, "float parameter without a field");
+    }
+}
 
 const ParamInfo* find_param(raps_param id) {
     for (const ParamInfo& info : kParams) {
@@ -427,6 +456,11 @@ raps_status raps_settings_set_int(raps_settings* settings, raps_param param, int
                             info.name + " is outside [" + std::to_string(int64_t(info.min)) + ", " +
                             std::to_string(int64_t(info.max)) + "]");
         }
+        if (!is_valid_value(param, value)) {
+            throw Error(ErrorCode::kInvalidArgument, std::string("value ") + std::to_string(value) +
+                                                         " is not one of parameter " + info.name +
+                                                         "'s values");
+        }
         set_int(settings->settings, param, value);
     });
 }
@@ -438,9 +472,11 @@ raps_status raps_settings_set_float(raps_settings* settings, raps_param param, d
         if (!(value >= info.min && value <= info.max)) {  // also refuses NaN
             throw Error(ErrorCode::kInvalidArgument,
                         std::string("value ") + std::to_string(value) + " of parameter " +
-                            info.name + " is outside (0, " + std::to_string(info.max) + "]");
+                            info.name + " is outside [" + std::to_string(info.min) + ", " +
+                            std::to_string(info.max) + "]" +
+                            (param == RAPS_PARAM_ALPHA ? " (alpha must be > 0)" : ""));
         }
-        settings->settings.alpha = value;  // the only float parameter so far
+        *float_field(settings->settings, param) = value;
     });
 }
 
@@ -458,7 +494,7 @@ raps_status raps_settings_get_float(const raps_settings* settings, raps_param pa
     return guarded(nullptr, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
         checked_param(param, true);
-        *out_value = settings->settings.alpha;
+        *out_value = *float_field(const_cast<raps::Settings&>(settings->settings), param);
     });
 }
 
@@ -511,14 +547,15 @@ raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settin
         }
         const raps::Settings defaults;
         const raps::Settings& chosen = settings ? settings->settings : defaults;
-        raps::Progress progress;
+        raps::Progress::Callback callback;
         if (settings && settings->progress) {
             const raps_progress_fn fn = settings->progress;
             void* user = settings->progress_user;
-            progress = raps::Progress([fn, user](raps::Phase phase, double fraction) {
+            callback = [fn, user](raps::Phase phase, double fraction) {
                 return fn(user, static_cast<raps_phase>(phase), fraction) != 0;
-            });
+            };
         }
+        const raps::Progress progress(std::move(callback));
         result->map = raps::parameterize(mesh->mesh, chosen, progress);
         result->has_map = true;
     });
@@ -562,6 +599,22 @@ raps_status raps_result_copy_vertex_remap(const raps_result* result, uint32_t* d
     });
 }
 
+raps_status raps_result_copy_chart_ids(const raps_result* result, uint32_t* dst, size_t capacity) {
+    return guarded(nullptr, [&] {
+        require(result != nullptr, "result is NULL");
+        const std::vector<uint32_t>& ids = result->map.chart_ids;
+        if (!ids.empty() || !result->has_map) {
+            copy_u32(result, ids, dst, capacity, "triangles");
+            return;
+        }
+        // The disk domain: one chart.
+        require(dst != nullptr, "dst is NULL");
+        const size_t triangles = result->map.indices.size() / 3;
+        require(capacity >= triangles, "capacity is smaller than the output triangles");
+        std::fill(dst, dst + triangles, 0u);
+    });
+}
+
 raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats) {
     if (!result || !stats || stats->struct_size < 8) return RAPS_ERROR_INVALID_ARGUMENT;
     if (!result->has_map) return RAPS_ERROR_INVALID_OPERATION;
@@ -581,6 +634,10 @@ raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats) 
     full.angle_max_deg = map.distortion.angle_max_deg;
     full.stretch_l2 = map.distortion.stretch_l2;
     full.stretch_linf = map.distortion.stretch_linf;
+    full.chart_count = static_cast<uint64_t>(std::max<int64_t>(map.chart_count, 1));
+    full.atlas_width = static_cast<uint64_t>(map.atlas_width);
+    full.atlas_height = static_cast<uint64_t>(map.atlas_height);
+    full.utilization = map.utilization;
     // Only what fits the caller's (possibly older, shorter) struct.
     std::memcpy(stats, &full, full.struct_size);
     return RAPS_OK;

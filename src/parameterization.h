@@ -23,6 +23,11 @@ struct Parameterization {
     DistortionStats distortion;
     int64_t negative_weights = 0;
     int64_t adaptive_solves = 0;
+    // Atlas domain.
+    std::vector<uint32_t> chart_ids;  // per output triangle
+    int64_t chart_count = 0;
+    int32_t atlas_width = 0, atlas_height = 0;
+    double utilization = 0;  // uv area over the unit square
     PhaseTimes phase_ms{};
 };
 

@@ -51,8 +51,15 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_PARAM_DOMAIN, 1);
     assert_int_equal(RAPS_PARAM_MAX_TRIANGLES, 8);
     assert_int_equal(RAPS_PHASE_METRICS, 4);
-    assert_int_equal(sizeof(raps_stats), 104);
+    assert_int_equal(RAPS_PARAM_THREADS, 9);
+    assert_int_equal(RAPS_PARAM_ATLAS_RESOLUTION, 32);
+    assert_int_equal(RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, 37);
+    assert_int_equal(RAPS_DOMAIN_ATLAS, 2);
+    assert_int_equal(RAPS_PHASE_PACK, 6);
+    assert_int_equal(sizeof(raps_stats), 144);
     assert_int_equal(offsetof(raps_stats, area_log_mean), 56);
+    assert_int_equal(offsetof(raps_stats, relaxation_sweeps), 104);
+    assert_int_equal(offsetof(raps_stats, utilization), 136);
 }
 
 static void every_status_has_a_description(void** state) {

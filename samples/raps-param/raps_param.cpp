@@ -22,15 +22,21 @@ namespace {
 
 const char* kUsage = R"(usage: raps-param IN.(obj|off) -o OUT.obj [options]
 
-Computes texture coordinates for a disk-like triangle or polygon mesh with r-adaptive
-parameterization (Zayer, Roessl, Seidel) and writes OUT.obj with the input's vertices and faces
-in their original order plus one `vt` per vertex (`f v/vt ...`). Prints one JSON object on
-stdout: input and output sizes, the settings used, the distortion statistics and the time of
-each phase in milliseconds. On failure it prints {"error": {...}} on stdout, a message on
-stderr, writes nothing, and exits with 1 (2 for a usage error).
+Computes texture coordinates with r-adaptive parameterization (Zayer, Roessl, Seidel) and writes
+OUT.obj with the input's vertices in their original order. Prints one JSON object on stdout:
+input and output sizes, the settings used, the distortion statistics and the time of each phase
+in milliseconds. On failure it prints {"error": {...}} on stdout, a message on stderr, writes
+nothing, and exits with 1 (2 for a usage error).
+
+Disk domain (default): the mesh must be a topological disk; one `vt` per vertex and the input's
+faces in their order (`f v/vt ...`).
+Atlas domain (--atlas): any mesh is cut into charts, each mapped and packed into one atlas;
+seams get separate `vt` indices (`f v/vt`), faces are the input's in their order (a polygon is
+written as triangles where a seam crosses it).
 
 options:
   -o, --output FILE          where to write the OBJ (required)
+  --atlas                    the atlas domain (any mesh; charts, seams, packing)
   --weights mvc|cotan|uniform
                              base weights of the Laplace system (default mvc: mean value)
   --monitor none|area|length|angle
@@ -42,6 +48,14 @@ options:
                              how solves combine for K > 1 (default accumulate)
   --boundary circle|square   convex shape the boundary is fixed to (default circle)
   --max-triangles N          refuse meshes with more triangles (default 2^31 - 1)
+  --threads N                threads, 0 = all cores (default 0); output is identical for any N
+atlas options:
+  --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
+  --padding N                texels between charts, 0..64 (default 2)
+  --weld-tolerance D         weld vertices closer than D (default 0: identical positions)
+  --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)
+  --max-l2-stretch S         split charts until the atlas's L2 stretch is <= S (default 1.008)
+  --max-linf-stretch S       split charts stretching any triangle more than S (default 2.9)
   -h, --help                 this text
   --version                  the raps library version
 )";
@@ -71,6 +85,19 @@ const std::map<std::string, raps_param> kChoiceParams = {
     {"--monitor", RAPS_PARAM_MONITOR},
     {"--iteration-mode", RAPS_PARAM_ITERATION_MODE},
     {"--boundary", RAPS_PARAM_BOUNDARY},
+};
+
+const std::map<std::string, raps_param> kNumberParams = {
+    {"--alpha", RAPS_PARAM_ALPHA},
+    {"--iterations", RAPS_PARAM_ITERATIONS},
+    {"--max-triangles", RAPS_PARAM_MAX_TRIANGLES},
+    {"--threads", RAPS_PARAM_THREADS},
+    {"--resolution", RAPS_PARAM_ATLAS_RESOLUTION},
+    {"--padding", RAPS_PARAM_ATLAS_PADDING},
+    {"--weld-tolerance", RAPS_PARAM_WELD_TOLERANCE},
+    {"--hard-edge-angle", RAPS_PARAM_HARD_EDGE_ANGLE},
+    {"--max-l2-stretch", RAPS_PARAM_ATLAS_MAX_L2_STRETCH},
+    {"--max-linf-stretch", RAPS_PARAM_ATLAS_MAX_LINF_STRETCH},
 };
 
 struct UsageError : std::runtime_error {
@@ -177,7 +204,10 @@ int run(int argc, char** argv) {
                 }
             }
             if (!found) throw UsageError("unknown value '" + name + "' for " + arg);
-        } else if (arg == "--alpha" || arg == "--iterations" || arg == "--max-triangles") {
+        } else if (arg == "--atlas") {
+            check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
+                  [&] { return raps_settings_last_error(h.settings); });
+        } else if (kNumberParams.count(arg)) {
             const std::string text = value();
             char* end = nullptr;
             errno = 0;
@@ -229,16 +259,69 @@ int run(int argc, char** argv) {
     std::vector<double> uvs(2 * raps_result_vertex_count(h.result));
     check(raps_result_copy_uvs_f64(h.result, uvs.data(), uvs.size() / 2, 0),
           [] { return "cannot copy uvs"; });
+    // Faces refer to output vertices through `vt`. A polygon stays a polygon when its fanned
+    // triangles agree on every corner's output vertex (no seam through it), else it becomes its
+    // triangles. Disk domain: output vertex = input vertex, so the input's faces come back.
+    std::vector<uint32_t> out_indices(raps_result_index_count(h.result));
+    check(raps_result_copy_indices_u32(h.result, out_indices.data(), out_indices.size()),
+          [] { return "cannot copy indices"; });
+    raps_samples::PolygonMesh written;
+    written.positions = polygons.positions;
+    written.polygon_offsets.push_back(0);
+    std::vector<uint32_t> uv_corners;
+    size_t triangle = 0;
+    for (size_t f = 0; f < polygons.polygon_count(); ++f) {
+        const uint32_t begin = polygons.polygon_offsets[f], end = polygons.polygon_offsets[f + 1];
+        const size_t fan = end - begin - 2;
+        std::vector<int64_t> corner_vertex(end - begin, -1);
+        bool consistent = true;
+        for (size_t i = 0; i < fan; ++i) {
+            const size_t corners[3] = {0, i + 1, i + 2};
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t v = out_indices[3 * (triangle + i) + k];
+                int64_t& slot = corner_vertex[corners[k]];
+                if (slot >= 0 && slot != v) consistent = false;
+                slot = v;
+            }
+        }
+        if (consistent) {
+            for (uint32_t c = begin; c < end; ++c) {
+                written.corners.push_back(polygons.corners[c]);
+                uv_corners.push_back(static_cast<uint32_t>(corner_vertex[c - begin]));
+            }
+            written.polygon_offsets.push_back(static_cast<uint32_t>(written.corners.size()));
+        } else {
+            for (size_t i = 0; i < fan; ++i) {
+                const uint32_t corners[3] = {begin, static_cast<uint32_t>(begin + i + 1),
+                                             static_cast<uint32_t>(begin + i + 2)};
+                for (int k = 0; k < 3; ++k) {
+                    written.corners.push_back(polygons.corners[corners[k]]);
+                    uv_corners.push_back(out_indices[3 * (triangle + i) + k]);
+                }
+                written.polygon_offsets.push_back(static_cast<uint32_t>(written.corners.size()));
+            }
+        }
+        triangle += fan;
+    }
     const auto write_start = std::chrono::steady_clock::now();
-    raps_samples::write_obj(output, polygons, uvs, polygons.corners,
+    raps_samples::write_obj(output, written, uvs, uv_corners,
                             std::string("raps-param ") + raps_version_string() + " from " + input);
     const double write_ms = elapsed_ms(write_start);
 
     raps_stats stats;
     stats.struct_size = sizeof(stats);
     check(raps_result_get_stats(h.result, &stats), [] { return "cannot read statistics"; });
-    int64_t weights, monitor, iterations, mode, boundary, max_triangles;
-    double alpha;
+    int64_t domain, weights, monitor, iterations, mode, boundary, max_triangles, threads,
+        resolution, padding;
+    double alpha, weld, hard_edge, max_l2, max_linf;
+    raps_settings_get_int(h.settings, RAPS_PARAM_DOMAIN, &domain);
+    raps_settings_get_int(h.settings, RAPS_PARAM_THREADS, &threads);
+    raps_settings_get_int(h.settings, RAPS_PARAM_ATLAS_RESOLUTION, &resolution);
+    raps_settings_get_int(h.settings, RAPS_PARAM_ATLAS_PADDING, &padding);
+    raps_settings_get_float(h.settings, RAPS_PARAM_WELD_TOLERANCE, &weld);
+    raps_settings_get_float(h.settings, RAPS_PARAM_HARD_EDGE_ANGLE, &hard_edge);
+    raps_settings_get_float(h.settings, RAPS_PARAM_ATLAS_MAX_L2_STRETCH, &max_l2);
+    raps_settings_get_float(h.settings, RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, &max_linf);
     raps_settings_get_int(h.settings, RAPS_PARAM_WEIGHTS, &weights);
     raps_settings_get_int(h.settings, RAPS_PARAM_MONITOR, &monitor);
     raps_settings_get_int(h.settings, RAPS_PARAM_ITERATIONS, &iterations);
@@ -247,14 +330,15 @@ int run(int argc, char** argv) {
     raps_settings_get_int(h.settings, RAPS_PARAM_MAX_TRIANGLES, &max_triangles);
     raps_settings_get_float(h.settings, RAPS_PARAM_ALPHA, &alpha);
 
-    static const char* kPhaseNames[RAPS_PHASE_COUNT] = {"validate", "topology", "initial_map",
-                                                        "adapt", "metrics"};
+    static const char* kPhaseNames[RAPS_PHASE_COUNT] = {
+        "validate", "topology", "initial_map", "adapt", "metrics", "segment", "pack"};
     std::string json = "{";
     json += "\"input\": " + json_string(input) + ", \"output\": " + json_string(output);
     json += ", \"vertices\": " + std::to_string(stats.vertex_count);
     json += ", \"triangles\": " + std::to_string(stats.triangle_count);
     json += ", \"polygons\": " + std::to_string(polygons.polygon_count());
-    json += ", \"settings\": {\"domain\": \"disk\", \"weights\": \"" +
+    json += std::string(", \"settings\": {\"domain\": \"") +
+            (domain == RAPS_DOMAIN_ATLAS ? "atlas" : "disk") + "\", \"weights\": \"" +
             std::string(choice_name("--weights", weights)) + "\", \"monitor\": \"" +
             choice_name("--monitor", monitor) + "\", \"alpha\": " + json_number(alpha) +
             ", \"iterations\": " + std::to_string(iterations) + ", \"iteration_mode\": \"" +
@@ -270,7 +354,11 @@ int run(int argc, char** argv) {
             ", \"angle_mean_deg\": " + json_number(stats.angle_mean_deg) +
             ", \"angle_max_deg\": " + json_number(stats.angle_max_deg) +
             ", \"stretch_l2\": " + json_number(stats.stretch_l2) +
-            ", \"stretch_linf\": " + json_number(stats.stretch_linf) + "}";
+            ", \"stretch_linf\": " + json_number(stats.stretch_linf) +
+            ", \"charts\": " + std::to_string(stats.chart_count) +
+            ", \"atlas_width\": " + std::to_string(stats.atlas_width) +
+            ", \"atlas_height\": " + std::to_string(stats.atlas_height) +
+            ", \"utilization\": " + json_number(stats.utilization) + "}";
     json += ", \"time_ms\": {\"read\": " + json_number(read_ms);
     double library_ms = 0;
     for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {

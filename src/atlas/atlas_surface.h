@@ -16,10 +16,10 @@
 namespace raps {
 
 struct AtlasSurface {
-    TriangleMesh mesh;                     // surface vertices and the triangles charts are made of
-    std::vector<int32_t> twin;             // per half-edge 3t+k (as in mesh_topology.h); -1: cut
-    std::vector<int32_t> input_triangle;   // per surface triangle
-    std::vector<int32_t> welded_vertex;    // per surface vertex: its welded input vertex
+    TriangleMesh mesh;                    // surface vertices and the triangles charts are made of
+    std::vector<int32_t> twin;            // per half-edge 3t+k (as in mesh_topology.h); -1: cut
+    std::vector<int32_t> input_triangle;  // per surface triangle
+    std::vector<int32_t> welded_vertex;   // per surface vertex: its welded input vertex
     // Input triangles that are not surface triangles, each with the surface triangle whose uvs
     // it shares (duplicates) or -1 (degenerate: placed by the atlas on a neighbouring chart).
     std::vector<int32_t> aside_triangles;

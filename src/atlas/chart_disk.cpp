@@ -18,7 +18,8 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
 
 // Local twins of the chart's triangles: the surface's, kept inside the chart and off seams.
 std::vector<int32_t> local_twins(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                                 const std::vector<int32_t>& local_of, const std::vector<char>& seam) {
+                                 const std::vector<int32_t>& local_of,
+                                 const std::vector<char>& seam) {
     std::vector<int32_t> twin(3 * triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -39,7 +40,8 @@ void build_vertices(const AtlasSurface& surface, const std::vector<int32_t>& tri
     for (int32_t h = 0; h < corners; ++h) {
         const int32_t g = twin[h];
         if (g < h) continue;
-        for (auto [a, b] : {std::make_pair(h, Halfedges::next(g)), std::make_pair(Halfedges::next(h), g)}) {
+        for (auto [a, b] :
+             {std::make_pair(h, Halfedges::next(g)), std::make_pair(Halfedges::next(h), g)}) {
             a = find_root(parent, a);
             b = find_root(parent, b);
             if (a != b) parent[std::max(a, b)] = std::min(a, b);

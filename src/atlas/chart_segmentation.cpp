@@ -68,10 +68,12 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
 }
 
 class Grower {
-public:
+  public:
     Grower(const AtlasSurface& surface, const Geometry& geometry,
            const SegmentationSettings& settings)
-        : surface_(surface), g_(geometry), settings_(settings),
+        : surface_(surface),
+          g_(geometry),
+          settings_(settings),
           min_cosine_(std::cos(settings.max_normal_deviation_deg * M_PI / 180.0)) {}
 
     // Grows charts from `seeds` until every triangle has one (adding seeds where none can grow).
@@ -111,7 +113,8 @@ public:
             const int32_t t = frontier[i];
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = surface_.twin[3 * t + k];
-                if (o >= 0 && !g_.barrier[3 * t + k] && chart[o / 3] == chart[t] && depth[o / 3] < 0) {
+                if (o >= 0 && !g_.barrier[3 * t + k] && chart[o / 3] == chart[t] &&
+                    depth[o / 3] < 0) {
                     depth[o / 3] = depth[t] + 1;
                     frontier.push_back(o / 3);
                 }
@@ -125,7 +128,7 @@ public:
         return best;
     }
 
-private:
+  private:
     struct Chart {
         Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
         double curvature = 0;
@@ -185,7 +188,8 @@ private:
             const Candidate next = queue_.top();
             queue_.pop();
             if (chart_[next.triangle] >= 0) continue;
-            if (accepts(next.triangle, next.chart)) assign(next.triangle, next.chart, next.distance);
+            if (accepts(next.triangle, next.chart))
+                assign(next.triangle, next.chart, next.distance);
         }
     }
 

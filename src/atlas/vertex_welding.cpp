@@ -26,7 +26,8 @@ void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
 
 }  // namespace
 
-std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions, double tolerance) {
+std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions,
+                                   double tolerance) {
     const int32_t n = static_cast<int32_t>(positions.size());
     std::vector<int32_t> parent(n);
     std::iota(parent.begin(), parent.end(), 0);
@@ -42,7 +43,8 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
             return a < b;
         });
         for (int32_t i = 1; i < n; ++i) {
-            if (positions[sorted[i]] == positions[sorted[i - 1]]) unite(parent, sorted[i], sorted[i - 1]);
+            if (positions[sorted[i]] == positions[sorted[i - 1]])
+                unite(parent, sorted[i], sorted[i - 1]);
         }
     } else {
         // Grid of cells of the tolerance's size: a vertex can only weld with vertices in its
@@ -66,7 +68,8 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
                 for (int64_t dy = -1; dy <= 1; ++dy) {
                     for (int64_t dz = -1; dz <= 1; ++dz) {
                         const Cell key = {c[0] + dx, c[1] + dy, c[2] + dz};
-                        auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, int32_t(0)));
+                        auto it = std::lower_bound(cells.begin(), cells.end(),
+                                                   std::make_pair(key, int32_t(0)));
                         for (; it != cells.end() && it->first == key; ++it) {
                             if (it->second != v &&
                                 (positions[it->second] - positions[v]).squaredNorm() <= squared) {

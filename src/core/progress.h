@@ -1,16 +1,26 @@
 // Progress reporting and cancellation, passed down to every long-running algorithm as an
 // argument (there is no global state). The callback returns false to cancel; report() then
-// throws Error(kCancelled), which unwinds through RAII-owned memory only.
+// throws Error(kCancelled), which unwinds through RAII-owned memory only. Worker threads may
+// report too: calls to the callback are serialised, so they never overlap.
 #pragma once
 
 #include <functional>
+#include <mutex>
 
 #include "core/error.h"
 
 namespace raps {
 
-enum class Phase : int { kValidate = 0, kTopology = 1, kInitialMap = 2, kAdapt = 3, kMetrics = 4 };
-constexpr int kPhaseCount = 5;
+enum class Phase : int {
+    kValidate = 0,
+    kTopology = 1,
+    kInitialMap = 2,
+    kAdapt = 3,
+    kMetrics = 4,
+    kSegment = 5,
+    kPack = 6,
+};
+constexpr int kPhaseCount = 7;
 
 class Progress {
   public:

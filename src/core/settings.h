@@ -6,7 +6,7 @@
 
 namespace raps {
 
-enum class Domain { kDisk };
+enum class Domain { kDisk = 0, kAtlas = 2 };
 enum class WeightScheme { kMeanValue, kCotangent, kUniform };
 enum class Monitor { kNone, kArea, kEdgeLength, kAngle };
 enum class IterationMode { kAccumulate, kReapply };
@@ -21,6 +21,15 @@ struct Settings {
     IterationMode iteration_mode = IterationMode::kAccumulate;
     BoundaryShape boundary = BoundaryShape::kCircle;
     int64_t max_triangles = 0x7fffffff;
+    int threads = 0;  // 0: all hardware threads
+
+    // Atlas domain.
+    int32_t atlas_resolution = 1024;   // texels on the atlas's longer side
+    int32_t atlas_padding = 2;         // texels between charts
+    double weld_tolerance = 0.0;       // distance under which vertices are one
+    double hard_edge_angle_deg = 180;  // dihedral angle above which an edge is a seam (180: off)
+    double atlas_target_l2 = 1.008;    // charts are split until the atlas's L2 stretch meets it
+    double atlas_max_linf = 2.9;       // largest stretch allowed in any chart
 };
 
 }  // namespace raps

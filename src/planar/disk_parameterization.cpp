@@ -5,9 +5,8 @@
 #include "core/error.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/mesh_validation.h"
-#include "planar/adaptive_weights.h"
+#include "planar/adaptive_map.h"
 #include "planar/convex_boundary.h"
-#include "planar/error_monitors.h"
 #include "planar/laplace_system.h"
 #include "planar/laplacian_weights.h"
 
@@ -48,25 +47,8 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
     }
 
     PhaseTimer adapt_timer(Phase::kAdapt, progress, times);
-    if (settings.monitor != Monitor::kNone) {
-        // Iteration (RAPS_PARAM_ITERATIONS > 1): with kAccumulate the weights of step k are
-        // those of step k-1 times e^alpha measured on map k-1, a fixed-point iteration of the
-        // equidistribution; with kReapply they are the base weights times e^alpha, so each step
-        // sees only the last map. Measured on the shared disk meshes (README), accumulating keeps
-        // lowering the distortion while re-applying oscillates between over- and under-correction.
-        std::vector<double> weights = base_weights;
-        for (int step = 0; step < settings.iterations; ++step) {
-            const std::vector<double> monitor =
-                error_monitor(mesh, adjacency, map.uv, settings.monitor);
-            const std::vector<double>& previous =
-                settings.iteration_mode == IterationMode::kAccumulate ? weights : base_weights;
-            weights = adaptive_weights(adjacency, previous, monitor, settings.alpha);
-            system.solve(weights, map.uv, [&](double fraction) {
-                progress.report(Phase::kAdapt, (step + fraction) / settings.iterations);
-            });
-            ++map.adaptive_solves;
-        }
-    }
+    map.adaptive_solves = adapt_map(mesh, adjacency, system, base_weights, settings, map.uv,
+                                    [&](double fraction) { progress.report(Phase::kAdapt, fraction); });
     adapt_timer.finish();
     return map;
 }

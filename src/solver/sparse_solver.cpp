@@ -60,11 +60,13 @@ void SparseSolver::solve_with_pivoting(const std::vector<double>& values, double
     }
     Eigen::MatrixXd b(n, rhs_count);
     for (int c = 0; c < rhs_count; ++c) {
-        for (int32_t row = 0; row < n; ++row) b(position[row], c) = rhs[static_cast<int64_t>(c) * n + row];
+        for (int32_t row = 0; row < n; ++row)
+            b(position[row], c) = rhs[static_cast<int64_t>(c) * n + row];
     }
     const Eigen::MatrixXd x = lu.solve(b);
     for (int c = 0; c < rhs_count; ++c) {
-        for (int32_t row = 0; row < n; ++row) rhs[static_cast<int64_t>(c) * n + row] = x(position[row], c);
+        for (int32_t row = 0; row < n; ++row)
+            rhs[static_cast<int64_t>(c) * n + row] = x(position[row], c);
     }
 }
 

@@ -15,7 +15,7 @@
 namespace raps {
 
 class SparseSolver {
-public:
+  public:
     // coordinates[i]: a point in space for unknown i, for the fill-reducing order.
     SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates);
 
@@ -27,7 +27,7 @@ public:
     const SparsePattern& pattern() const { return pattern_; }
     int32_t size() const { return pattern_.size; }
 
-private:
+  private:
     void solve_with_pivoting(const std::vector<double>& values, double* rhs, int rhs_count) const;
 
     SparsePattern pattern_;

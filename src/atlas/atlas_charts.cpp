@@ -1,0 +1,160 @@
+#include "atlas/atlas_charts.h"
+
+#include <algorithm>
+#include <deque>
+
+#include "parallel/parallel_for.h"
+
+namespace raps {
+namespace {
+
+// Splits `triangles` in two: breadth-first from one end of the chart to find its farthest
+// triangle a, from a to find b, then every triangle goes to the nearer of a and b (ties to a).
+std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
+    const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+    const std::vector<char>& seam) {
+    std::vector<int32_t> local(surface.mesh.triangles.size(), -1);
+    for (size_t i = 0; i < triangles.size(); ++i) local[triangles[i]] = static_cast<int32_t>(i);
+    auto distances = [&](int32_t from) {
+        std::vector<int32_t> distance(triangles.size(), -1), frontier = {from};
+        distance[from] = 0;
+        for (size_t i = 0; i < frontier.size(); ++i) {
+            const int32_t t = triangles[frontier[i]];
+            for (int k = 0; k < 3; ++k) {
+                const int32_t o = surface.twin[3 * t + k];
+                if (o < 0 || seam[3 * t + k] || local[o / 3] < 0 || distance[local[o / 3]] >= 0)
+                    continue;
+                distance[local[o / 3]] = distance[frontier[i]] + 1;
+                frontier.push_back(local[o / 3]);
+            }
+        }
+        return distance;
+    };
+    auto farthest = [](const std::vector<int32_t>& distance) {
+        return static_cast<int32_t>(std::max_element(distance.begin(), distance.end()) -
+                                    distance.begin());
+    };
+    const int32_t a = farthest(distances(0));
+    const std::vector<int32_t> from_a = distances(a);
+    const int32_t b = farthest(from_a);
+    const std::vector<int32_t> from_b = distances(b);
+    std::pair<std::vector<int32_t>, std::vector<int32_t>> halves;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        // Unreached triangles (a chart in several pieces) follow a's side if not reached by b.
+        const bool to_b = from_b[i] >= 0 && (from_a[i] < 0 || from_b[i] < from_a[i]);
+        (to_b ? halves.second : halves.first).push_back(triangles[i]);
+    }
+    if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
+        const size_t half = halves.first.size() / 2;
+        halves.second.assign(halves.first.begin() + half, halves.first.end());
+        halves.first.resize(half);
+    }
+    return halves;
+}
+
+double chart_area(const ChartDisk& disk) {
+    double area = 0;
+    for (const Triangle& t : disk.mesh.triangles) {
+        area += 0.5 * (disk.mesh.positions[t[1]] - disk.mesh.positions[t[0]])
+                          .cross(disk.mesh.positions[t[2]] - disk.mesh.positions[t[0]])
+                          .norm();
+    }
+    return area;
+}
+
+// One chart from its triangles: the disk and its map, or false when it must be split.
+bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+               const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
+               AtlasChart& chart) {
+    bool good = make_chart_disk(surface, triangles, seam, chart.disk);
+    if (good) {
+        chart.map = parameterize_chart(chart.disk, settings);
+        good = chart.map.injective && chart.map.stretch_linf <= limits.max_stretch_linf;
+    }
+    if (good || triangles.size() > 1) return good;
+    if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings);
+    return true;
+}
+
+}  // namespace
+
+std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
+                                     const std::vector<int32_t>& chart_of,
+                                     const std::vector<char>& seam, const Settings& settings,
+                                     const ChartLimits& limits, const Progress& progress) {
+    int32_t count = 0;
+    for (int32_t c : chart_of) count = std::max(count, c + 1);
+    std::vector<std::vector<int32_t>> pending(count);
+    for (size_t t = 0; t < chart_of.size(); ++t)
+        pending[chart_of[t]].push_back(static_cast<int32_t>(t));
+    std::vector<AtlasChart> charts;
+    const double total_triangles = static_cast<double>(chart_of.size());
+    double done_triangles = 0;
+    // Rounds: every pending chart in parallel; the ones that fail are split into the next round.
+    // Each chart's result lands in its own slot, so the outcome is the same for any thread count.
+    auto process = [&](std::vector<std::vector<int32_t>> round) {
+        while (!round.empty()) {
+            std::vector<AtlasChart> built(round.size());
+            std::vector<char> good(round.size(), 0);
+            parallel_for(settings.threads, round.size(), [&](size_t i) {
+                good[i] = try_chart(surface, round[i], seam, settings, limits, built[i]);
+                progress.report(Phase::kInitialMap,
+                                std::min(1.0, done_triangles / total_triangles));
+            });
+            std::vector<std::vector<int32_t>> next;
+            for (size_t i = 0; i < round.size(); ++i) {
+                if (good[i]) {
+                    done_triangles += static_cast<double>(round[i].size());
+                    charts.push_back(std::move(built[i]));
+                } else {
+                    auto halves = split_chart(surface, round[i], seam);
+                    next.push_back(std::move(halves.first));
+                    next.push_back(std::move(halves.second));
+                }
+            }
+            round = std::move(next);
+        }
+    };
+    process(std::move(pending));
+    // The L2 budget: split the largest contributor to the atlas's stretch until it meets the
+    // target (or nothing splittable is left).
+    std::vector<double> area(charts.size());
+    double total_area = 0, weighted = 0;
+    for (size_t c = 0; c < charts.size(); ++c) {
+        area[c] = chart_area(charts[c].disk);
+        total_area += area[c];
+        weighted += area[c] * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
+    }
+    const double target = limits.target_stretch_l2 * limits.target_stretch_l2 * total_area;
+    while (weighted > target) {
+        size_t worst = charts.size();
+        double worst_excess = 0;
+        for (size_t c = 0; c < charts.size(); ++c) {
+            const double excess =
+                area[c] * (charts[c].map.stretch_l2 * charts[c].map.stretch_l2 - 1.0);
+            if (excess > worst_excess && charts[c].disk.surface_triangle.size() > 1) {
+                worst = c;
+                worst_excess = excess;
+            }
+        }
+        if (worst == charts.size()) break;
+        const std::vector<int32_t> triangles = charts[worst].disk.surface_triangle;
+        weighted -= area[worst] * charts[worst].map.stretch_l2 * charts[worst].map.stretch_l2;
+        charts.erase(charts.begin() + static_cast<std::ptrdiff_t>(worst));
+        area.erase(area.begin() + static_cast<std::ptrdiff_t>(worst));
+        const size_t before = charts.size();
+        auto halves = split_chart(surface, triangles, seam);
+        process({std::move(halves.first), std::move(halves.second)});
+        for (size_t c = before; c < charts.size(); ++c) {
+            area.push_back(chart_area(charts[c].disk));
+            weighted += area.back() * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
+        }
+    }
+    std::sort(charts.begin(), charts.end(), [](const AtlasChart& x, const AtlasChart& y) {
+        return *std::min_element(x.disk.surface_triangle.begin(), x.disk.surface_triangle.end()) <
+               *std::min_element(y.disk.surface_triangle.begin(), y.disk.surface_triangle.end());
+    });
+    return charts;
+}
+
+}  // namespace raps

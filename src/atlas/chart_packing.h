@@ -1,0 +1,40 @@
+// Step 5 of the atlas pipeline: place the charts at one texel density in a rectangle of at most
+// resolution x resolution texels, as small as possible. Every chart is turned to its smallest
+// bounding box (rotating calipers over its convex hull), rasterised conservatively at the texel
+// size and padded, so that no two charts come closer than `padding` texels (bilinear filtering
+// and mip levels then never mix them). Charts are placed largest first into a strip of fixed
+// width, each in whichever of its four quarter turns lands lowest on the skyline (the top of
+// what is already placed, per column of texels); several strip widths are tried and the one
+// giving the smallest rectangle wins. The texel density is then raised until the longer side
+// is `resolution` texels. As in xatlas, uvs are normalised per axis: u = x / width,
+// v = y / height, so a texture of width x height texels maps them at equal density.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/triangle_mesh.h"
+
+namespace raps {
+
+struct PackInput {
+    const std::vector<Eigen::Vector2d>* uv;  // chart-local uv, in 3D units (uv area = 3D area)
+    const std::vector<Triangle>* triangles;
+};
+
+struct PackSettings {
+    int32_t resolution = 1024;  // texels per side of the square
+    int32_t padding = 2;        // texels between charts
+};
+
+struct PackResult {
+    std::vector<std::vector<Eigen::Vector2d>> uv;  // per chart, per chart vertex, in [0,1]^2
+    int32_t width = 0, height = 0;                 // the atlas in texels
+    double texels_per_unit = 0;                    // texel density (texels per 3D unit)
+};
+
+PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings);
+
+}  // namespace raps

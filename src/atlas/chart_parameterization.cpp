@@ -1,0 +1,125 @@
+#include "atlas/chart_parameterization.h"
+
+#include <cmath>
+
+#include "atlas/free_boundary_map.h"
+#include "atlas/map_validity.h"
+#include "core/error.h"
+#include "mesh/mesh_topology.h"
+#include "metrics/distortion.h"
+#include "planar/adaptive_map.h"
+#include "planar/convex_boundary.h"
+#include "planar/laplacian_weights.h"
+
+namespace raps {
+namespace {
+
+// Scales uv about its centroid so that its area equals the chart's 3D area, and fills in the
+// stretch figures.
+void normalise(const ChartDisk& disk, ChartMap& map) {
+    double uv_area = 0, area = 0;
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (const Triangle& t : disk.mesh.triangles) {
+        const Eigen::Vector2d a = map.uv[t[1]] - map.uv[t[0]], b = map.uv[t[2]] - map.uv[t[0]];
+        uv_area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+        area += 0.5 * (disk.mesh.positions[t[1]] - disk.mesh.positions[t[0]])
+                          .cross(disk.mesh.positions[t[2]] - disk.mesh.positions[t[0]])
+                          .norm();
+    }
+    for (const Eigen::Vector2d& p : map.uv) centroid += p;
+    centroid /= static_cast<double>(map.uv.size());
+    const double scale = uv_area > 0 ? std::sqrt(area / uv_area) : 1.0;
+    for (Eigen::Vector2d& p : map.uv) p = (p - centroid) * scale;
+    const DistortionStats stats =
+        measure_distortion(disk.mesh.positions, map.uv, disk.mesh.triangles);
+    map.stretch_l2 = stats.stretch_l2;
+    map.stretch_linf = stats.stretch_linf;
+}
+
+bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv) {
+    for (const Eigen::Vector2d& p : uv) {
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return false;
+    }
+    return count_flipped_or_degenerate(disk.mesh, uv) == 0 &&
+           !boundary_self_intersects(uv, disk.boundary_loop);
+}
+
+// The adaptive step on `start` with its boundary held; returns whether it gave a map.
+bool adapted(const ChartDisk& disk, const VertexAdjacency& adjacency, const Settings& settings,
+             const std::vector<Eigen::Vector2d>& start, ChartMap& out) {
+    std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
+    for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
+    LaplaceSystem system(disk.mesh, adjacency, on_boundary);
+    if (system.unknown_count() == 0) return false;
+    const std::vector<double> base = laplacian_weights(disk.mesh, adjacency, settings.weights);
+    out.uv = start;
+    try {
+        adapt_map(disk.mesh, adjacency, system, base, settings, out.uv, nullptr);
+    } catch (const Error& error) {
+        if (error.code() != ErrorCode::kSolverFailed) throw;
+        return false;
+    }
+    out.injective = injective(disk, out.uv);
+    return out.injective;
+}
+
+}  // namespace
+
+ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
+    const Halfedges halfedges = build_halfedges(disk.mesh);
+    const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    ChartMap circle;
+    circle.method = ChartMethod::kCircle;
+    circle.uv.assign(disk.mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
+    const std::vector<Eigen::Vector2d> boundary =
+        convex_boundary(disk.mesh, disk.boundary_loop, BoundaryShape::kCircle);
+    for (size_t i = 0; i < disk.boundary_loop.size(); ++i)
+        circle.uv[disk.boundary_loop[i]] = boundary[i];
+    std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
+    for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
+    LaplaceSystem system(disk.mesh, adjacency, on_boundary);
+    const std::vector<double> base =
+        laplacian_weights(disk.mesh, adjacency, WeightScheme::kMeanValue);
+    system.solve(base, circle.uv, nullptr);
+    circle.injective = injective(disk, circle.uv);
+    normalise(disk, circle);
+    ChartMap candidate;
+    candidate.method = ChartMethod::kCircleAdapted;
+    Settings mean_value = settings;
+    mean_value.weights = WeightScheme::kMeanValue;
+    if (settings.monitor != Monitor::kNone &&
+        adapted(disk, adjacency, mean_value, circle.uv, candidate)) {
+        normalise(disk, candidate);
+        if (candidate.stretch_l2 < circle.stretch_l2) circle = std::move(candidate);
+    }
+    return circle;
+}
+
+ChartMap parameterize_chart(const ChartDisk& disk, const Settings& settings) {
+    const Halfedges halfedges = build_halfedges(disk.mesh);
+    const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+
+    ChartMap best;
+    best.method = ChartMethod::kFreeBoundary;
+    try {
+        best.uv = free_boundary_conformal_map(disk.mesh, disk.boundary_loop);
+        best.injective = injective(disk, best.uv);
+    } catch (const Error& error) {
+        if (error.code() != ErrorCode::kSolverFailed) throw;
+        best.injective = false;
+    }
+    if (best.injective) {
+        normalise(disk, best);
+        ChartMap candidate;
+        candidate.method = ChartMethod::kFreeBoundaryAdapted;
+        if (settings.monitor != Monitor::kNone &&
+            adapted(disk, adjacency, settings, best.uv, candidate)) {
+            normalise(disk, candidate);
+            if (candidate.stretch_l2 < best.stretch_l2) best = std::move(candidate);
+        }
+        return best;
+    }
+    return best;  // not injective: the caller splits the chart
+}
+
+}  // namespace raps

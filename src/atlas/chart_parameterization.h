@@ -1,0 +1,36 @@
+// Step 4: the map of one chart. A free-boundary conformal map first (free_boundary_map.h), then
+// the paper's adaptive step with that boundary held; each candidate is kept only if it is
+// injective, and the one with the lower L2 stretch wins. When the free boundary overlaps
+// itself, the chart falls back to a convex (circle) boundary, where mean value weights
+// guarantee a bijection (paper section 3), or is split by the caller.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "atlas/chart_disk.h"
+#include "core/settings.h"
+
+namespace raps {
+
+enum class ChartMethod { kFreeBoundary, kFreeBoundaryAdapted, kCircle, kCircleAdapted };
+
+struct ChartMap {
+    std::vector<Eigen::Vector2d> uv;  // per chart vertex; uv area equals the 3D area
+    double stretch_l2 = 1;            // Sander's L2 stretch of this chart alone
+    double stretch_linf = 1;
+    ChartMethod method = ChartMethod::kFreeBoundary;
+    bool injective = false;
+};
+
+// The free-boundary map, adapted when that lowers the stretch. map.injective is false when the
+// free boundary overlaps itself: the caller should split the chart.
+ChartMap parameterize_chart(const ChartDisk& disk, const Settings& settings);
+
+// The last resort for a chart that cannot be split further: the circle boundary, where mean
+// value weights guarantee a bijection (paper section 3), adapted when that lowers the stretch.
+ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings);
+
+}  // namespace raps
