@@ -218,7 +218,8 @@ enum {
     /* Atlas domain (RAPS_DOMAIN_ATLAS); ignored by the others. */
     /* int. Texels on the atlas's longer side, 16..16384. Default 1024. */
     RAPS_PARAM_ATLAS_RESOLUTION = 32,
-    /* int. Texels kept free between charts (and at the atlas's border), 0..64. Default 2. */
+    /* int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
+     * charts, more keeps mip levels apart too. Default 1 (as xatlas's bilinear option). */
     RAPS_PARAM_ATLAS_PADDING = 33,
     /* float. Vertices closer than this (in position units) are welded before charts are made,
      * >= 0; 0 welds identical positions only. Default 0. */

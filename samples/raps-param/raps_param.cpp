@@ -51,7 +51,7 @@ options:
   --threads N                threads, 0 = all cores (default 0); output is identical for any N
 atlas options:
   --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
-  --padding N                texels between charts, 0..64 (default 2)
+  --padding N                texels between charts, 0..64 (default 1)
   --weld-tolerance D         weld vertices closer than D (default 0: identical positions)
   --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)
   --max-l2-stretch S         split charts until the atlas's L2 stretch is <= S (default 1.008)

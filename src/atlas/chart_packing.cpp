@@ -110,8 +110,9 @@ void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Tri
 // of the chart itself, relative to the frame.
 struct Profile {
     int32_t width = 0, height = 0;
-    std::vector<int32_t> bottom;  // lowest padded row, or height if the column is empty
-    std::vector<int32_t> top;     // highest chart row, or -1
+    std::vector<int32_t> bottom;        // lowest padded row, or height if the column is empty
+    std::vector<int32_t> top;           // highest chart row, or -1
+    std::vector<int32_t> chart_bottom;  // lowest chart row, or height
 };
 
 struct PreparedChart {
@@ -128,6 +129,7 @@ Profile make_profile(const Raster& raster, int32_t padding, int quarter) {
     profile.height = quarter % 2 ? w : h;
     profile.bottom.assign(profile.width, profile.height);
     profile.top.assign(profile.width, -1);
+    profile.chart_bottom.assign(profile.width, profile.height);
     for (int32_t y = 0; y < h; ++y) {
         for (int32_t x = 0; x < w; ++x) {
             if (!raster.at(x, y)) continue;
@@ -139,6 +141,7 @@ Profile make_profile(const Raster& raster, int32_t padding, int quarter) {
                 ry = ny;
             }
             profile.top[rx] = std::max(profile.top[rx], ry);
+            profile.chart_bottom[rx] = std::min(profile.chart_bottom[rx], ry);
             // The padded footprint reaches `padding` texels further in every direction.
             for (int32_t c = std::max(0, rx - padding);
                  c <= std::min(profile.width - 1, rx + padding); ++c) {
@@ -255,10 +258,16 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     // Pack at a trial density, then raise it by the room left and pack again, so the final
     // layout is packed at (nearly) its final texel size and the padding is not inflated.
     double scale = std::sqrt(0.45 * resolution * resolution / std::max(total_area, 1e-300));
+    // No chart may be longer than the atlas.
+    double longest = 0;
+    for (const Eigen::Vector2d& e : extent) longest = std::max({longest, e.x(), e.y()});
+    scale = std::min(scale, (resolution - 2.0 * padding - 2.0) / std::max(longest, 1e-300));
     std::vector<Eigen::Vector2i> placed(count);
     std::vector<int> turn(count);
     int32_t used_width = 0, used_height = 0;
-    for (int attempt = 0; attempt < 8; ++attempt) {
+    double last_good_scale = scale;
+    bool packed_once = false;
+    for (int attempt = 0; attempt < 64; ++attempt) {
         int32_t widest = 1;
         for (size_t c = 0; c < count; ++c) {
             Raster raster;
@@ -310,14 +319,38 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             }
         }
         if (best_area == std::numeric_limits<double>::max()) {
-            scale *= 0.9;  // nothing fitted: lower the density
+            if (packed_once) {  // the previous, smaller density fitted: go back to it
+                scale = last_good_scale;
+                continue;
+            }
+            scale *= 0.85;  // nothing fitted yet: lower the density
             continue;
         }
+        const bool refit = packed_once && scale == last_good_scale;
+        packed_once = true;
+        last_good_scale = scale;
         const double room = resolution / std::max(used_width, used_height);
-        if (room < 1.03 || attempt == 7) break;
+        if (refit || room < 1.03 || attempt >= 6) break;
         scale *= std::min(room, 1.5) * 0.995;
     }
 
+    // The padding matters between charts, not at the atlas's border: crop the layout to the
+    // texels the charts themselves touch.
+    int32_t low_x = std::numeric_limits<int32_t>::max(), low_y = low_x, high_x = 0, high_y = 0;
+    for (size_t c = 0; c < count; ++c) {
+        const Profile& p = prepared[c].profiles[turn[c]];
+        for (int32_t i = 0; i < p.width; ++i) {
+            if (p.top[i] < 0) continue;
+            low_x = std::min(low_x, placed[c].x() + i);
+            high_x = std::max(high_x, placed[c].x() + i + 1);
+            low_y = std::min(low_y, placed[c].y() + p.chart_bottom[i]);
+            high_y = std::max(high_y, placed[c].y() + p.top[i] + 1);
+        }
+    }
+    if (low_x > high_x) low_x = low_y = 0;  // no texel at all (empty charts)
+    used_width = std::max(1, high_x - low_x);
+    used_height = std::max(1, high_y - low_y);
+    for (Eigen::Vector2i& at : placed) at -= Eigen::Vector2i(low_x, low_y);
     // Final coordinates: the layout is stretched uniformly until its longer side is the
     // resolution (a factor >= 1, which only widens the gaps between charts), then normalised per
     // axis to [0, 1].

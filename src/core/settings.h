@@ -25,7 +25,7 @@ struct Settings {
 
     // Atlas domain.
     int32_t atlas_resolution = 1024;   // texels on the atlas's longer side
-    int32_t atlas_padding = 2;         // texels between charts
+    int32_t atlas_padding = 1;         // texels between charts
     double weld_tolerance = 0.0;       // distance under which vertices are one
     double hard_edge_angle_deg = 180;  // dihedral angle above which an edge is a seam (180: off)
     double atlas_target_l2 = 1.008;    // charts are split until the atlas's L2 stretch meets it
