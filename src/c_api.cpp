@@ -212,6 +212,15 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
         case RAPS_PARAM_MAX_TRIANGLES:
             s.max_triangles = v;
             break;
+        case RAPS_PARAM_THREADS:
+            s.threads = static_cast<int>(v);
+            break;
+        case RAPS_PARAM_ATLAS_RESOLUTION:
+            s.atlas_resolution = static_cast<int32_t>(v);
+            break;
+        case RAPS_PARAM_ATLAS_PADDING:
+            s.atlas_padding = static_cast<int32_t>(v);
+            break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }

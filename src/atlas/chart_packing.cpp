@@ -355,8 +355,8 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     // resolution (a factor >= 1, which only widens the gaps between charts), then normalised per
     // axis to [0, 1].
     const double grow = resolution / std::max(std::max(used_width, used_height), 1);
-    result.width = std::max(1, static_cast<int32_t>(std::lround(used_width * grow)));
-    result.height = std::max(1, static_cast<int32_t>(std::lround(used_height * grow)));
+    result.width = std::max(1, static_cast<int32_t>(std::ceil(used_width * grow - 1e-9)));
+    result.height = std::max(1, static_cast<int32_t>(std::ceil(used_height * grow - 1e-9)));
     result.texels_per_unit = scale * grow;
     const double to_u = grow / result.width, to_v = grow / result.height;
     for (size_t c = 0; c < count; ++c) {
