@@ -184,6 +184,12 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return static_cast<int64_t>(s.boundary);
         case RAPS_PARAM_MAX_TRIANGLES:
             return s.max_triangles;
+        case RAPS_PARAM_THREADS:
+            return s.threads;
+        case RAPS_PARAM_ATLAS_RESOLUTION:
+            return s.atlas_resolution;
+        case RAPS_PARAM_ATLAS_PADDING:
+            return s.atlas_padding;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }

@@ -122,6 +122,48 @@ static void settings_hold_the_documented_defaults(void** state) {
     raps_settings_destroy(s);
 }
 
+/* Every parameter the library knows (ids 1..63 probed through raps_param_info) round-trips
+ * through its setter and getter at its bounds and starts at its documented default. */
+static void every_parameter_round_trips(void** state) {
+    (void)state;
+    raps_settings* s = NULL;
+    assert_status(raps_settings_create(&s), RAPS_OK);
+    int known = 0;
+    for (raps_param p = 1; p < 64; ++p) {
+        const char* name = NULL;
+        int32_t is_float = 0;
+        double lo = 0, hi = 0, fallback = 0;
+        if (raps_param_info(p, &name, &is_float, &lo, &hi, &fallback) != RAPS_OK) continue;
+        ++known;
+        if (is_float) {
+            double v = -1;
+            assert_status(raps_settings_get_float(s, p, &v), RAPS_OK);
+            assert_near(v, fallback, 0);
+            const double hi_value = hi > 1e300 ? 1e6 : hi;
+            assert_status(raps_settings_set_float(s, p, hi_value), RAPS_OK);
+            assert_status(raps_settings_get_float(s, p, &v), RAPS_OK);
+            assert_near(v, hi_value, 0);
+        } else {
+            int64_t v = -1;
+            assert_status(raps_settings_get_int(s, p, &v), RAPS_OK);
+            assert_int_equal(v, (int64_t)fallback);
+            for (int64_t value = (int64_t)lo; value <= (int64_t)hi && value <= (int64_t)lo + 2;
+                 ++value) {
+                if (raps_settings_set_int(s, p, value) != RAPS_OK) continue; /* a gap in an enum */
+                assert_status(raps_settings_get_int(s, p, &v), RAPS_OK);
+                assert_int_equal(v, value);
+            }
+            assert_status(raps_settings_set_int(s, p, (int64_t)hi), RAPS_OK);
+            assert_status(raps_settings_get_int(s, p, &v), RAPS_OK);
+            assert_int_equal(v, (int64_t)hi);
+            assert_status(raps_settings_set_int(s, p, (int64_t)hi + 1),
+                          RAPS_ERROR_INVALID_ARGUMENT);
+        }
+    }
+    assert_true(known >= 15);
+    raps_settings_destroy(s);
+}
+
 static void settings_refuse_bad_keys_types_and_values(void** state) {
     (void)state;
     raps_settings* s = NULL;
@@ -336,6 +378,7 @@ int main(void) {
         cmocka_unit_test(every_status_has_a_description),
         cmocka_unit_test(destroy_null_is_a_noop_and_create_rejects_null),
         cmocka_unit_test(settings_hold_the_documented_defaults),
+        cmocka_unit_test(every_parameter_round_trips),
         cmocka_unit_test(settings_refuse_bad_keys_types_and_values),
         cmocka_unit_test(settings_clone_is_independent),
         cmocka_unit_test(empty_result_refuses_reads),

@@ -215,17 +215,17 @@ int run(int argc, char** argv) {
             if (end == text.c_str() || *end != '\0' || errno != 0) {
                 throw UsageError(arg + " needs a number, not '" + text + "'");
             }
+            const raps_param param = kNumberParams.at(arg);
+            int32_t is_float = 0;
+            raps_param_info(param, nullptr, &is_float, nullptr, nullptr, nullptr);
             raps_status status;
-            if (arg == "--alpha") {
-                status = raps_settings_set_float(h.settings, RAPS_PARAM_ALPHA, number);
+            if (is_float) {
+                status = raps_settings_set_float(h.settings, param, number);
             } else {
                 if (number != std::floor(number) || std::abs(number) > 9e18) {
                     throw UsageError(arg + " needs a whole number, not '" + text + "'");
                 }
-                status = raps_settings_set_int(
-                    h.settings,
-                    arg == "--iterations" ? RAPS_PARAM_ITERATIONS : RAPS_PARAM_MAX_TRIANGLES,
-                    static_cast<int64_t>(number));
+                status = raps_settings_set_int(h.settings, param, static_cast<int64_t>(number));
             }
             if (status != RAPS_OK) throw UsageError(raps_settings_last_error(h.settings));
         } else if (!arg.empty() && arg[0] == '-') {
@@ -344,7 +344,17 @@ int run(int argc, char** argv) {
             ", \"iterations\": " + std::to_string(iterations) + ", \"iteration_mode\": \"" +
             choice_name("--iteration-mode", mode) + "\", \"boundary\": \"" +
             choice_name("--boundary", boundary) +
-            "\", \"max_triangles\": " + std::to_string(max_triangles) + "}";
+            "\", \"max_triangles\": " + std::to_string(max_triangles) +
+            ", \"threads\": " + std::to_string(threads);
+    if (domain == RAPS_DOMAIN_ATLAS) {
+        json += ", \"resolution\": " + std::to_string(resolution) +
+                ", \"padding\": " + std::to_string(padding) +
+                ", \"weld_tolerance\": " + json_number(weld) +
+                ", \"hard_edge_angle\": " + json_number(hard_edge) +
+                ", \"max_l2_stretch\": " + json_number(max_l2) +
+                ", \"max_linf_stretch\": " + json_number(max_linf);
+    }
+    json += "}";
     json += ", \"stats\": {\"flipped_triangles\": " + std::to_string(stats.flipped_triangles) +
             ", \"zero_area_triangles\": " + std::to_string(stats.zero_area_triangles) +
             ", \"negative_weights\": " + std::to_string(stats.negative_weights) +

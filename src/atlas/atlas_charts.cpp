@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <map>
 
 #include "parallel/parallel_for.h"
 
@@ -149,6 +150,97 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
             area.push_back(chart_area(charts[c].disk));
             weighted += area.back() * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
         }
+    }
+    // Merging: splits and the segmentation's limits leave more charts than needed. Adjacent
+    // charts whose union is a valid chart are merged while the atlas's L2 stays within its
+    // target, smallest charts first (they cost the most in packing and seams). Candidate pairs
+    // are tried in parallel batches of disjoint pairs and accepted in a fixed order, so the
+    // result does not depend on the thread count.
+    for (int pass = 0; pass < 4; ++pass) {
+        std::vector<int32_t> owner(surface.mesh.triangles.size(), -1);
+        for (size_t c = 0; c < charts.size(); ++c) {
+            for (int32_t t : charts[c].disk.surface_triangle) owner[t] = static_cast<int32_t>(c);
+        }
+        std::map<std::pair<int32_t, int32_t>, double> shared;  // boundary length per pair
+        for (size_t h = 0; h < surface.twin.size(); ++h) {
+            const int32_t o = surface.twin[h];
+            if (o < 0 || seam[h]) continue;
+            const int32_t a = owner[h / 3], b = owner[o / 3];
+            if (a >= b) continue;
+            const Triangle& v = surface.mesh.triangles[h / 3];
+            shared[{a, b}] +=
+                (surface.mesh.positions[v[h % 3]] - surface.mesh.positions[v[(h % 3 + 1) % 3]])
+                    .norm();
+        }
+        struct Candidate {
+            double smaller_area, length;
+            int32_t a, b;
+        };
+        std::vector<Candidate> candidates;
+        for (const auto& [pair, length] : shared) {
+            candidates.push_back(
+                {std::min(area[pair.first], area[pair.second]), length, pair.first, pair.second});
+        }
+        std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+            if (x.smaller_area != y.smaller_area) return x.smaller_area < y.smaller_area;
+            if (x.length != y.length) return x.length > y.length;
+            return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+        });
+        std::vector<char> consumed(charts.size(), 0);
+        std::vector<AtlasChart> merged_charts;
+        std::vector<double> merged_area;
+        bool any = false;
+        size_t next = 0;
+        while (next < candidates.size()) {
+            // A batch of disjoint pairs.
+            std::vector<Candidate> batch;
+            std::vector<char> taken(charts.size(), 0);
+            for (; next < candidates.size() && batch.size() < 64; ++next) {
+                const Candidate& c = candidates[next];
+                if (consumed[c.a] || consumed[c.b] || taken[c.a] || taken[c.b]) continue;
+                taken[c.a] = taken[c.b] = 1;
+                batch.push_back(c);
+            }
+            std::vector<AtlasChart> built(batch.size());
+            std::vector<char> good(batch.size(), 0);
+            parallel_for(settings.threads, batch.size(), [&](size_t i) {
+                std::vector<int32_t> triangles = charts[batch[i].a].disk.surface_triangle;
+                const std::vector<int32_t>& more = charts[batch[i].b].disk.surface_triangle;
+                triangles.insert(triangles.end(), more.begin(), more.end());
+                std::sort(triangles.begin(), triangles.end());
+                good[i] = try_chart(surface, triangles, seam, settings, limits, built[i]);
+                progress.report(Phase::kInitialMap, 1.0);
+            });
+            for (size_t i = 0; i < batch.size(); ++i) {
+                if (!good[i]) continue;
+                const int32_t a = batch[i].a, b = batch[i].b;
+                const double union_area = area[a] + area[b];
+                const double change =
+                    union_area * built[i].map.stretch_l2 * built[i].map.stretch_l2 -
+                    area[a] * charts[a].map.stretch_l2 * charts[a].map.stretch_l2 -
+                    area[b] * charts[b].map.stretch_l2 * charts[b].map.stretch_l2;
+                if (weighted + change > target) continue;
+                weighted += change;
+                consumed[a] = consumed[b] = 1;
+                merged_charts.push_back(std::move(built[i]));
+                merged_area.push_back(union_area);
+                any = true;
+            }
+        }
+        if (!any) break;
+        std::vector<AtlasChart> kept;
+        std::vector<double> kept_area;
+        for (size_t c = 0; c < charts.size(); ++c) {
+            if (consumed[c]) continue;
+            kept.push_back(std::move(charts[c]));
+            kept_area.push_back(area[c]);
+        }
+        for (size_t m = 0; m < merged_charts.size(); ++m) {
+            kept.push_back(std::move(merged_charts[m]));
+            kept_area.push_back(merged_area[m]);
+        }
+        charts = std::move(kept);
+        area = std::move(kept_area);
     }
     std::sort(charts.begin(), charts.end(), [](const AtlasChart& x, const AtlasChart& y) {
         return *std::min_element(x.disk.surface_triangle.begin(), x.disk.surface_triangle.end()) <

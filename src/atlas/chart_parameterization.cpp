@@ -102,7 +102,7 @@ ChartMap parameterize_chart(const ChartDisk& disk, const Settings& settings) {
     ChartMap best;
     best.method = ChartMethod::kFreeBoundary;
     try {
-        best.uv = free_boundary_conformal_map(disk.mesh, disk.boundary_loop);
+        best.uv = free_boundary_conformal_map(disk.mesh, adjacency, disk.boundary_loop);
         best.injective = injective(disk, best.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;

@@ -1,14 +1,15 @@
 #include "atlas/free_boundary_map.h"
 
 #include <algorithm>
-#include <map>
 
+#include "planar/laplacian_weights.h"
 #include "solver/sparse_solver.h"
 
 namespace raps {
 
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(
-    const TriangleMesh& mesh, const std::vector<int32_t>& boundary_loop) {
+    const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+    const std::vector<int32_t>& boundary_loop) {
     const int32_t n = mesh.vertex_count();
     // Pins: two boundary vertices far apart (the farthest from the first, then the farthest
     // from that), placed at their 3D distance so the map comes out near the right scale.
@@ -27,66 +28,72 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
     std::vector<Eigen::Vector2d> uv(n, Eigen::Vector2d::Zero());
     uv[pin_b] = Eigen::Vector2d((mesh.positions[pin_b] - mesh.positions[pin_a]).norm(), 0.0);
 
-    // Unknowns 2i (u) and 2i+1 (v) for every vertex but the pins.
+    // E_D - A as a quadratic form in (u_0, v_0, u_1, v_1, ...): per vertex pair a 2x2 block.
+    // The Dirichlet part is the cotangent Laplacian on u and on v; for each boundary edge
+    // i -> j the area part -(u_i v_j - u_j v_i) / 2 couples u and v across the edge.
+    const std::vector<double> cotangent =
+        laplacian_weights(mesh, adjacency, WeightScheme::kCotangent);
+    std::vector<int32_t> next_on_boundary(n, -1), previous_on_boundary(n, -1);
+    for (size_t k = 0; k < boundary_loop.size(); ++k) {
+        const int32_t i = boundary_loop[k], j = boundary_loop[(k + 1) % boundary_loop.size()];
+        next_on_boundary[i] = j;
+        previous_on_boundary[j] = i;
+    }
     std::vector<int32_t> unknown(n, -1);
     int32_t count = 0;
     for (int32_t v = 0; v < n; ++v) {
         if (v != pin_a && v != pin_b) unknown[v] = count++;
     }
-    // Quadratic form of E_D - A as (row, column) -> value over the 2n coordinates, assembled
-    // per triangle: the cotangent Laplacian on u and on v, and for each boundary edge i -> j
-    // the area term -(u_i v_j - u_j v_i) / 2.
-    std::map<std::pair<int32_t, int32_t>, double> entries;
-    auto add = [&](int32_t a, int32_t b, double value) { entries[{a, b}] += value; };
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        const Triangle& tri = mesh.triangles[t];
-        for (int k = 0; k < 3; ++k) {
-            const int32_t o = tri[k], i = tri[(k + 1) % 3], j = tri[(k + 2) % 3];
-            const Eigen::Vector3d a = mesh.positions[i] - mesh.positions[o];
-            const Eigen::Vector3d b = mesh.positions[j] - mesh.positions[o];
-            const double w = 0.5 * a.dot(b) / a.cross(b).norm();  // half the cotangent at o
-            for (int c = 0; c < 2; ++c) {
-                add(2 * i + c, 2 * i + c, w);
-                add(2 * j + c, 2 * j + c, w);
-                add(2 * i + c, 2 * j + c, -w);
-                add(2 * j + c, 2 * i + c, -w);
-            }
-        }
-    }
-    for (size_t k = 0; k < boundary_loop.size(); ++k) {
-        const int32_t i = boundary_loop[k], j = boundary_loop[(k + 1) % boundary_loop.size()];
-        add(2 * i, 2 * j + 1, -0.5);
-        add(2 * j + 1, 2 * i, -0.5);
-        add(2 * j, 2 * i + 1, 0.5);
-        add(2 * i + 1, 2 * j, 0.5);
-    }
-    // The reduced system over the free coordinates; pinned coordinates move to the right.
     SparsePattern pattern;
     pattern.size = 2 * count;
     std::vector<double> values, rhs(2 * static_cast<size_t>(count), 0.0);
-    std::vector<std::vector<std::pair<int32_t, double>>> rows(2 * static_cast<size_t>(count));
-    for (const auto& [key, value] : entries) {
-        const int32_t row_vertex = key.first / 2, column_vertex = key.second / 2;
-        if (unknown[row_vertex] < 0) continue;
-        const int32_t row = 2 * unknown[row_vertex] + key.first % 2;
-        if (unknown[column_vertex] < 0) {
-            rhs[row] -= value * uv[column_vertex][key.second % 2];
-        } else {
-            rows[row].emplace_back(2 * unknown[column_vertex] + key.second % 2, value);
-        }
-    }
-    for (auto& row : rows) {
-        std::sort(row.begin(), row.end());
-        for (const auto& [column, value] : row) {
-            pattern.columns.push_back(column);
-            values.push_back(value);
-        }
-        pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
-    }
     std::vector<Eigen::Vector3d> coordinates(2 * static_cast<size_t>(count));
-    for (int32_t v = 0; v < n; ++v) {
-        if (unknown[v] >= 0)
-            coordinates[2 * unknown[v]] = coordinates[2 * unknown[v] + 1] = mesh.positions[v];
+    for (int32_t i = 0; i < n; ++i) {
+        if (unknown[i] < 0) continue;
+        coordinates[2 * unknown[i]] = coordinates[2 * unknown[i] + 1] = mesh.positions[i];
+        // The row block of vertex i over its neighbours and itself, columns in unknown order.
+        double diagonal = 0;
+        for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s)
+            diagonal += cotangent[s];
+        struct Block {
+            int32_t column_vertex;
+            double uu, uv, vu, vv;  // row u_i / v_i times column u_j / v_j
+        };
+        std::vector<Block> blocks;
+        blocks.push_back({i, diagonal, 0.0, 0.0, diagonal});
+        for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
+            const int32_t j = adjacency.neighbors[s];
+            // -(u_i v_j - u_j v_i) / 2 for edge i -> j; +(u_j v_i - ... ) for edge j -> i.
+            double uv_term = 0, vu_term = 0;
+            if (next_on_boundary[i] == j) {
+                uv_term -= 0.5;  // u_i v_j
+                vu_term += 0.5;  // v_i u_j
+            }
+            if (previous_on_boundary[i] == j) {
+                uv_term += 0.5;
+                vu_term -= 0.5;
+            }
+            blocks.push_back({j, -cotangent[s], uv_term, vu_term, -cotangent[s]});
+        }
+        for (int row = 0; row < 2; ++row) {
+            std::vector<std::pair<int32_t, double>> entries;
+            for (const Block& b : blocks) {
+                const double first = row == 0 ? b.uu : b.vu, second = row == 0 ? b.uv : b.vv;
+                if (unknown[b.column_vertex] < 0) {
+                    rhs[2 * unknown[i] + row] -=
+                        first * uv[b.column_vertex].x() + second * uv[b.column_vertex].y();
+                    continue;
+                }
+                entries.emplace_back(2 * unknown[b.column_vertex], first);
+                entries.emplace_back(2 * unknown[b.column_vertex] + 1, second);
+            }
+            std::sort(entries.begin(), entries.end());
+            for (const auto& [column, value] : entries) {
+                pattern.columns.push_back(column);
+                values.push_back(value);
+            }
+            pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
+        }
     }
     SparseSolver solver(std::move(pattern), coordinates);
     solver.solve(values, rhs.data(), 1, nullptr);

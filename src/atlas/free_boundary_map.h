@@ -10,12 +10,14 @@
 #include <Eigen/Core>
 
 #include "core/triangle_mesh.h"
+#include "mesh/mesh_topology.h"
 
 namespace raps {
 
-// uv per vertex of the disk `mesh` whose boundary is `boundary_loop` (mesh on its left).
-// Throws Error(kSolverFailed) if the system is singular.
+// uv per vertex of the disk `mesh` (with its vertex adjacency) whose boundary is
+// `boundary_loop` (mesh on its left). Throws Error(kSolverFailed) if the system is singular.
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
+                                                         const VertexAdjacency& adjacency,
                                                          const std::vector<int32_t>& boundary_loop);
 
 }  // namespace raps
