@@ -91,13 +91,41 @@ class RapsParamTest(unittest.TestCase):
         d = json.loads(out)
         self.assertEqual(d['settings'], {'domain': 'disk', 'weights': 'uniform', 'monitor': 'length',
                                          'alpha': 1.5, 'iterations': 2, 'iteration_mode': 'reapply',
-                                         'boundary': 'square', 'max_triangles': 2147483647})
+                                         'boundary': 'square', 'max_triangles': 2147483647,
+                                         'threads': 0})
         self.assertEqual(d['vertices'], 8356)
         self.assertEqual(d['triangles'], 16674)
         self.assertEqual(d['stats']['flipped_triangles'], 0)
         self.assertEqual(d['stats']['adaptive_solves'], 2)
         for phase in ('read', 'validate', 'topology', 'initial_map', 'adapt', 'metrics', 'write'):
             self.assertGreaterEqual(d['time_ms'][phase], 0.0)
+
+    def test_atlas_writes_seams_as_separate_vt_and_echoes_its_settings(self):
+        rc, out, err = run(self.mesh('teapot.obj'), '-o', self.out, '--atlas', '--threads', '2',
+                           '--resolution', '512', '--padding', '3', '--hard-edge-angle', '80',
+                           '--max-l2-stretch', '1.02', '--max-linf-stretch', '2.5', '--weld-tolerance', '1e-9')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        s = d['settings']
+        self.assertEqual((s['domain'], s['threads'], s['resolution'], s['padding']), ('atlas', 2, 512, 3))
+        self.assertEqual((s['hard_edge_angle'], s['max_l2_stretch'], s['max_linf_stretch'], s['weld_tolerance']),
+                         (80, 1.02, 2.5, 1e-9))
+        st = d['stats']
+        self.assertEqual(max(st['atlas_width'], st['atlas_height']), 512)
+        self.assertLessEqual(st['stretch_linf'], 2.5)
+        self.assertEqual(st['flipped_triangles'], 0)
+        v_in, _, f_in = obj_records(self.mesh('teapot.obj'))
+        v_out, vt_out, f_out = obj_records(self.out)
+        self.assertEqual(v_out, v_in)
+        self.assertEqual(len(f_out), len(f_in))  # teapot is all triangles: faces come back in order
+        self.assertEqual([[c[0] for c in face] for face in f_out], [[c[0] for c in face] for face in f_in])
+        self.assertGreater(len(vt_out), len(v_in) - 1)  # seams duplicate uv vertices
+        for u, w in vt_out:
+            self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= w <= 1.0)
+        ref = json.loads(subprocess.run(['/usr/bin/python3', os.path.join(DATA, '..', 'tools', 'uvmetrics.py'),
+                                         '--raster', '2048', self.out], capture_output=True, text=True).stdout)
+        self.assertEqual(ref['n_flipped'], 0)
+        self.assertLess(ref['uv_overlap_fraction'], 0.002)  # raster noise only
 
     def test_statistics_match_the_reference_metrics(self):
         tool = os.path.join(DATA, '..', 'tools', 'uvmetrics.py')
