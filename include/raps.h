@@ -199,7 +199,7 @@ enum {
     RAPS_PARAM_WEIGHTS = 2,
     /* int. Error monitor e_ij of the adaptive step; NONE returns the initial map. Default AREA. */
     RAPS_PARAM_MONITOR = 3,
-    /* float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 16]. Default 1. */
+    /* float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 100]. Default 1. */
     RAPS_PARAM_ALPHA = 4,
     /* int. Number of adaptive solves, 1..100 (the paper: 1). Ignored with monitor NONE.
      * Default 1. */
