@@ -4,6 +4,7 @@
 #include <deque>
 #include <map>
 
+#include "atlas/chart_segmentation.h"
 #include "parallel/parallel_for.h"
 
 namespace raps {
@@ -40,11 +41,21 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     const int32_t b = farthest(from_a);
     const std::vector<int32_t> from_b = distances(b);
     std::pair<std::vector<int32_t>, std::vector<int32_t>> halves;
+    // Side per surface triangle (-1: outside the chart, itself a barrier), smoothed like the
+    // segmentation's boundaries so the split does not leave a saw-tooth seam.
+    std::vector<int32_t> side(surface.mesh.triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) {
         // Unreached triangles (a chart in several pieces) follow a's side if not reached by b.
         const bool to_b = from_b[i] >= 0 && (from_a[i] < 0 || from_b[i] < from_a[i]);
-        (to_b ? halves.second : halves.first).push_back(triangles[i]);
+        side[triangles[i]] = to_b ? 1 : 0;
     }
+    std::vector<char> barrier(seam);
+    for (size_t h = 0; h < barrier.size(); ++h) {
+        const int32_t o = surface.twin[h];
+        if (o >= 0 && (side[h / 3] < 0 || side[o / 3] < 0)) barrier[h] = 1;
+    }
+    smooth_chart_boundaries(surface, barrier, side);
+    for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
     if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
         const size_t half = halves.first.size() / 2;
         halves.second.assign(halves.first.begin() + half, halves.first.end());

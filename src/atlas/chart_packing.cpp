@@ -157,8 +157,8 @@ Profile make_profile(const Raster& raster, int32_t padding, int quarter) {
 // an eighth of the chart's width and refined around the best step, which keeps the search
 // linear in the strip width. Returns false if a chart is wider than the strip in every turn.
 bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                int32_t strip, std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter,
-                int32_t& width, int32_t& height) {
+                int32_t strip, bool count_waste, std::vector<Eigen::Vector2i>& at,
+                std::vector<int>& quarter, int32_t& width, int32_t& height) {
     std::vector<int32_t> skyline(static_cast<size_t>(strip), 0);
     width = height = 0;
     auto rest_height = [&](const Profile& p, int32_t x) {
@@ -167,6 +167,17 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             if (p.bottom[i] < p.height) y = std::max(y, skyline[x + i] - p.bottom[i]);
         }
         return y;
+    };
+    // Lowest top first; or, with count_waste, the texels left empty under the chart plus the
+    // area up to its top, which favours placements that fit the skyline's dips.
+    auto score_of = [&](const Profile& p, int32_t x, int32_t y) -> int64_t {
+        const int64_t top = static_cast<int64_t>(y) + p.height;
+        if (!count_waste) return top * (int64_t(strip) + 1) + x;
+        int64_t waste = 0;
+        for (int32_t i = 0; i < p.width; ++i) {
+            if (p.bottom[i] < p.height) waste += y + p.bottom[i] - skyline[x + i];
+        }
+        return (waste + top * p.width) * (int64_t(strip) + 1) + x;
     };
     for (size_t c : order) {
         int64_t best_score = std::numeric_limits<int64_t>::max();
@@ -178,8 +189,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             const int32_t last = strip - p.width, step = std::max(1, p.width / 8);
             auto consider = [&](int32_t x) {
                 const int32_t y = rest_height(p, x);
-                const int64_t score =
-                    (static_cast<int64_t>(y) + p.height) * (int64_t(strip) + 1) + x;
+                const int64_t score = score_of(p, x, y);
                 if (score < best_score) {
                     best_score = score;
                     best_x = x;
@@ -190,8 +200,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             int32_t coarse_best = 0;
             int64_t coarse_score = std::numeric_limits<int64_t>::max();
             for (int32_t x = 0; x <= last; x += step) {
-                const int64_t score =
-                    (static_cast<int64_t>(rest_height(p, x)) + p.height) * (int64_t(strip) + 1) + x;
+                const int64_t score = score_of(p, x, rest_height(p, x));
                 if (score < coarse_score) {
                     coarse_score = score;
                     coarse_best = x;
@@ -296,7 +305,9 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         }
         std::vector<int32_t> widths;
         const int32_t square = static_cast<int32_t>(std::sqrt(area_cells));
-        for (double f : {0.7, 0.85, 1.0, 1.2, 1.45, 1.8}) {
+        // Twelve strip widths, geometrically spaced from 0.7 to 1.8 times the square's side.
+        for (int k = 0; k < 12; ++k) {
+            const double f = 0.7 * std::pow(1.8 / 0.7, k / 11.0);
             widths.push_back(std::clamp(static_cast<int32_t>(square * f), widest, limit));
         }
         if (count == 1)
@@ -304,11 +315,13 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         std::sort(widths.begin(), widths.end());
         widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
         double best_area = std::numeric_limits<double>::max();
-        for (int32_t strip : widths) {
+        for (int trial = 0; trial < 2 * static_cast<int>(widths.size()); ++trial) {
+            const int32_t strip = widths[trial / 2];
             std::vector<Eigen::Vector2i> at(count);
             std::vector<int> quarter(count);
             int32_t width = 0, height = 0;
-            if (!pack_strip(prepared, order, strip, at, quarter, width, height)) continue;
+            if (!pack_strip(prepared, order, strip, trial % 2 == 1, at, quarter, width, height))
+                continue;
             const double area = static_cast<double>(width) * height;
             if (std::max(width, height) <= limit && area < best_area) {
                 best_area = area;

@@ -21,6 +21,11 @@ struct SegmentationSettings {
     int lloyd_iterations = 3;
 };
 
+// Moves triangles whose two uncut neighbours belong to another chart into that chart, which
+// removes saw-tooth boundaries. barrier[h] marks half-edges that separate charts regardless.
+void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
+                             std::vector<int32_t>& chart);
+
 // Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
                                     const SegmentationSettings& settings);
