@@ -28,7 +28,11 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
 
     PhaseTimer segment_timer(Phase::kSegment, progress, times);
     SegmentationSettings segmentation;
-    segmentation.hard_edge_angle_deg = settings.hard_edge_angle_deg;
+    // Charts do not grow across creases sharper than 60 degrees (CAD edges): growing across
+    // them leaves charts that wrap around corners and must be split again; merging may still
+    // join the pieces later where the union maps well (fandisk: 24 -> 6 charts). Creases are
+    // forced seams only when the caller's hard-edge angle says so.
+    segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
     segmentation.max_normal_deviation_deg = 90.0;
     segmentation.max_curvature = 1e300;
     const std::vector<int32_t> chart_of_surface = segment_charts(surface, segmentation);

@@ -61,24 +61,35 @@ Eigen::Vector2d best_rotation(const std::vector<Eigen::Vector2d>& uv, bool squar
     return best;
 }
 
-// A chart rasterised at the current scale: its cells, in a frame with `padding` texels of
-// margin on every side.
-struct Raster {
-    int32_t width = 0, height = 0;
-    std::vector<uint8_t> cells;  // row-major, 1 where a triangle touches the texel
-    uint8_t at(int32_t x, int32_t y) const { return cells[static_cast<size_t>(y) * width + x]; }
+// A bit image: bit x of row y is cell (x, y).
+struct BitImage {
+    int32_t width = 0, height = 0, words = 0;
+    std::vector<uint64_t> bits;
+    void resize(int32_t w, int32_t h) {
+        width = w;
+        height = h;
+        words = (w + 63) / 64;
+        bits.assign(static_cast<size_t>(words) * h, 0);
+    }
+    uint64_t* row(int32_t y) { return bits.data() + static_cast<size_t>(y) * words; }
+    const uint64_t* row(int32_t y) const { return bits.data() + static_cast<size_t>(y) * words; }
+    bool get(int32_t x, int32_t y) const { return (row(y)[x / 64] >> (x % 64)) & 1; }
+    void set(int32_t x, int32_t y) { row(y)[x / 64] |= uint64_t(1) << (x % 64); }
+    void set_span(int32_t y, int32_t x0, int32_t x1) {
+        for (int32_t x = x0; x <= x1; ++x) set(x, y);
+    }
 };
 
-// Marks every texel that a triangle touches (conservative): per row band, the x-range of the
+// Marks every cell that a triangle touches (conservative): per row band, the x-range of the
 // triangle clipped to the band.
 void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Triangle>& triangles,
-               Raster& raster) {
+               BitImage& image) {
     for (const Triangle& t : triangles) {
         const Eigen::Vector2d p[3] = {points[t[0]], points[t[1]], points[t[2]]};
         const double y_lo = std::min({p[0].y(), p[1].y(), p[2].y()});
         const double y_hi = std::max({p[0].y(), p[1].y(), p[2].y()});
         const int32_t row_lo = std::max(0, static_cast<int32_t>(std::floor(y_lo)));
-        const int32_t row_hi = std::min(raster.height - 1, static_cast<int32_t>(std::floor(y_hi)));
+        const int32_t row_hi = std::min(image.height - 1, static_cast<int32_t>(std::floor(y_hi)));
         for (int32_t row = row_lo; row <= row_hi; ++row) {
             const double band_lo = row, band_hi = row + 1.0;
             double x_lo = 1e300, x_hi = -1e300;
@@ -99,20 +110,37 @@ void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Tri
             }
             if (x_lo > x_hi) continue;
             const int32_t c_lo = std::max(0, static_cast<int32_t>(std::floor(x_lo)));
-            const int32_t c_hi = std::min(raster.width - 1, static_cast<int32_t>(std::floor(x_hi)));
-            for (int32_t c = c_lo; c <= c_hi; ++c)
-                raster.cells[static_cast<size_t>(row) * raster.width + c] = 1;
+            const int32_t c_hi = std::min(image.width - 1, static_cast<int32_t>(std::floor(x_hi)));
+            image.set_span(row, c_lo, c_hi);
         }
     }
 }
 
-// Per column of a (rotated) raster: the lowest cell of the padded footprint and the highest cell
-// of the chart itself, relative to the frame.
+// A quarter turn: cell (x, y) goes to (height - 1 - y, x).
+BitImage rotate_quarter(const BitImage& in) {
+    BitImage out;
+    out.resize(in.height, in.width);
+    for (int32_t y = 0; y < in.height; ++y) {
+        const uint64_t* row = in.row(y);
+        for (int32_t w = 0; w < in.words; ++w) {
+            for (uint64_t word = row[w]; word; word &= word - 1) {
+                const int32_t x = w * 64 + __builtin_ctzll(word);
+                out.set(in.height - 1 - y, x);
+            }
+        }
+    }
+    return out;
+}
+
+// Per column: the lowest cell of the padded footprint and the highest and lowest cells of the
+// chart itself; and both footprints as bit rows, for exact fitting into holes.
 struct Profile {
     int32_t width = 0, height = 0;
     std::vector<int32_t> bottom;        // lowest padded row, or height if the column is empty
     std::vector<int32_t> top;           // highest chart row, or -1
     std::vector<int32_t> chart_bottom;  // lowest chart row, or height
+    int32_t words = 0;
+    std::vector<uint64_t> chart_bits, padded_bits;
 };
 
 struct PreparedChart {
@@ -121,45 +149,127 @@ struct PreparedChart {
     Profile profiles[4];       // the four quarter turns
 };
 
-Profile make_profile(const Raster& raster, int32_t padding, int quarter) {
-    // Rotate the raster by quarter turns: (x, y) -> per turn (h-1-y, x).
-    const int32_t w = raster.width, h = raster.height;
+Profile make_profile(const BitImage& chart, int32_t padding) {
     Profile profile;
-    profile.width = quarter % 2 ? h : w;
-    profile.height = quarter % 2 ? w : h;
-    profile.bottom.assign(profile.width, profile.height);
-    profile.top.assign(profile.width, -1);
-    profile.chart_bottom.assign(profile.width, profile.height);
-    for (int32_t y = 0; y < h; ++y) {
-        for (int32_t x = 0; x < w; ++x) {
-            if (!raster.at(x, y)) continue;
-            int32_t rx = x, ry = y;
-            for (int q = 0; q < quarter; ++q) {
-                const int32_t cur_h = q % 2 ? w : h;
-                const int32_t nx = cur_h - 1 - ry, ny = rx;
-                rx = nx;
-                ry = ny;
+    profile.width = chart.width;
+    profile.height = chart.height;
+    profile.words = chart.words;
+    profile.chart_bits = chart.bits;
+    profile.top.assign(chart.width, -1);
+    profile.chart_bottom.assign(chart.width, chart.height);
+    profile.bottom.assign(chart.width, chart.height);
+    // Padding by dilation: each row spread sideways by `padding` cells, then rows combined
+    // with their `padding` neighbours above and below.
+    std::vector<uint64_t> wide(chart.bits.size());
+    for (int32_t y = 0; y < chart.height; ++y) {
+        const uint64_t* src = chart.row(y);
+        uint64_t* dst = wide.data() + static_cast<size_t>(y) * chart.words;
+        std::copy(src, src + chart.words, dst);
+        for (int32_t k = 0; k < padding; ++k) {
+            uint64_t carry_up = 0;
+            for (int32_t w = 0; w < chart.words; ++w) {  // shift towards higher x
+                const uint64_t word = dst[w];
+                dst[w] = word | (word << 1) | carry_up;
+                carry_up = word >> 63;
             }
-            profile.top[rx] = std::max(profile.top[rx], ry);
-            profile.chart_bottom[rx] = std::min(profile.chart_bottom[rx], ry);
-            // The padded footprint reaches `padding` texels further in every direction.
-            for (int32_t c = std::max(0, rx - padding);
-                 c <= std::min(profile.width - 1, rx + padding); ++c) {
-                profile.bottom[c] = std::min(profile.bottom[c], std::max(0, ry - padding));
+            uint64_t carry_down = 0;
+            for (int32_t w = chart.words - 1; w >= 0; --w) {  // towards lower x
+                const uint64_t word = dst[w];
+                dst[w] = word | (word >> 1) | carry_down;
+                carry_down = word << 63;
             }
         }
     }
+    profile.padded_bits.assign(chart.bits.size(), 0);
+    for (int32_t y = 0; y < chart.height; ++y) {
+        uint64_t* dst = profile.padded_bits.data() + static_cast<size_t>(y) * chart.words;
+        for (int32_t yy = std::max(0, y - padding); yy <= std::min(chart.height - 1, y + padding);
+             ++yy) {
+            const uint64_t* src = wide.data() + static_cast<size_t>(yy) * chart.words;
+            for (int32_t w = 0; w < chart.words; ++w) dst[w] |= src[w];
+        }
+    }
+    auto columns = [&](const std::vector<uint64_t>& bits, auto&& visit) {
+        for (int32_t y = 0; y < chart.height; ++y) {
+            const uint64_t* row = bits.data() + static_cast<size_t>(y) * chart.words;
+            for (int32_t w = 0; w < chart.words; ++w) {
+                for (uint64_t word = row[w]; word; word &= word - 1)
+                    visit(w * 64 + __builtin_ctzll(word), y);
+            }
+        }
+    };
+    columns(profile.chart_bits, [&](int32_t x, int32_t y) {
+        profile.top[x] = std::max(profile.top[x], y);
+        profile.chart_bottom[x] = std::min(profile.chart_bottom[x], y);
+    });
+    columns(profile.padded_bits,
+            [&](int32_t x, int32_t y) { profile.bottom[x] = std::min(profile.bottom[x], y); });
     return profile;
 }
+
+// The placed charts' cells as bit rows of a strip, growing upwards as needed.
+class Occupancy {
+  public:
+    explicit Occupancy(int32_t strip) : words_((strip + 63) / 64 + 1) {}
+
+    // Whether `bits` (rows of `p.words` words) placed with its lower left cell at (x, y) meets
+    // an occupied cell.
+    bool collides(const Profile& p, const std::vector<uint64_t>& bits, int32_t x, int32_t y) const {
+        const int32_t shift = x % 64, offset = x / 64;
+        for (int32_t r = 0; r < p.height; ++r) {
+            const int32_t row = y + r;
+            if (row >= rows()) return false;  // above everything placed
+            const uint64_t* target = row_ptr(row) + offset;
+            const uint64_t* source = bits.data() + static_cast<size_t>(r) * p.words;
+            uint64_t carry = 0;
+            for (int32_t w = 0; w < p.words; ++w) {
+                const uint64_t word = source[w];
+                const uint64_t low = (word << shift) | carry;
+                carry = shift ? word >> (64 - shift) : 0;
+                if (low & target[w]) return true;
+            }
+            if (carry && (carry & target[p.words])) return true;
+        }
+        return false;
+    }
+
+    void place(const Profile& p, int32_t x, int32_t y) {
+        const int32_t needed = y + p.height;
+        if (needed > rows()) cells_.resize(static_cast<size_t>(needed) * words_, 0);
+        const int32_t shift = x % 64, offset = x / 64;
+        for (int32_t r = 0; r < p.height; ++r) {
+            uint64_t* target = row_ptr(y + r) + offset;
+            const uint64_t* source = p.chart_bits.data() + static_cast<size_t>(r) * p.words;
+            uint64_t carry = 0;
+            for (int32_t w = 0; w < p.words; ++w) {
+                target[w] |= (source[w] << shift) | carry;
+                carry = shift ? source[w] >> (64 - shift) : 0;
+            }
+            target[p.words] |= carry;
+        }
+    }
+
+    int32_t rows() const { return static_cast<int32_t>(cells_.size() / words_); }
+
+  private:
+    uint64_t* row_ptr(int32_t row) { return cells_.data() + static_cast<size_t>(row) * words_; }
+    const uint64_t* row_ptr(int32_t row) const {
+        return cells_.data() + static_cast<size_t>(row) * words_;
+    }
+
+    int32_t words_;
+    std::vector<uint64_t> cells_;
+};
 
 // Places the charts (in `order`) into a strip `strip` texels wide: each lands, in its best
 // quarter turn, as low as the skyline lets it, then as far left. x is searched with a step of
 // an eighth of the chart's width and refined around the best step, which keeps the search
 // linear in the strip width. Returns false if a chart is wider than the strip in every turn.
 bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                int32_t strip, bool count_waste, std::vector<Eigen::Vector2i>& at,
+                int32_t strip, bool count_waste, bool fill_holes, std::vector<Eigen::Vector2i>& at,
                 std::vector<int>& quarter, int32_t& width, int32_t& height) {
     std::vector<int32_t> skyline(static_cast<size_t>(strip), 0);
+    Occupancy occupancy(strip);
     width = height = 0;
     auto rest_height = [&](const Profile& p, int32_t x) {
         int32_t y = 0;
@@ -213,7 +323,43 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             consider(last);
         }
         if (best_x < 0) return false;
+        // Holes: a chart small against the layout may fit lower, under an overhang the
+        // skyline cannot see. Scan the free cells below its skyline position in steps of a
+        // quarter of its size, then let it settle down and left cell by cell.
+        for (int q = 0; q < 4 && fill_holes; ++q) {
+            const Profile& p = prepared[c].profiles[q];
+            if (p.width > strip) continue;
+            if (static_cast<int64_t>(p.width) * p.height * 8 > static_cast<int64_t>(width) * height)
+                continue;
+            // At most about 40 x 40 candidate positions per turn, however small the chart.
+            const int32_t sx = std::max({1, p.width / 4, strip / 40});
+            const int32_t sy = std::max({1, p.height / 4, height / 40});
+            const int32_t best_top = best_y + prepared[c].profiles[best_q].height;
+            bool found = false;
+            for (int32_t y = 0; !found && y + p.height < best_top; y += sy) {
+                for (int32_t x = 0; x + p.width <= strip; x += sx) {
+                    if (occupancy.collides(p, p.padded_bits, x, y)) continue;
+                    int32_t fx = x, fy = y;
+                    for (bool moved = true; moved;) {
+                        moved = false;
+                        if (fy > 0 && !occupancy.collides(p, p.padded_bits, fx, fy - 1)) {
+                            --fy;
+                            moved = true;
+                        } else if (fx > 0 && !occupancy.collides(p, p.padded_bits, fx - 1, fy)) {
+                            --fx;
+                            moved = true;
+                        }
+                    }
+                    best_x = fx;
+                    best_y = fy;
+                    best_q = q;
+                    found = true;
+                    break;
+                }
+            }
+        }
         const Profile& p = prepared[c].profiles[best_q];
+        occupancy.place(p, best_x, best_y);
         for (int32_t i = 0; i < p.width; ++i) {
             if (p.top[i] >= 0)
                 skyline[best_x + i] = std::max(skyline[best_x + i], best_y + p.top[i] + 1);
@@ -274,30 +420,37 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     std::vector<Eigen::Vector2i> placed(count);
     std::vector<int> turn(count);
     int32_t used_width = 0, used_height = 0;
-    double last_good_scale = scale;
-    bool packed_once = false;
-    for (int attempt = 0; attempt < 64; ++attempt) {
-        int32_t widest = 1;
+    const int32_t limit = static_cast<int32_t>(resolution);
+    auto rasterise_all = [&](double at_scale, int32_t& widest) {
+        widest = 1;
         for (size_t c = 0; c < count; ++c) {
-            Raster raster;
-            raster.width = static_cast<int32_t>(std::ceil(extent[c].x() * scale)) + 1 + 2 * padding;
-            raster.height =
-                static_cast<int32_t>(std::ceil(extent[c].y() * scale)) + 1 + 2 * padding;
-            raster.cells.assign(static_cast<size_t>(raster.width) * raster.height, 0);
+            BitImage raster;
+            raster.resize(
+                static_cast<int32_t>(std::ceil(extent[c].x() * at_scale)) + 1 + 2 * padding,
+                static_cast<int32_t>(std::ceil(extent[c].y() * at_scale)) + 1 + 2 * padding);
             const Eigen::Vector2d r = prepared[c].rotation;
             std::vector<Eigen::Vector2d> points(charts[c].uv->size());
             for (size_t v = 0; v < points.size(); ++v) {
                 const Eigen::Vector2d& p = (*charts[c].uv)[v];
                 const Eigen::Vector2d q(r.x() * p.x() + r.y() * p.y(),
                                         -r.y() * p.x() + r.x() * p.y());
-                points[v] = (q - prepared[c].origin) * scale + Eigen::Vector2d(padding, padding);
+                points[v] = (q - prepared[c].origin) * at_scale + Eigen::Vector2d(padding, padding);
             }
             rasterise(points, *charts[c].triangles, raster);
-            for (int q = 0; q < 4; ++q) prepared[c].profiles[q] = make_profile(raster, padding, q);
+            for (int q = 0; q < 4; ++q) {
+                prepared[c].profiles[q] = make_profile(raster, padding);
+                if (q < 3) raster = rotate_quarter(raster);
+            }
             widest = std::max(widest, std::min(raster.width, raster.height));
         }
-        // Strip widths from the widest chart's narrow side up to the resolution.
-        const int32_t limit = static_cast<int32_t>(resolution);
+    };
+    struct Layout {
+        double area;
+        int32_t strip;
+        bool waste;
+    };
+    // Every strip width under both scoring rules on the skyline alone, best first.
+    auto skyline_layouts = [&](int32_t widest) {
         double area_cells = 0;
         for (size_t c = 0; c < count; ++c) {
             area_cells +=
@@ -310,18 +463,73 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             const double f = 0.7 * std::pow(1.8 / 0.7, k / 11.0);
             widths.push_back(std::clamp(static_cast<int32_t>(square * f), widest, limit));
         }
-        if (count == 1)
+        if (count == 1) {
             widths = {std::max(prepared[0].profiles[0].width, prepared[0].profiles[0].height)};
+        }
         std::sort(widths.begin(), widths.end());
         widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
-        double best_area = std::numeric_limits<double>::max();
+        std::vector<Layout> layouts;
         for (int trial = 0; trial < 2 * static_cast<int>(widths.size()); ++trial) {
-            const int32_t strip = widths[trial / 2];
             std::vector<Eigen::Vector2i> at(count);
             std::vector<int> quarter(count);
             int32_t width = 0, height = 0;
-            if (!pack_strip(prepared, order, strip, trial % 2 == 1, at, quarter, width, height))
+            const int32_t strip = widths[trial / 2];
+            if (!pack_strip(prepared, order, strip, trial % 2 == 1, false, at, quarter, width,
+                            height) ||
+                std::max(width, height) > limit) {
                 continue;
+            }
+            layouts.push_back({static_cast<double>(width) * height, strip, trial % 2 == 1});
+        }
+        std::sort(layouts.begin(), layouts.end(), [](const Layout& x, const Layout& y) {
+            return x.area < y.area || (x.area == y.area && x.strip < y.strip);
+        });
+        return layouts;
+    };
+
+    // The density: the largest for which a skyline packing into a strip of the square's width
+    // fits, found in a few steps (each scales by the room the last layout left). Only then are
+    // all strip widths and rules tried, at that density.
+    double fitted_scale = -1;
+    int32_t widest = 1;
+    for (int attempt = 0; attempt < 24; ++attempt) {
+        rasterise_all(scale, widest);
+        double area_cells = 0;
+        for (size_t c = 0; c < count; ++c) {
+            area_cells +=
+                static_cast<double>(prepared[c].profiles[0].width) * prepared[c].profiles[0].height;
+        }
+        const int32_t strip =
+            count == 1 ? std::max(prepared[0].profiles[0].width, prepared[0].profiles[0].height)
+                       : std::clamp(static_cast<int32_t>(std::sqrt(area_cells)), widest, limit);
+        std::vector<Eigen::Vector2i> at(count);
+        std::vector<int> quarter(count);
+        int32_t width = 0, height = 0;
+        const bool fits =
+            pack_strip(prepared, order, strip, false, false, at, quarter, width, height) &&
+            std::max(width, height) <= limit;
+        if (!fits) {
+            if (fitted_scale > 0) break;
+            scale *= 0.85;  // nothing fitted yet: lower the density
+            continue;
+        }
+        fitted_scale = scale;
+        const double room = resolution / std::max(std::max(width, height), 1);
+        if (room < 1.02 || attempt >= 3) break;
+        scale *= std::min(room, 1.5) * 0.995;
+    }
+    if (fitted_scale != scale) rasterise_all(fitted_scale, widest);
+    scale = fitted_scale;
+    const std::vector<Layout> fitted = skyline_layouts(widest);
+    // Holes under overhangs, for the two best layouts only (it is the slow part).
+    double best_area = std::numeric_limits<double>::max();
+    for (size_t k = 0; k < fitted.size() && k < 2; ++k) {
+        for (bool holes : {true, false}) {
+            std::vector<Eigen::Vector2i> at(count);
+            std::vector<int> quarter(count);
+            int32_t width = 0, height = 0;
+            pack_strip(prepared, order, fitted[k].strip, fitted[k].waste, holes, at, quarter, width,
+                       height);
             const double area = static_cast<double>(width) * height;
             if (std::max(width, height) <= limit && area < best_area) {
                 best_area = area;
@@ -330,21 +538,8 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
                 used_width = width;
                 used_height = height;
             }
+            if (holes) break;  // the skyline-only layout is only a fallback if holes overflow
         }
-        if (best_area == std::numeric_limits<double>::max()) {
-            if (packed_once) {  // the previous, smaller density fitted: go back to it
-                scale = last_good_scale;
-                continue;
-            }
-            scale *= 0.85;  // nothing fitted yet: lower the density
-            continue;
-        }
-        const bool refit = packed_once && scale == last_good_scale;
-        packed_once = true;
-        last_good_scale = scale;
-        const double room = resolution / std::max(used_width, used_height);
-        if (refit || room < 1.03 || attempt >= 6) break;
-        scale *= std::min(room, 1.5) * 0.995;
     }
 
     // The padding matters between charts, not at the atlas's border: crop the layout to the

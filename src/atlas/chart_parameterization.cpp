@@ -83,43 +83,44 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
     system.solve(base, circle.uv, nullptr);
     circle.injective = injective(disk, circle.uv);
     normalise(disk, circle);
-    ChartMap candidate;
-    candidate.method = ChartMethod::kCircleAdapted;
-    Settings mean_value = settings;
-    mean_value.weights = WeightScheme::kMeanValue;
-    if (settings.monitor != Monitor::kNone &&
-        adapted(disk, adjacency, mean_value, circle.uv, candidate)) {
-        normalise(disk, candidate);
-        if (candidate.stretch_l2 < circle.stretch_l2) circle = std::move(candidate);
-    }
+    adapt_chart_map(disk, settings, 1e300, circle);
     return circle;
 }
 
-ChartMap parameterize_chart(const ChartDisk& disk, const Settings& settings) {
+ChartMap free_boundary_chart_map(const ChartDisk& disk) {
     const Halfedges halfedges = build_halfedges(disk.mesh);
     const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
-
-    ChartMap best;
-    best.method = ChartMethod::kFreeBoundary;
+    ChartMap map;
+    map.method = ChartMethod::kFreeBoundary;
     try {
-        best.uv = free_boundary_conformal_map(disk.mesh, adjacency, disk.boundary_loop);
-        best.injective = injective(disk, best.uv);
+        map.uv = free_boundary_conformal_map(disk.mesh, adjacency, disk.boundary_loop);
+        map.injective = injective(disk, map.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;
-        best.injective = false;
+        map.injective = false;
     }
-    if (best.injective) {
-        normalise(disk, best);
-        ChartMap candidate;
-        candidate.method = ChartMethod::kFreeBoundaryAdapted;
-        if (settings.monitor != Monitor::kNone &&
-            adapted(disk, adjacency, settings, best.uv, candidate)) {
-            normalise(disk, candidate);
-            if (candidate.stretch_l2 < best.stretch_l2) best = std::move(candidate);
-        }
-        return best;
+    if (map.injective) normalise(disk, map);
+    return map;
+}
+
+void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max_linf,
+                     ChartMap& map) {
+    // A chart the free boundary already maps (nearly) isometrically gains nothing.
+    if (settings.monitor == Monitor::kNone || !map.injective || map.stretch_l2 < 1.0005) return;
+    const Halfedges halfedges = build_halfedges(disk.mesh);
+    const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    ChartMap candidate;
+    candidate.method = map.method == ChartMethod::kCircle ? ChartMethod::kCircleAdapted
+                                                          : ChartMethod::kFreeBoundaryAdapted;
+    Settings chosen = settings;
+    if (map.method == ChartMethod::kCircle) chosen.weights = WeightScheme::kMeanValue;
+    if (!adapted(disk, adjacency, chosen, map.uv, candidate)) return;
+    normalise(disk, candidate);
+    // Equalising area can stretch a few triangles more: keep the Linf limit.
+    if (candidate.stretch_l2 < map.stretch_l2 &&
+        candidate.stretch_linf <= std::max(max_linf, map.stretch_linf)) {
+        map = std::move(candidate);
     }
-    return best;  // not injective: the caller splits the chart
 }
 
 }  // namespace raps

@@ -25,12 +25,18 @@ struct ChartMap {
     bool injective = false;
 };
 
-// The free-boundary map, adapted when that lowers the stretch. map.injective is false when the
-// free boundary overlaps itself: the caller should split the chart.
-ChartMap parameterize_chart(const ChartDisk& disk, const Settings& settings);
+// The free-boundary map, its uvs scaled to the chart's 3D area. map.injective is false when
+// the free boundary overlaps itself: the caller should split the chart.
+ChartMap free_boundary_chart_map(const ChartDisk& disk);
+
+// The paper's adaptive step on an injective map, boundary held; replaces the map when the
+// result is injective with a lower L2 stretch and a Linf stretch within max_linf (or the
+// map's own). A map already within 0.05% of isometric is left as it is (nothing to gain).
+void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max_linf,
+                     ChartMap& map);
 
 // The last resort for a chart that cannot be split further: the circle boundary, where mean
 // value weights guarantee a bijection (paper section 3), adapted when that lowers the stretch.
-ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings);
+ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings);  // adapted too
 
 }  // namespace raps

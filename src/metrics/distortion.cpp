@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace raps {
 namespace {
@@ -21,7 +22,55 @@ double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                cosine_uv * cosine_3d + sine_uv * sine_3d));
 }
 
+// Singular values (largest, smallest) of the Jacobian of uv over an orthonormal frame of the
+// 3D triangle, in closed form (no squaring, so no cancellation near an isometry).
+std::pair<double, double> uv_singular_values(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2,
+                                             double area, const Eigen::Vector2d& d1,
+                                             const Eigen::Vector2d& d2) {
+    const double length = e1.norm();
+    const double p2x = e2.dot(e1) / length, p2y = 2.0 * area / length;
+    const double j00 = d1.x() / length, j10 = d1.y() / length;
+    const double j01 = (d2.x() - d1.x() * p2x / length) / p2y;
+    const double j11 = (d2.y() - d1.y() * p2x / length) / p2y;
+    const double q = 0.5 * std::sqrt((j00 + j11) * (j00 + j11) + (j10 - j01) * (j10 - j01));
+    const double s = 0.5 * std::sqrt((j00 - j11) * (j00 - j11) + (j10 + j01) * (j10 + j01));
+    return {q + s, std::abs(q - s)};
+}
+
 }  // namespace
+
+Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
+                        const std::vector<Eigen::Vector2d>& uv,
+                        const std::vector<Triangle>& triangles) {
+    double total_3d = 0, total_uv = 0;
+    std::vector<double> area(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        const Triangle& v = triangles[t];
+        area[t] =
+            0.5 *
+            (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
+        total_3d += area[t];
+        total_uv += 0.5 * std::abs(cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]));
+    }
+    Stretch stretch;
+    if (!(total_3d > 0) || !(total_uv > 0)) return stretch;
+    const double scale = std::sqrt(total_3d / total_uv);
+    const double degenerate = 1e-12 * total_3d / static_cast<double>(triangles.size());
+    double sum = 0;
+    stretch.linf = 0;
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        if (!(area[t] >= degenerate && area[t] > 0)) continue;
+        const Triangle& v = triangles[t];
+        const auto [big, small] =
+            uv_singular_values(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]],
+                               area[t], uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        const double stretch_max = 1.0 / (scale * small), stretch_min = 1.0 / (scale * big);
+        sum += area[t] / total_3d * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);
+        stretch.linf = std::max(stretch.linf, stretch_max);
+    }
+    stretch.l2 = std::sqrt(sum);
+    return stretch;
+}
 
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
                                    const std::vector<Eigen::Vector2d>& uv,
@@ -74,19 +123,10 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
             angle_sum += degrees;
             stats.angle_max_deg = std::max(stats.angle_max_deg, degrees);
         }
-        // Jacobian of uv with respect to an orthonormal frame of the 3D triangle, and its
-        // singular values in closed form (no squaring, so no cancellation near an isometry).
-        const Eigen::Vector3d e1 = positions[v[1]] - positions[v[0]];
-        const Eigen::Vector3d e2 = positions[v[2]] - positions[v[0]];
-        const Eigen::Vector2d d1 = uv[v[1]] - uv[v[0]], d2 = uv[v[2]] - uv[v[0]];
-        const double length = e1.norm();
-        const double p2x = e2.dot(e1) / length, p2y = 2.0 * area[t] / length;
-        const double j00 = d1.x() / length, j10 = d1.y() / length;
-        const double j01 = (d2.x() - d1.x() * p2x / length) / p2y;
-        const double j11 = (d2.y() - d1.y() * p2x / length) / p2y;
-        const double q = 0.5 * std::sqrt((j00 + j11) * (j00 + j11) + (j10 - j01) * (j10 - j01));
-        const double s = 0.5 * std::sqrt((j00 - j11) * (j00 - j11) + (j10 + j01) * (j10 + j01));
-        const double big = scale * (q + s), small = scale * std::abs(q - s);
+        const auto [uv_big, uv_small] =
+            uv_singular_values(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]],
+                               area[t], uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        const double big = scale * uv_big, small = scale * uv_small;
         const double stretch_max = 1.0 / small, stretch_min = 1.0 / big;
         stretch_sum += weight * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);
         stats.stretch_linf = std::max(stats.stretch_linf, stretch_max);

@@ -25,6 +25,15 @@ struct DistortionStats {
     double stretch_linf = 1;  // max G; G >= g singular values of the 3D-from-uv Jacobian
 };
 
+// Sander's L2 and Linf stretch alone (as in DistortionStats), without the angle and area
+// figures: what the atlas needs to judge a chart, many times per run.
+struct Stretch {
+    double l2 = 1, linf = 1;
+};
+Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
+                        const std::vector<Eigen::Vector2d>& uv,
+                        const std::vector<Triangle>& triangles);
+
 // Statistics of the map of `triangles` (indices into positions and uv alike).
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
                                    const std::vector<Eigen::Vector2d>& uv,
