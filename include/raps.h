@@ -228,7 +228,7 @@ enum {
      * seams; 180 turns this off. Default 180. */
     RAPS_PARAM_HARD_EDGE_ANGLE = 35,
     /* float in [1, 10]. Charts are split until the atlas's L2 stretch (Sander et al. 2001) is at
-     * most this. Default 1.008. */
+     * most this. Default 1.01. */
     RAPS_PARAM_ATLAS_MAX_L2_STRETCH = 36,
     /* float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
      * larger ones are split. Default 2.9. */

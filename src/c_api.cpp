@@ -121,7 +121,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 1},
     {RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", true, 0.0, 1.7976931348623157e308, 0.0},
     {RAPS_PARAM_HARD_EDGE_ANGLE, "hard_edge_angle", true, 0.0, 180.0, 180.0},
-    {RAPS_PARAM_ATLAS_MAX_L2_STRETCH, "atlas_max_l2_stretch", true, 1.0, 10.0, 1.008},
+    {RAPS_PARAM_ATLAS_MAX_L2_STRETCH, "atlas_max_l2_stretch", true, 1.0, 10.0, 1.01},
     {RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, "atlas_max_linf_stretch", true, 1.0, 1000.0, 2.9},
 };
 

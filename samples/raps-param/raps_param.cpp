@@ -54,7 +54,7 @@ atlas options:
   --padding N                texels between charts, 0..64 (default 1)
   --weld-tolerance D         weld vertices closer than D (default 0: identical positions)
   --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)
-  --max-l2-stretch S         split charts until the atlas's L2 stretch is <= S (default 1.008)
+  --max-l2-stretch S         split charts until the atlas's L2 stretch is <= S (default 1.01)
   --max-linf-stretch S       split charts stretching any triangle more than S (default 2.9)
   -h, --help                 this text
   --version                  the raps library version

@@ -22,8 +22,8 @@ struct AtlasChart {
 };
 
 struct ChartLimits {
-    double target_stretch_l2 = 1.008;  // for the whole atlas
-    double max_stretch_linf = 2.5;     // for every chart
+    double target_stretch_l2 = 1.01;  // for the whole atlas
+    double max_stretch_linf = 2.5;    // for every chart
 };
 
 // Charts in a deterministic order (by smallest surface triangle), whatever settings.threads.

@@ -374,6 +374,24 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
 
 }  // namespace
 
+double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
+                         const std::vector<Triangle>& triangles) {
+    const Eigen::Vector2d r = best_rotation(uv, false);
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (const Eigen::Vector2d& p : uv) {
+        const Eigen::Vector2d q(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+    }
+    double area = 0;
+    for (const Triangle& t : triangles) {
+        const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    }
+    const double box = (hi.x() - lo.x()) * (hi.y() - lo.y());
+    return box > 0 ? std::min(1.0, area / box) : 1.0;
+}
+
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings) {
     PackResult result;
     const size_t count = charts.size();

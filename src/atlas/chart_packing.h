@@ -37,4 +37,9 @@ struct PackResult {
 
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings);
 
+// How well a chart fills its smallest bounding box: uv area / box area, in (0, 1]. Arches,
+// rings and L-shapes score low and waste packing space around them.
+double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
+                         const std::vector<Triangle>& triangles);
+
 }  // namespace raps

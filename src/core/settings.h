@@ -28,7 +28,7 @@ struct Settings {
     int32_t atlas_padding = 1;         // texels between charts
     double weld_tolerance = 0.0;       // distance under which vertices are one
     double hard_edge_angle_deg = 180;  // dihedral angle above which an edge is a seam (180: off)
-    double atlas_target_l2 = 1.008;    // charts are split until the atlas's L2 stretch meets it
+    double atlas_target_l2 = 1.01;    // charts are split until the atlas's L2 stretch meets it
     double atlas_max_linf = 2.9;       // largest stretch allowed in any chart
 };
 
