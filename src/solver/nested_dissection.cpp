@@ -1,213 +1,934 @@
 #include "solver/nested_dissection.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numeric>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/OrderingMethods>
-#include <Eigen/SparseCore>
+
+#include "solver/vertex_cut.h"
 
 namespace raps {
 namespace {
 
-// Parts no larger than this are ordered by approximate minimum degree instead of being split
-// further: on small parts AMD finds less fill than a geometric separator (measured: README).
-constexpr int32_t kLeafSize = 256;
+// Tuning, measured on face.obj subdivided twice, face.obj, a 400x400 grid and the disk meshes of
+// the test data (see the header comment for the resulting numbers).
+
+// Parts whose vertex weight is at most the leaf size are ordered by recursive coordinate
+// bisection instead of flow-based dissection: below a few thousand vertices the separators are
+// short and cheap geometric cuts lose little, while flows would dominate the running time. Small
+// graphs afford flows further down.
+constexpr double kLeafDivisor = 200;
+constexpr int32_t kMinLeafSize = 256;
+constexpr int32_t kMaxLeafSize = 2048;
+// Leaf pieces of at most this many vertices are ordered by minimum degree (one 64-bit word per
+// row of the elimination graph).
+constexpr int32_t kMinimumDegreeSize = 32;
+// The tree is first built on the coarsest level that still has 1/8 of the vertices, then
+// projected down and refined level by level.
+constexpr double kBaseRatio = 8;
+// Inertial flow runs on the coarsest level where the part has at most weight / 16 vertices,
+// clamped to [64, 1500]: enough resolution for a good cut, few enough vertices for the flows.
+constexpr double kFlowRatio = 16;
+constexpr int32_t kFlowMinVertices = 64;
+constexpr int32_t kFlowMaxVertices = 1500;
+// Source and sink of inertial flow: the first and last 30% of the part along a direction, so
+// both sides of the cut keep at least 30% of it.
+constexpr double kAlpha = 0.3;
+// Refinement bands: the projected separator plus two layers of vertices on each side, taking
+// at most (1 - kKeepFraction) of the part (phase A) or half of a subtree (phase B) so that the
+// source and the sink never vanish.
+constexpr int kBandLayers = 2;
+constexpr double kKeepFraction = 0.2;
+// Heavy-edge matching visits large levels in index order (mesh numberings are local, which
+// keeps the first, most expensive contractions cache friendly) and small ones in a fixed
+// pseudo-random order (index order there leaves stars unmatched and stalls the coarsening).
+constexpr int32_t kShuffleBelow = 50000;
+constexpr int32_t kCoarsestSize = 64;
+
+// A graph of the multilevel hierarchy (Hendrickson & Leland 1995; Karypis & Kumar 1998).
+struct Level {
+    // Adjacency in compressed rows. Level 0 points into the pattern itself, diagonal included
+    // (the loops below skip a vertex's own entry where it matters); coarser levels own their
+    // storage and have no diagonal.
+    const int32_t* offsets = nullptr;
+    const int32_t* neighbors = nullptr;
+    int32_t count = 0;
+    std::vector<int32_t> offset_store, neighbor_store;
+    std::vector<int32_t> edge_weights;        // empty on level 0: all 1
+    std::vector<int32_t> weights;             // fine vertices per vertex
+    const Eigen::Vector3d* points = nullptr;  // level 0: the caller's coordinates
+    std::vector<Eigen::Vector3d> point_store;
+    std::vector<int32_t> parent;  // vertex of the next coarser level
+    // Scratch of phase A: the part being separated is stamped, with local indices and the
+    // weight of the part's fine vertices under each vertex.
+    std::vector<int32_t> stamp, local, part_weight;
+
+    int32_t size() const { return count; }
+    int32_t entries() const { return offsets[count]; }
+};
+
+// Dissection tree nodes are numbered in preorder, so a subtree is an id range: a node is a leaf
+// or has a separator and two children, `left` = id + 1 and `right`.
+struct TreeNode {
+    int32_t left = -1, right = -1;
+    int32_t end = 0;  // the subtree is [id, end)
+};
 
 class Dissection {
   public:
     Dissection(const SparsePattern& pattern, const std::vector<Eigen::Vector3d>& coordinates)
         : pattern_(pattern),
-          coordinates_(coordinates),
-          local_(pattern.size, 0),
-          projection_(pattern.size, 0.0),
-          bin_(pattern.size, 0),
-          part_(pattern.size, 0) {}
+          leaf_size_(static_cast<int32_t>(std::clamp(pattern.size / kLeafDivisor,
+                                                     double{kMinLeafSize}, double{kMaxLeafSize}))) {
+        build_hierarchy(coordinates);
+    }
 
     std::vector<int32_t> run() {
-        std::vector<int32_t> ids(pattern_.size);
-        for (int32_t i = 0; i < pattern_.size; ++i) ids[i] = i;
-        order_.reserve(pattern_.size);
-        dissect(ids);
+        const int32_t n = pattern_.size;
+        order_.reserve(n);
+        if (n == 0) return std::move(order_);
+        // Phase A: recursive bisection of the base level.
+        while (base_ + 1 < levels_.size() &&
+               levels_[base_ + 1].size() * kBaseRatio >= static_cast<double>(n)) {
+            ++base_;
+        }
+        lists_.resize(levels_.size());
+        sides_.resize(levels_.size());
+        {
+            std::vector<int32_t> ids(levels_[base_].size());
+            std::iota(ids.begin(), ids.end(), 0);
+            label_.assign(ids.size(), 0);
+            dissect(ids);
+        }
+        // Phase B: project the tree to the finer levels, refining every separator on every
+        // second level (refining on the others too measured no better).
+        for (size_t l = base_; l-- > 0;) {
+            project_labels(l);
+            if (l % 2 == 0) refine_all(l);
+        }
+        // Phase C: the order.
+        emit();
         return std::move(order_);
     }
 
   private:
-    // Orders the unknowns in ids: both halves first, then the separator between them, so that
-    // eliminating either half creates no fill in the other.
-    void dissect(std::vector<int32_t>& ids) {
-        if (static_cast<int32_t>(ids.size()) <= kLeafSize) {
-            order_leaf(ids);
-            return;
+    // ---------------------------------------------------------------------------------------
+    // The hierarchy.
+
+    void build_hierarchy(const std::vector<Eigen::Vector3d>& coordinates) {
+        const int32_t n = pattern_.size;
+        levels_.emplace_back();
+        Level& fine = levels_.back();
+        fine.offsets = pattern_.row_offsets.data();
+        fine.neighbors = pattern_.columns.data();
+        fine.count = n;
+        fine.weights.assign(n, 1);
+        fine.points = coordinates.data();
+        while (levels_.back().size() > kCoarsestSize) {
+            Level coarse;
+            coarsen(levels_.back(), coarse);
+            if (coarse.size() > 0.9 * levels_.back().size()) break;  // no longer shrinking
+            levels_.push_back(std::move(coarse));
         }
-        // Candidate cuts: planes across the part's principal axes (and the two diagonals
-        // between the first two), at any position that leaves each side 35-65% of the part.
-        // The separator is the side of the cut with fewer vertices touching the other side; the
-        // smallest over all candidates wins. Trying several positions and directions is what
-        // lets a cut avoid the dense regions of a mesh with varying resolution: the principal
-        // axis at the median alone gave 3.7x the factorization flops of METIS on face.obj.
+        levels_.back().parent.clear();
+        for (Level& l : levels_) {
+            l.stamp.assign(l.size(), 0);
+            l.local.assign(l.size(), 0);
+            l.part_weight.assign(l.size(), 0);
+        }
+    }
+
+    // Heavy-edge matching (Karypis & Kumar 1998): each vertex is merged with the unmatched
+    // neighbour it shares the heaviest edge with, the lightest such neighbour on ties.
+    void coarsen(Level& fine, Level& coarse) {
+        const int32_t n = fine.size();
+        std::vector<int32_t> visit(n), match(n, -1);
+        std::iota(visit.begin(), visit.end(), 0);
+        if (n < kShuffleBelow) {
+            uint64_t state = 0x9E3779B97F4A7C15ull;  // fixed seed: the order is deterministic
+            for (int32_t i = n - 1; i > 0; --i) {
+                state = state * 6364136223846793005ull + 1442695040888963407ull;
+                std::swap(visit[i], visit[static_cast<int32_t>((state >> 33) % (i + 1))]);
+            }
+        }
+        const bool unit = fine.edge_weights.empty();
+        for (int32_t v : visit) {
+            if (match[v] >= 0) continue;
+            int32_t best = -1, best_weight = -1;
+            for (int32_t p = fine.offsets[v]; p < fine.offsets[v + 1]; ++p) {
+                const int32_t u = fine.neighbors[p];
+                if (match[u] >= 0 || u == v) continue;
+                const int32_t w = unit ? 1 : fine.edge_weights[p];
+                if (w > best_weight || (w == best_weight && fine.weights[u] < fine.weights[best])) {
+                    best = u;
+                    best_weight = w;
+                }
+            }
+            match[v] = best >= 0 ? best : v;
+            if (best >= 0) match[best] = v;
+        }
+        fine.parent.assign(n, -1);
+        std::vector<int32_t> representative;
+        representative.reserve(n / 2 + 1);
+        for (int32_t v = 0; v < n; ++v) {
+            if (fine.parent[v] >= 0) continue;
+            fine.parent[v] = fine.parent[match[v]] = static_cast<int32_t>(representative.size());
+            representative.push_back(v);
+        }
+        const int32_t m = static_cast<int32_t>(representative.size());
+        coarse.weights.resize(m);
+        coarse.point_store.resize(m);
+        coarse.offset_store.resize(m + 1);
+        // Reserved, not resized: only the pages written are ever touched.
+        std::vector<int32_t>& out_neighbors = coarse.neighbor_store;
+        std::vector<int32_t>& out_weights = coarse.edge_weights;
+        out_neighbors.reserve(fine.entries());
+        out_weights.reserve(fine.entries());
+        int32_t* out_offsets = coarse.offset_store.data();
+        const int32_t* parent = fine.parent.data();
+        // Merging the two rows: short rows are searched linearly (in cache); rows longer than
+        // kShortRow switch to slot[d], the position of coarse neighbour d in the row being
+        // built (valid if >= the row's start), which costs a cache miss per entry.
+        constexpr int32_t kShortRow = 16;
+        std::vector<int32_t> slot(m, -1);
+        int32_t entries = 0;
+        out_offsets[0] = 0;
+        for (int32_t c = 0; c < m; ++c) {
+            const int32_t a = representative[c], b = match[a];
+            const int32_t row_start = entries;
+            bool long_row = false;
+            for (int q = 0; q < (a == b ? 1 : 2); ++q) {
+                const int32_t v = q == 0 ? a : b;
+                for (int32_t p = fine.offsets[v]; p < fine.offsets[v + 1]; ++p) {
+                    const int32_t d = parent[fine.neighbors[p]];
+                    if (d == c) continue;
+                    const int32_t w = unit ? 1 : fine.edge_weights[p];
+                    int32_t at = -1;
+                    if (long_row) {
+                        if (slot[d] >= row_start) at = slot[d];
+                    } else {
+                        for (int32_t i = row_start; i < entries; ++i) {
+                            if (out_neighbors[i] == d) at = i;
+                        }
+                    }
+                    if (at >= 0) {
+                        out_weights[at] += w;
+                        continue;
+                    }
+                    out_neighbors.push_back(d);
+                    out_weights.push_back(w);
+                    if (long_row) slot[d] = entries;
+                    ++entries;
+                    if (!long_row && entries - row_start > kShortRow) {
+                        long_row = true;
+                        for (int32_t i = row_start; i < entries; ++i) slot[out_neighbors[i]] = i;
+                    }
+                }
+            }
+            out_offsets[c + 1] = entries;
+            const int32_t wa = fine.weights[a], wb = a == b ? 0 : fine.weights[b];
+            coarse.weights[c] = wa + wb;
+            coarse.point_store[c] = (wa * fine.points[a] + wb * fine.points[b]) / (wa + wb);
+        }
+        coarse.points = coarse.point_store.data();
+        coarse.offsets = coarse.offset_store.data();
+        coarse.neighbors = coarse.neighbor_store.data();
+        coarse.count = m;
+    }
+
+    // ---------------------------------------------------------------------------------------
+    // Phase A: recursive bisection of the base level, each cut found multilevel: inertial flow
+    // on a coarse level, then minimum cuts in a band around the projected separator on every
+    // level down to the base (the V-cycle of METIS, with flows in place of Fiduccia-Mattheyses).
+
+    int32_t new_node() {
+        nodes_.emplace_back();
+        tree_parent_.push_back(-1);
+        return static_cast<int32_t>(nodes_.size()) - 1;
+    }
+
+    // Builds the subtree of the part `ids` (base-level vertices); returns its root.
+    int32_t dissect(std::vector<int32_t>& ids) {
+        const int32_t node = new_node();
+        const Level& base = levels_[base_];
+        int64_t weight = 0;
+        for (int32_t v : ids) weight += base.weights[v];
+        bool split = weight > leaf_size_ && ids.size() >= 3;
+        std::vector<int32_t> left_ids, right_ids;
+        if (split) {
+            separate(ids);
+            const std::vector<int8_t>& side = sides_[base_];
+            for (size_t k = 0; k < ids.size(); ++k) {
+                if (side[k] == 0) left_ids.push_back(ids[k]);
+                if (side[k] == 2) right_ids.push_back(ids[k]);
+                if (side[k] == 1) label_[ids[k]] = node;
+            }
+            // A cut with an empty side does not help (a degenerate part): keep it whole.
+            split = !left_ids.empty() && !right_ids.empty();
+        }
+        if (!split) {
+            for (int32_t v : ids) label_[v] = node;
+            nodes_[node].end = node + 1;
+            return node;
+        }
+        std::vector<int32_t>().swap(ids);  // release before recursing
+        const int32_t left = dissect(left_ids);
+        const int32_t right = dissect(right_ids);
+        nodes_[node].left = left;
+        nodes_[node].right = right;
+        nodes_[node].end = static_cast<int32_t>(nodes_.size());
+        tree_parent_[left] = tree_parent_[right] = node;
+        return node;
+    }
+
+    // Fills sides_[base_] for ids: 0 left, 1 separator, 2 right.
+    void separate(const std::vector<int32_t>& ids) {
+        const int32_t part = ++stamp_;
+        lists_[base_] = ids;
+        int64_t weight = 0;
+        {
+            Level& l = levels_[base_];
+            for (size_t k = 0; k < ids.size(); ++k) {
+                l.stamp[ids[k]] = part;
+                l.local[ids[k]] = static_cast<int32_t>(k);
+                l.part_weight[ids[k]] = l.weights[ids[k]];
+                weight += l.weights[ids[k]];
+            }
+        }
+        // The part on the coarser levels: the vertices with fine vertices in it.
+        const int32_t target = std::clamp(static_cast<int32_t>(weight / kFlowRatio),
+                                          kFlowMinVertices, kFlowMaxVertices);
+        size_t top = base_;
+        while (top + 1 < levels_.size() && static_cast<int32_t>(lists_[top].size()) > target) {
+            const Level& l = levels_[top];
+            Level& c = levels_[top + 1];
+            std::vector<int32_t>& up = lists_[top + 1];
+            up.clear();
+            for (int32_t a : lists_[top]) {
+                const int32_t p = l.parent[a];
+                if (c.stamp[p] != part) {
+                    c.stamp[p] = part;
+                    c.local[p] = static_cast<int32_t>(up.size());
+                    c.part_weight[p] = 0;
+                    up.push_back(p);
+                }
+                c.part_weight[p] += l.part_weight[a];
+            }
+            ++top;
+        }
+        inertial_flow(top, part);
+        for (size_t l = top; l-- > base_;) refine(l, part);
+    }
+
+    // Inertial flow (Schild & Sommer 2015): along each of a few directions, the minimum vertex
+    // cut between the first and the last kAlpha of the part. The cut may bend anywhere in the
+    // middle 40%, so it goes around dense regions of the mesh that any plane would cross.
+    void inertial_flow(size_t l, int32_t part) {
+        const Level& level = levels_[l];
+        const std::vector<int32_t>& list = lists_[l];
+        const int32_t n = static_cast<int32_t>(list.size());
+        double total = 0;
         Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-        for (int32_t i : ids) centroid += coordinates_[i];
-        centroid /= static_cast<double>(ids.size());
-        Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-        for (int32_t i : ids) {
-            const Eigen::Vector3d d = coordinates_[i] - centroid;
-            covariance += d * d.transpose();
+        for (int32_t a : list) {
+            total += level.part_weight[a];
+            centroid += level.part_weight[a] * level.points[a];
         }
+        centroid /= total;
+        Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+        for (int32_t a : list) {
+            const Eigen::Vector3d d = level.points[a] - centroid;
+            covariance += level.part_weight[a] * d * d.transpose();
+        }
+        // The principal axes in the part's plane and the two diagonals between them; the
+        // normal axis never helped.
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
         const Eigen::Vector3d major = eigen.eigenvectors().col(2);
         const Eigen::Vector3d middle = eigen.eigenvectors().col(1);
-        const Eigen::Vector3d directions[] = {major, middle, eigen.eigenvectors().col(0),
-                                              (major + middle).normalized(),
+        const Eigen::Vector3d directions[] = {major, middle, (major + middle).normalized(),
                                               (major - middle).normalized()};
-        Cut best;
+        std::vector<int8_t>& best = sides_[l];
+        std::vector<int8_t> side(n);
+        std::vector<double> key(n);
+        std::vector<int32_t> rank(n);
+        int64_t best_cut = std::numeric_limits<int64_t>::max(), best_imbalance = 0;
         for (const Eigen::Vector3d& direction : directions) {
-            const Cut cut = best_cut(ids, direction);
-            if (cut.separator_size < best.separator_size) best = cut;
+            for (int32_t k = 0; k < n; ++k) key[k] = direction.dot(level.points[list[k]]);
+            // Ties broken by index, so that coincident points still split.
+            std::iota(rank.begin(), rank.end(), 0);
+            auto less = [&](int32_t a, int32_t b) {
+                return key[a] < key[b] || (key[a] == key[b] && a < b);
+            };
+            const int32_t lo = std::max<int32_t>(1, static_cast<int32_t>(kAlpha * n));
+            const int32_t hi = std::max(lo + 1, n - lo);
+            std::nth_element(rank.begin(), rank.begin() + lo, rank.end(), less);
+            std::nth_element(rank.begin() + lo, rank.begin() + hi, rank.end(), less);
+            band_.clear();
+            int64_t fixed_left = 0, fixed_right = 0;
+            for (int32_t k = 0; k < lo; ++k) {
+                side[rank[k]] = 0;
+                fixed_left += level.part_weight[list[rank[k]]];
+            }
+            for (int32_t k = lo; k < hi; ++k) {
+                side[rank[k]] = 1;
+                band_.push_back(rank[k]);
+            }
+            for (int32_t k = hi; k < n; ++k) side[rank[k]] = 2;
+            // A sink vertex next to a source vertex (a long edge) would make every cut
+            // infinite: let it join the band.
+            for (int32_t k = hi; k < n; ++k) {
+                const int32_t a = list[rank[k]];
+                bool touches = false;
+                for (int32_t p = level.offsets[a]; p < level.offsets[a + 1] && !touches; ++p) {
+                    const int32_t b = level.neighbors[p];
+                    touches = level.stamp[b] == part && side[level.local[b]] == 0;
+                }
+                if (touches) {
+                    side[rank[k]] = 1;
+                    band_.push_back(rank[k]);
+                } else {
+                    fixed_right += level.part_weight[a];
+                }
+            }
+            // Directions whose flow reaches the best cut so far are abandoned early.
+            int64_t cut = 0, imbalance = 0;
+            if (!band_cut(l, part, side, best_cut, fixed_left, fixed_right, cut, imbalance)) {
+                continue;
+            }
+            if (cut < best_cut || (cut == best_cut && imbalance < best_imbalance)) {
+                best_cut = cut;
+                best_imbalance = imbalance;
+                best = side;
+            }
         }
-        const int32_t left = ++next_label_, right = ++next_label_;
-        size_t left_count = 0;
-        for (int32_t i : ids) {
-            part_[i] = best.direction.dot(coordinates_[i]) < best.threshold ? left : right;
-            left_count += part_[i] == left;
-        }
-        if (left_count == 0 || left_count == ids.size()) {
-            // No plane splits the part (its points are bunched up): split at the median along
-            // the major axis, ties broken by index, which always halves it.
-            const size_t half = ids.size() / 2;
-            std::nth_element(ids.begin(), ids.begin() + half, ids.end(), [&](int32_t a, int32_t b) {
-                const double pa = major.dot(coordinates_[a]), pb = major.dot(coordinates_[b]);
-                return pa < pb || (pa == pb && a < b);
-            });
-            for (size_t k = 0; k < ids.size(); ++k) part_[ids[k]] = k < half ? left : right;
-        }
+    }
 
-        // Vertex separator: the side of the cut with fewer vertices touching the other side.
-        std::vector<int32_t> touch_left, touch_right;
-        for (int32_t i : ids) {
-            const int32_t other = part_[i] == left ? right : left;
-            for (int32_t p = pattern_.row_offsets[i]; p < pattern_.row_offsets[i + 1]; ++p) {
-                if (part_[pattern_.columns[p]] == other) {
-                    (part_[i] == left ? touch_left : touch_right).push_back(i);
-                    break;
+    // Projects the sides of the next coarser level to level l and moves the separator to the
+    // minimum cut of a band around it.
+    void refine(size_t l, int32_t part) {
+        const Level& level = levels_[l];
+        const Level& coarse = levels_[l + 1];
+        const std::vector<int32_t>& list = lists_[l];
+        const std::vector<int8_t>& coarse_side = sides_[l + 1];
+        const int32_t n = static_cast<int32_t>(list.size());
+        std::vector<int8_t>& side = sides_[l];
+        side.resize(n);
+        band_.clear();
+        int64_t fixed[3] = {0, 0, 0}, total = 0;
+        for (int32_t k = 0; k < n; ++k) {
+            side[k] = coarse_side[coarse.local[level.parent[list[k]]]];
+            if (side[k] == 1) band_.push_back(k);
+            fixed[side[k]] += level.part_weight[list[k]];
+            total += level.part_weight[list[k]];
+        }
+        const int64_t keep = static_cast<int64_t>(kKeepFraction * total);
+        size_t layer_start = 0;
+        for (int layer = 0; layer < kBandLayers; ++layer) {
+            const size_t layer_end = band_.size();
+            for (size_t i = layer_start; i < layer_end; ++i) {
+                const int32_t a = list[band_[i]];
+                for (int32_t p = level.offsets[a]; p < level.offsets[a + 1]; ++p) {
+                    const int32_t b = level.neighbors[p];
+                    if (level.stamp[b] != part) continue;
+                    const int32_t kb = level.local[b];
+                    if (side[kb] != 1 && fixed[side[kb]] - level.part_weight[b] >= keep) {
+                        fixed[side[kb]] -= level.part_weight[b];
+                        side[kb] = 1;
+                        band_.push_back(kb);
+                    }
+                }
+            }
+            layer_start = layer_end;
+        }
+        int64_t cut = 0, imbalance = 0;
+        band_cut(l, part, side, std::numeric_limits<int64_t>::max(), fixed[0], fixed[2], cut,
+                 imbalance);
+    }
+
+    // Minimum vertex cut through band_ (local indices of side 1) between the vertices of side 0
+    // and side 2 of the part on level l; of the two extreme minimum cuts, the more balanced.
+    // Rewrites the band's sides; returns false (sides undefined) once the flow reaches limit.
+    bool band_cut(size_t l, int32_t part, std::vector<int8_t>& side, int64_t limit,
+                  int64_t fixed_left, int64_t fixed_right, int64_t& cut, int64_t& imbalance) {
+        const Level& level = levels_[l];
+        const std::vector<int32_t>& list = lists_[l];
+        const int32_t f = static_cast<int32_t>(band_.size());
+        if (band_index_.size() < list.size()) band_index_.resize(list.size());
+        for (int32_t x = 0; x < f; ++x) band_index_[band_[x]] = x;
+        flow_.begin(f);
+        for (int32_t x = 0; x < f; ++x) {
+            const int32_t a = list[band_[x]];
+            for (int32_t p = level.offsets[a]; p < level.offsets[a + 1]; ++p) {
+                const int32_t b = level.neighbors[p];
+                if (level.stamp[b] != part || b == a) continue;
+                const int8_t sb = side[level.local[b]];
+                if (sb == 1) {
+                    flow_.add_neighbor(band_index_[level.local[b]]);
+                } else if (sb == 0) {
+                    flow_.touch_source();
+                } else {
+                    flow_.touch_sink();
+                }
+            }
+            flow_.end_vertex();
+        }
+        if (!flow_.solve(limit)) return false;
+        const int64_t imbalance_a = imbalance_of(level, list, fixed_left, fixed_right, true);
+        const int64_t imbalance_b = imbalance_of(level, list, fixed_left, fixed_right, false);
+        const bool source_cut = imbalance_a <= imbalance_b;
+        for (int32_t x = 0; x < f; ++x) {
+            side[band_[x]] = source_cut ? flow_.source_side(x) : flow_.sink_side(x);
+        }
+        cut = flow_.cut_size();
+        imbalance = source_cut ? imbalance_a : imbalance_b;
+        return true;
+    }
+
+    int64_t imbalance_of(const Level& level, const std::vector<int32_t>& list, int64_t left,
+                         int64_t right, bool source_cut) const {
+        for (int32_t x = 0; x < static_cast<int32_t>(band_.size()); ++x) {
+            const int8_t s = source_cut ? flow_.source_side(x) : flow_.sink_side(x);
+            const int64_t w = level.part_weight[list[band_[x]]];
+            left += s == 0 ? w : 0;
+            right += s == 2 ? w : 0;
+        }
+        return std::abs(left - right);
+    }
+
+    // ---------------------------------------------------------------------------------------
+    // Phase B: every vertex of a level carries the tree node it belongs to (a leaf part or the
+    // separator of an inner node). Labels are projected to the next finer level, where every
+    // separator, top down, moves to the minimum cut of a band around it.
+
+    bool internal(int32_t node) const { return nodes_[node].left >= 0; }
+
+    void project_labels(size_t l) {
+        const Level& level = levels_[l];
+        std::vector<int32_t> fine_label(level.size());
+        for (int32_t v = 0; v < level.size(); ++v) fine_label[v] = label_[level.parent[v]];
+        label_.swap(fine_label);
+    }
+
+    void refine_all(size_t l) {
+        const Level& level = levels_[l];
+        const int32_t count = static_cast<int32_t>(nodes_.size());
+        // Weight of every subtree (an id range): prefix sums over the node ids.
+        std::vector<int64_t> prefix(count + 1, 0);
+        separators_.assign(count, {});
+        for (int32_t v = 0; v < level.size(); ++v) {
+            prefix[label_[v] + 1] += level.weights[v];
+            if (internal(label_[v])) separators_[label_[v]].push_back(v);
+        }
+        for (int32_t i = 0; i < count; ++i) prefix[i + 1] += prefix[i];
+        for (int32_t node = 0; node < count; ++node) {
+            if (internal(node)) refine_separator(l, node, prefix);
+        }
+    }
+
+    void refine_separator(size_t l, int32_t node, const std::vector<int64_t>& prefix) {
+        Level& level = levels_[l];
+        const int32_t a = nodes_[node].left, b = nodes_[node].right, end = nodes_[node].end;
+        // The band: the separator (its list may hold stale or repeated entries) and layers of
+        // the subtrees on both sides, each side keeping at least half of its weight outside.
+        const int32_t mark = ++stamp_;
+        band_.clear();
+        for (int32_t v : separators_[node]) {
+            if (label_[v] == node && level.stamp[v] != mark) {
+                level.stamp[v] = mark;
+                band_.push_back(v);
+            }
+        }
+        if (band_.empty()) return;
+        int64_t room[2] = {(prefix[b] - prefix[a]) / 2, (prefix[end] - prefix[b]) / 2};
+        size_t layer_start = 0;
+        for (int layer = 0; layer < kBandLayers; ++layer) {
+            const size_t layer_end = band_.size();
+            for (size_t i = layer_start; i < layer_end; ++i) {
+                const int32_t v = band_[i];
+                for (int32_t p = level.offsets[v]; p < level.offsets[v + 1]; ++p) {
+                    const int32_t u = level.neighbors[p];
+                    const int32_t lu = label_[u];
+                    if (lu <= node || lu >= end || level.stamp[u] == mark) continue;
+                    int64_t& r = room[lu < b ? 0 : 1];
+                    if (r < level.weights[u]) continue;
+                    r -= level.weights[u];
+                    level.stamp[u] = mark;
+                    band_.push_back(u);
+                }
+            }
+            layer_start = layer_end;
+        }
+        const int32_t f = static_cast<int32_t>(band_.size());
+        int64_t band_left = 0, band_right = 0;
+        for (int32_t x = 0; x < f; ++x) {
+            const int32_t v = band_[x];
+            level.local[v] = x;
+            if (label_[v] != node) (label_[v] < b ? band_left : band_right) += level.weights[v];
+        }
+        flow_.begin(f);
+        for (int32_t x = 0; x < f; ++x) {
+            const int32_t v = band_[x];
+            for (int32_t p = level.offsets[v]; p < level.offsets[v + 1]; ++p) {
+                const int32_t u = level.neighbors[p];
+                if (u == v) continue;
+                if (level.stamp[u] == mark) {
+                    flow_.add_neighbor(level.local[u]);
+                    continue;
+                }
+                const int32_t lu = label_[u];
+                if (lu < a || lu >= end) continue;  // outside the subtree: ancestors' separators
+                if (lu < b) {
+                    flow_.touch_source();
+                } else {
+                    flow_.touch_sink();
+                }
+            }
+            flow_.end_vertex();
+        }
+        flow_.solve(std::numeric_limits<int64_t>::max());
+        int64_t left[2] = {prefix[b] - prefix[a] - band_left, prefix[b] - prefix[a] - band_left};
+        int64_t right[2] = {prefix[end] - prefix[b] - band_right,
+                            prefix[end] - prefix[b] - band_right};
+        for (int32_t x = 0; x < f; ++x) {
+            const int64_t w = level.weights[band_[x]];
+            const int8_t sides[2] = {flow_.source_side(x), flow_.sink_side(x)};
+            for (int c = 0; c < 2; ++c) {
+                left[c] += sides[c] == 0 ? w : 0;
+                right[c] += sides[c] == 2 ? w : 0;
+            }
+        }
+        const bool source_cut = std::abs(left[0] - right[0]) <= std::abs(left[1] - right[1]);
+        // Relabel. The separator joins `node`; a vertex that changes sides joins the lowest
+        // common ancestor of its neighbours' nodes on its new side (a part, or a separator
+        // refined later in this pass), which keeps every edge between a node and one of its
+        // descendants: the order stays a nested dissection.
+        pending_.clear();
+        for (int32_t x = 0; x < f; ++x) {
+            const int32_t v = band_[x];
+            const int8_t s = source_cut ? flow_.source_side(x) : flow_.sink_side(x);
+            if (s == 1) {
+                label_[v] = node;
+                continue;
+            }
+            const int32_t lo = s == 0 ? a : b, hi = s == 0 ? b : end;
+            if (label_[v] >= lo && label_[v] < hi) continue;
+            label_[v] = -1 - s;  // no node yet; the side is remembered
+            pending_.push_back(v);
+        }
+        bool progress = true;
+        while (!pending_.empty() && progress) {
+            progress = false;
+            size_t kept = 0;
+            for (int32_t v : pending_) {
+                const int32_t s = -1 - label_[v];
+                const int32_t lo = s == 0 ? a : b, hi = s == 0 ? b : end;
+                int32_t found = -1;
+                for (int32_t p = level.offsets[v]; p < level.offsets[v + 1]; ++p) {
+                    const int32_t lu = label_[level.neighbors[p]];
+                    if (lu < lo || lu >= hi) continue;
+                    if (found < 0) {
+                        found = lu;
+                    } else {
+                        while (lu < found || lu >= nodes_[found].end) found = tree_parent_[found];
+                    }
+                }
+                if (found >= 0) {
+                    label_[v] = found;
+                    if (internal(found)) separators_[found].push_back(v);
+                    progress = true;
+                } else {
+                    pending_[kept++] = v;
+                }
+            }
+            pending_.resize(kept);
+        }
+        for (int32_t v : pending_) {  // no neighbour on its side: the side's root takes it
+            const int32_t root = label_[v] == -1 ? a : b;
+            label_[v] = root;
+            if (internal(root)) separators_[root].push_back(v);
+        }
+    }
+
+    // ---------------------------------------------------------------------------------------
+    // Phase C: postorder of the tree, every separator after both of its subtrees.
+
+    void emit() {
+        const Level& fine = levels_[0];
+        const int32_t count = static_cast<int32_t>(nodes_.size());
+        std::vector<int32_t> offsets(count + 1, 0), members(fine.size());
+        for (int32_t v = 0; v < fine.size(); ++v) ++offsets[label_[v] + 1];
+        for (int32_t i = 0; i < count; ++i) offsets[i + 1] += offsets[i];
+        {
+            std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
+            for (int32_t v = 0; v < fine.size(); ++v) members[fill[label_[v]]++] = v;
+        }
+        std::vector<std::pair<int32_t, bool>> stack{{0, false}};  // (node, children done)
+        while (!stack.empty()) {
+            const auto [node, done] = stack.back();
+            stack.pop_back();
+            const int32_t* first = members.data() + offsets[node];
+            const int32_t size = offsets[node + 1] - offsets[node];
+            if (!internal(node)) {
+                order_leaf(first, size);
+            } else if (done) {
+                order_.insert(order_.end(), first, first + size);
+            } else {
+                stack.push_back({node, true});
+                stack.push_back({nodes_[node].right, false});
+                stack.push_back({nodes_[node].left, false});
+            }
+        }
+    }
+
+    // A leaf: its induced subgraph is copied into compact local arrays, which stay in cache
+    // while recursive coordinate bisection passes over them.
+    void order_leaf(const int32_t* ids, int32_t m) {
+        if (m == 0) return;
+        Level& fine = levels_[0];
+        const int32_t mark = ++stamp_;
+        for (int32_t k = 0; k < m; ++k) {
+            fine.stamp[ids[k]] = mark;
+            fine.local[ids[k]] = k;
+        }
+        leaf_offsets_.resize(m + 1);
+        leaf_adjacency_.clear();
+        leaf_points_.resize(m);
+        leaf_offsets_[0] = 0;
+        for (int32_t k = 0; k < m; ++k) {
+            const int32_t v = ids[k];
+            for (int32_t p = fine.offsets[v]; p < fine.offsets[v + 1]; ++p) {
+                const int32_t u = fine.neighbors[p];
+                if (fine.stamp[u] == mark && u != v) leaf_adjacency_.push_back(fine.local[u]);
+            }
+            leaf_offsets_[k + 1] = static_cast<int32_t>(leaf_adjacency_.size());
+            leaf_points_[k] = fine.points[v];
+        }
+        leaf_piece_.assign(m, 0);
+        leaf_position_.resize(m);
+        leaf_order_.clear();
+        std::vector<int32_t> local_ids(m);
+        std::iota(local_ids.begin(), local_ids.end(), 0);
+        bisect_leaf(local_ids.data(), m);
+        for (int32_t k : leaf_order_) order_.push_back(ids[k]);
+    }
+
+    // Recursive coordinate bisection: the best axis-aligned cut over the three axes and 32
+    // positions each, within 35-65% balance, scored by the smaller one-sided boundary; a single
+    // pass over the edges scores all 96 candidates (for each vertex, the lowest and highest bin
+    // among its neighbours tell which cuts it touches). Works in place on local ids.
+    void bisect_leaf(int32_t* ids, int32_t m) {
+        if (m <= kMinimumDegreeSize) {
+            minimum_degree_leaf(ids, m);
+            return;
+        }
+        constexpr int kBins = 32;
+        const int32_t piece = ++leaf_piece_count_;
+        Eigen::Vector3d lo = leaf_points_[ids[0]], hi = lo;
+        for (int32_t k = 0; k < m; ++k) {
+            leaf_piece_[ids[k]] = piece;
+            leaf_position_[ids[k]] = k;
+            lo = lo.cwiseMin(leaf_points_[ids[k]]);
+            hi = hi.cwiseMax(leaf_points_[ids[k]]);
+        }
+        const size_t size3 = 3 * static_cast<size_t>(m);
+        if (bins_.size() < 3 * size3) bins_.resize(3 * size3);
+        int* bin = bins_.data();  // three per vertex, one per axis
+        int* low = bin + size3;   // lowest neighbour bin
+        int* high = low + size3;  // highest neighbour bin
+        double scale[3];
+        for (int ax = 0; ax < 3; ++ax) {
+            scale[ax] = hi[ax] > lo[ax] ? kBins / (hi[ax] - lo[ax]) : 0.0;
+        }
+        for (int32_t k = 0; k < m; ++k) {
+            const Eigen::Vector3d& x = leaf_points_[ids[k]];
+            for (int ax = 0; ax < 3; ++ax) {
+                bin[3 * k + ax] =
+                    std::min(kBins - 1, static_cast<int>((x[ax] - lo[ax]) * scale[ax]));
+            }
+        }
+        // count[b]: vertices in bin b; lt / rt: difference arrays of the sizes of the left and
+        // right one-sided boundaries for the cut between bins b - 1 and b.
+        int32_t count[3][kBins + 1] = {}, lt[3][kBins + 2] = {}, rt[3][kBins + 2] = {};
+        for (int32_t k = 0; k < m; ++k) {
+            const int32_t v = ids[k];
+            const int own[3] = {bin[3 * k], bin[3 * k + 1], bin[3 * k + 2]};
+            int l0 = own[0], l1 = own[1], l2 = own[2], h0 = own[0], h1 = own[1], h2 = own[2];
+            for (int32_t p = leaf_offsets_[v]; p < leaf_offsets_[v + 1]; ++p) {
+                const int32_t u = leaf_adjacency_[p];
+                if (leaf_piece_[u] != piece) continue;
+                const int* bu = bin + 3 * leaf_position_[u];
+                l0 = std::min(l0, bu[0]);
+                h0 = std::max(h0, bu[0]);
+                l1 = std::min(l1, bu[1]);
+                h1 = std::max(h1, bu[1]);
+                l2 = std::min(l2, bu[2]);
+                h2 = std::max(h2, bu[2]);
+            }
+            const int lows[3] = {l0, l1, l2}, highs[3] = {h0, h1, h2};
+            for (int ax = 0; ax < 3; ++ax) {
+                low[3 * k + ax] = lows[ax];
+                high[3 * k + ax] = highs[ax];
+                ++count[ax][own[ax]];
+                ++lt[ax][own[ax] + 1];
+                --lt[ax][highs[ax] + 1];
+                ++rt[ax][lows[ax] + 1];
+                --rt[ax][own[ax] + 1];
+            }
+        }
+        int64_t best = std::numeric_limits<int64_t>::max();
+        int best_axis = 0, best_bin = 0;
+        bool left_boundary = true;  // the separator is the left side's boundary
+        for (int ax = 0; ax < 3; ++ax) {
+            if (scale[ax] == 0.0) continue;
+            int64_t below = count[ax][0], ls = lt[ax][0] + lt[ax][1], rs = rt[ax][0] + rt[ax][1];
+            for (int b = 1; b < kBins; ++b) {
+                if (below >= 0.35 * m && below <= 0.65 * m && std::min(ls, rs) < best) {
+                    best = std::min(ls, rs);
+                    best_axis = ax;
+                    best_bin = b;
+                    left_boundary = ls <= rs;
+                }
+                below += count[ax][b];
+                ls += lt[ax][b + 1];
+                rs += rt[ax][b + 1];
+            }
+        }
+        std::vector<int8_t> side(m);  // 0 left, 1 separator, 2 right
+        if (best == std::numeric_limits<int64_t>::max()) {
+            // No axis splits it (coincident points): halve by position, one-sided boundary.
+            for (int32_t k = 0; k < m; ++k) {
+                side[k] = k < m / 2 ? 0 : 2;
+                if (k >= m / 2) continue;
+                const int32_t v = ids[k];
+                for (int32_t p = leaf_offsets_[v]; p < leaf_offsets_[v + 1]; ++p) {
+                    const int32_t u = leaf_adjacency_[p];
+                    if (leaf_piece_[u] == piece && leaf_position_[u] >= m / 2) side[k] = 1;
+                }
+            }
+        } else {
+            const int ax = best_axis;
+            for (int32_t k = 0; k < m; ++k) {
+                if (bin[3 * k + ax] < best_bin) {
+                    side[k] = left_boundary && high[3 * k + ax] >= best_bin ? 1 : 0;
+                } else {
+                    side[k] = !left_boundary && low[3 * k + ax] < best_bin ? 1 : 2;
                 }
             }
         }
-        std::vector<int32_t>& separator =
-            touch_left.size() <= touch_right.size() ? touch_left : touch_right;
-        const int32_t separator_label = ++next_label_;
-        for (int32_t i : separator) part_[i] = separator_label;
-
-        std::vector<int32_t> left_ids, right_ids;
-        for (int32_t i : ids) {
-            if (part_[i] == left) left_ids.push_back(i);
-            if (part_[i] == right) right_ids.push_back(i);
+        // In place: left, right, separator; order both halves, then the separator.
+        const std::vector<int32_t> copy(ids, ids + m);
+        int32_t at = 0, sizes[2] = {0, 0};
+        for (int8_t which : {0, 2, 1}) {
+            for (int32_t k = 0; k < m; ++k) {
+                if (side[k] == which) ids[at++] = copy[k];
+            }
+            if (which != 1) sizes[which / 2] = at - (which == 0 ? 0 : sizes[0]);
         }
-        std::vector<int32_t>().swap(ids);  // release before recursing: depth is log2(n)
-        dissect(left_ids);
-        dissect(right_ids);
-        order_.insert(order_.end(), separator.begin(), separator.end());
+        bisect_leaf(ids, sizes[0]);
+        bisect_leaf(ids + sizes[0], sizes[1]);
+        leaf_order_.insert(leaf_order_.end(), ids + sizes[0] + sizes[1], ids + m);
     }
 
-    struct Cut {
-        Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
-        double threshold = 0;
-        int64_t separator_size = std::numeric_limits<int64_t>::max();
-    };
-
-    // The best plane perpendicular to `direction`: the projections are binned, and for every
-    // bin boundary the sizes of both one-sided separators are counted at once (a vertex on the
-    // left touches the right for every boundary between its own bin and its highest neighbour's
-    // bin), so all positions cost one pass over the part's edges.
-    Cut best_cut(const std::vector<int32_t>& ids, const Eigen::Vector3d& direction) {
-        constexpr int kBins = 256;
-        double low = std::numeric_limits<double>::max(), high = -low;
-        for (int32_t i : ids) {
-            const double p = direction.dot(coordinates_[i]);
-            projection_[i] = p;
-            low = std::min(low, p);
-            high = std::max(high, p);
+    // Minimum degree (Tinney & Walker 1967; Rose 1972) on the explicit elimination graph of a
+    // small piece, rows as bitsets: eliminating v joins its neighbours into a clique.
+    void minimum_degree_leaf(const int32_t* ids, int32_t m) {
+        if (m == 0) return;
+        const int32_t piece = ++leaf_piece_count_;
+        for (int32_t k = 0; k < m; ++k) {
+            leaf_piece_[ids[k]] = piece;
+            leaf_position_[ids[k]] = k;
         }
-        Cut cut;
-        cut.direction = direction;
-        if (!(high > low)) return cut;
-        const double scale = kBins / (high - low);
-        const int32_t part_label = part_[ids[0]];
-        for (int32_t i : ids) {
-            bin_[i] = std::min(kBins - 1, static_cast<int>((projection_[i] - low) * scale));
-        }
-        // count[b]: vertices in bin b; left_touch[b] / right_touch[b]: difference arrays of the
-        // one-sided separator sizes for the cut between bins b - 1 and b.
-        std::vector<int64_t> count(kBins + 1, 0), left_touch(kBins + 2, 0),
-            right_touch(kBins + 2, 0);
-        for (int32_t i : ids) {
-            int lowest = bin_[i], highest = bin_[i];
-            for (int32_t p = pattern_.row_offsets[i]; p < pattern_.row_offsets[i + 1]; ++p) {
-                const int32_t j = pattern_.columns[p];
-                if (part_[j] != part_label) continue;
-                lowest = std::min(lowest, bin_[j]);
-                highest = std::max(highest, bin_[j]);
-            }
-            ++count[bin_[i]];
-            // i is on the left of cuts bin_[i] + 1 .. highest and touches the right there.
-            ++left_touch[bin_[i] + 1];
-            --left_touch[highest + 1];
-            // i is on the right of cuts lowest + 1 .. bin_[i] and touches the left there.
-            ++right_touch[lowest + 1];
-            --right_touch[bin_[i] + 1];
-        }
-        const int64_t total = static_cast<int64_t>(ids.size());
-        int64_t below = count[0], left_size = left_touch[0] + left_touch[1];
-        int64_t right_size = right_touch[0] + right_touch[1];
-        for (int b = 1; b < kBins; ++b) {
-            // Cut between bins b - 1 and b: `below` vertices on the left.
-            if (below >= 0.35 * total && below <= 0.65 * total) {
-                const int64_t size = std::min(left_size, right_size);
-                if (size < cut.separator_size) {
-                    cut.separator_size = size;
-                    cut.threshold = low + b / scale;
+        const int32_t words = (m + 63) / 64;
+        rows_.assign(static_cast<size_t>(m) * words, 0);
+        degree_.assign(m, 0);
+        for (int32_t k = 0; k < m; ++k) {
+            uint64_t* row = rows_.data() + static_cast<size_t>(k) * words;
+            const int32_t v = ids[k];
+            for (int32_t p = leaf_offsets_[v]; p < leaf_offsets_[v + 1]; ++p) {
+                const int32_t u = leaf_adjacency_[p];
+                if (leaf_piece_[u] != piece) continue;
+                const int32_t j = leaf_position_[u];
+                const uint64_t bit = uint64_t{1} << (j & 63);
+                if (!(row[j >> 6] & bit)) {
+                    row[j >> 6] |= bit;
+                    ++degree_[k];
                 }
             }
-            below += count[b];
-            left_size += left_touch[b + 1];
-            right_size += right_touch[b + 1];
         }
-        return cut;
-    }
-
-    // Minimum degree order of the subgraph induced by ids (Eigen's AMD, Amestoy, Davis & Duff).
-    void order_leaf(const std::vector<int32_t>& ids) {
-        const int32_t leaf_label = ++next_label_;
-        for (size_t k = 0; k < ids.size(); ++k) {
-            part_[ids[k]] = leaf_label;
-            local_[ids[k]] = static_cast<int32_t>(k);
-        }
-        std::vector<Eigen::Triplet<double, int>> entries;
-        for (size_t k = 0; k < ids.size(); ++k) {
-            const int32_t i = ids[k];
-            for (int32_t p = pattern_.row_offsets[i]; p < pattern_.row_offsets[i + 1]; ++p) {
-                const int32_t j = pattern_.columns[p];
-                if (part_[j] == leaf_label)
-                    entries.emplace_back(static_cast<int>(k), local_[j], 1.0);
+        // Degree buckets as doubly linked lists.
+        bucket_head_.assign(m + 1, -1);
+        next_.resize(m);
+        prev_.resize(m);
+        auto insert = [&](int32_t k) {
+            prev_[k] = -1;
+            next_[k] = bucket_head_[degree_[k]];
+            if (next_[k] >= 0) prev_[next_[k]] = k;
+            bucket_head_[degree_[k]] = k;
+        };
+        auto remove = [&](int32_t k) {
+            (prev_[k] >= 0 ? next_[prev_[k]] : bucket_head_[degree_[k]]) = next_[k];
+            if (next_[k] >= 0) prev_[next_[k]] = prev_[k];
+        };
+        for (int32_t k = m - 1; k >= 0; --k) insert(k);
+        int32_t min_degree = 0;
+        std::vector<uint64_t> clique(words);
+        for (int32_t step = 0; step < m; ++step) {
+            while (bucket_head_[min_degree] < 0) ++min_degree;
+            const int32_t v = bucket_head_[min_degree];
+            remove(v);
+            leaf_order_.push_back(ids[v]);
+            const uint64_t* row_v = rows_.data() + static_cast<size_t>(v) * words;
+            std::copy(row_v, row_v + words, clique.begin());
+            // v leaves its neighbours' rows and they join each other; a degree changes by
+            // the bits added, which are few: count them one by one.
+            const uint64_t v_bit = uint64_t{1} << (v & 63);
+            for (int32_t w = 0; w < words; ++w) {
+                for (uint64_t bits = clique[w]; bits; bits &= bits - 1) {
+                    const int32_t u = w * 64 + __builtin_ctzll(bits);
+                    uint64_t* row_u = rows_.data() + static_cast<size_t>(u) * words;
+                    int32_t d = degree_[u] - 1;
+                    row_u[v >> 6] &= ~v_bit;
+                    for (int32_t i = 0; i < words; ++i) {
+                        for (uint64_t added = clique[i] & ~row_u[i]; added; added &= added - 1) {
+                            ++d;
+                        }
+                        row_u[i] |= clique[i];
+                    }
+                    row_u[u >> 6] &= ~(uint64_t{1} << (u & 63));
+                    --d;  // u itself was among the added bits
+                    if (d != degree_[u]) {
+                        remove(u);
+                        degree_[u] = d;
+                        insert(u);
+                        min_degree = std::min(min_degree, d);
+                    }
+                }
             }
         }
-        const int size = static_cast<int>(ids.size());
-        Eigen::SparseMatrix<double, Eigen::ColMajor, int> local_matrix(size, size);
-        local_matrix.setFromTriplets(entries.begin(), entries.end());
-        Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> permutation;
-        Eigen::AMDOrdering<int>()(local_matrix, permutation);
-        // AMD returns the elimination order: entry k is the local index eliminated k-th.
-        for (int k = 0; k < size; ++k) order_.push_back(ids[permutation.indices()[k]]);
     }
 
     const SparsePattern& pattern_;
-    const std::vector<Eigen::Vector3d>& coordinates_;
-    std::vector<int32_t> local_;
-    std::vector<double> projection_;
-    std::vector<int> bin_;
-    std::vector<int32_t> part_;
+    const int32_t leaf_size_;
+    std::vector<Level> levels_;
+    size_t base_ = 0;
+    std::vector<TreeNode> nodes_;
+    std::vector<int32_t> tree_parent_;
+    std::vector<int32_t> label_;                    // tree node of each vertex (phase B)
+    std::vector<std::vector<int32_t>> separators_;  // vertices of each separator (phase B)
+    std::vector<std::vector<int32_t>> lists_;       // the part on each level (phase A)
+    std::vector<std::vector<int8_t>> sides_;        // its sides on each level (phase A)
     std::vector<int32_t> order_;
-    int32_t next_label_ = 0;
+    int32_t stamp_ = 0;
+    VertexCut flow_;
+    std::vector<int32_t> band_, band_index_, pending_;
+    std::vector<int32_t> leaf_offsets_, leaf_adjacency_, leaf_piece_, leaf_position_, leaf_order_;
+    std::vector<Eigen::Vector3d> leaf_points_;
+    int32_t leaf_piece_count_ = 0;
+    std::vector<int> bins_;
+    std::vector<uint64_t> rows_;
+    std::vector<int32_t> degree_, bucket_head_, next_, prev_;
 };
 
 }  // namespace
