@@ -11,7 +11,11 @@
 namespace raps {
 namespace {
 
-constexpr int32_t kMinimumDegreeOnly = 3000;
+// Up to this size minimum degree alone orders faster than the dissection and factors about
+// as fast (measured on face.obj: 25,809 unknowns, AMD 0.015 s vs 0.050 s to order, both 0.025 s
+// to factor; 103K unknowns: 0.12 vs 0.17 s, 0.16 s to factor); at 413K the dissection's
+// factorization is twice as fast.
+constexpr int32_t kMinimumDegreeOnly = 150000;
 
 std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern) {
     Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix(pattern.size, pattern.size);
@@ -34,8 +38,8 @@ std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern) {
 
 SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates)
     : pattern_(std::move(pattern)) {
-    // Small systems (the charts of an atlas) are ordered by minimum degree alone: there the
-    // dissection's separators cost more time than the fill they save.
+    // Small and medium systems are ordered by minimum degree alone: there the dissection's
+    // separators cost more time than the fill they save.
     if (pattern_.size <= kMinimumDegreeOnly) {
         order_ = minimum_degree_order(pattern_);
     } else {
