@@ -411,7 +411,8 @@ typedef struct raps_stats {
     uint64_t flipped_triangles;   /* uv triangles with the wrong (clockwise) orientation */
     uint64_t zero_area_triangles; /* |uv area| < 1e-14 * mean |uv area| */
     uint64_t negative_weights;    /* directed edges of the Laplace system with w_ij < 0 */
-    uint64_t adaptive_solves;     /* adaptive solves done (0 with RAPS_MONITOR_NONE) */
+    uint64_t adaptive_solves;     /* adaptive solves done (0 with RAPS_MONITOR_NONE); atlas: those
+                                   * behind the final charts' maps, summed */
     double area_log_mean;         /* weighted mean of |log r_t|; 0 for an area-preserving map */
     double area_max;              /* max over triangles of max(r_t, 1/r_t); 1 is ideal */
     double angle_mean_deg;        /* mean over corners of |uv angle - 3D angle|, degrees */

@@ -49,6 +49,7 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         out.vertex_remap = std::move(atlas.remap);
         out.chart_ids = std::move(atlas.chart_of);
         out.chart_count = atlas.chart_count;
+        out.adaptive_solves = atlas.adaptive_solves;
         out.atlas_width = atlas.width;
         out.atlas_height = atlas.height;
         timer.finish();

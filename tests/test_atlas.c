@@ -363,6 +363,45 @@ static void atlas_progress_and_cancellation(void** state) {
     test_mesh_free(&mesh);
 }
 
+typedef struct overlap_probe {
+    int inside, overlaps, calls;
+} overlap_probe;
+
+static int32_t detect_overlap(void* user, raps_phase phase, double fraction) {
+    (void)phase;
+    (void)fraction;
+    overlap_probe* probe = user;
+    if (__atomic_add_fetch(&probe->inside, 1, __ATOMIC_SEQ_CST) != 1) {
+        __atomic_add_fetch(&probe->overlaps, 1, __ATOMIC_SEQ_CST);
+    }
+    volatile double spin = 0;
+    for (int i = 0; i < 20000; ++i) spin += i; /* widen the window for a second caller */
+    __atomic_add_fetch(&probe->calls, 1, __ATOMIC_SEQ_CST);
+    __atomic_sub_fetch(&probe->inside, 1, __ATOMIC_SEQ_CST);
+    return 1;
+}
+
+/* The header promises that a run's progress calls never overlap, even when worker threads
+ * report (charts are mapped in parallel). */
+static void progress_calls_never_overlap(void** state) {
+    (void)state;
+    test_mesh mesh = load_shared_mesh("bunny.off");
+    raps_mesh* m = to_raps_mesh(&mesh);
+    raps_settings* s = NULL;
+    assert_status(raps_settings_create(&s), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_THREADS, 4), RAPS_OK);
+    overlap_probe probe = {0, 0, 0};
+    assert_status(raps_settings_set_progress(s, detect_overlap, &probe), RAPS_OK);
+    raps_result* r = parameterize_ok(m, s);
+    assert_true(probe.calls > 20);
+    assert_int_equal(probe.overlaps, 0);
+    raps_result_destroy(r);
+    raps_settings_destroy(s);
+    raps_mesh_destroy(m);
+    test_mesh_free(&mesh);
+}
+
 /* With a hard-edge angle, no chart crosses an edge sharper than it: a cube becomes six charts. */
 static void hard_edges_become_seams(void** state) {
     (void)state;
@@ -393,6 +432,7 @@ int main(void) {
         cmocka_unit_test(output_is_identical_for_any_thread_count),
         cmocka_unit_test(hostile_meshes_get_valid_atlases),
         cmocka_unit_test(atlas_progress_and_cancellation),
+        cmocka_unit_test(progress_calls_never_overlap),
         cmocka_unit_test(hard_edges_become_seams),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -78,6 +78,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     out.width = packed.width;
     out.height = packed.height;
     out.chart_count = static_cast<int64_t>(charts.size());
+    for (const AtlasChart& chart : charts) out.adaptive_solves += chart.map.adaptive_solves;
     const int32_t triangle_count = mesh.triangle_count();
     std::vector<int32_t> chart_of_input(triangle_count, -1), local_of_input(triangle_count, -1);
     // (welded vertex, chart) -> chart vertex, for triangles placed beside a chart.

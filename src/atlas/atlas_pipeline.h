@@ -23,6 +23,7 @@ struct AtlasOutput {
     std::vector<uint32_t> indices;    // per input triangle, in input order: 3 output vertices
     std::vector<uint32_t> chart_of;   // per triangle
     int64_t chart_count = 0;
+    int64_t adaptive_solves = 0;    // behind the charts' maps
     int32_t width = 0, height = 0;  // atlas size in texels
 };
 

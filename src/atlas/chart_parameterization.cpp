@@ -119,6 +119,7 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
     // Equalising area can stretch a few triangles more: keep the Linf limit.
     if (candidate.stretch_l2 < map.stretch_l2 &&
         candidate.stretch_linf <= std::max(max_linf, map.stretch_linf)) {
+        candidate.adaptive_solves = settings.iterations;
         map = std::move(candidate);
     }
 }

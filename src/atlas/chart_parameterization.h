@@ -23,6 +23,7 @@ struct ChartMap {
     double stretch_linf = 1;
     ChartMethod method = ChartMethod::kFreeBoundary;
     bool injective = false;
+    int64_t adaptive_solves = 0;  // behind this map (0 unless the adaptive step was kept)
 };
 
 // The free-boundary map, its uvs scaled to the chart's 3D area. map.injective is false when

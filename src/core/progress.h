@@ -29,15 +29,27 @@ class Progress {
     Progress() = default;
     explicit Progress(Callback callback) : callback_(std::move(callback)) {}
 
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
     // Reports that `fraction` (0..1) of `phase` is done; throws Error(kCancelled) on a stop.
+    // Once cancelled, every later report (from any thread of the run) stops too, without
+    // calling back again.
     void report(Phase phase, double fraction) const {
-        if (callback_ && !callback_(phase, fraction)) {
-            throw Error(ErrorCode::kCancelled, "cancelled by the progress callback");
+        if (!callback_) return;
+        bool go_on;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            go_on = !cancelled_ && callback_(phase, fraction);
+            cancelled_ = !go_on;
         }
+        if (!go_on) throw Error(ErrorCode::kCancelled, "cancelled by the progress callback");
     }
 
   private:
     Callback callback_;
+    mutable std::mutex mutex_;
+    mutable bool cancelled_ = false;
 };
 
 }  // namespace raps
