@@ -33,7 +33,7 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         out.vertex_remap[v] = static_cast<uint32_t>(v);
     }
     PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-    out.distortion = measure_distortion(mesh.positions, out.uv, mesh.triangles);
+    out.distortion = measure_distortion(mesh.positions, PlanarMapGeometry(out.uv), mesh.triangles);
     timer.finish();
     return out;
 }

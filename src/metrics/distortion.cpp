@@ -7,16 +7,13 @@
 namespace raps {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
-
 // |uv angle - 3D angle| at a corner from the sine and cosine of each (both scaled by the side
-// lengths, which atan2 ignores): one atan2 of the difference instead of two angles.
-double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                        const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+// lengths, which atan2 ignores): one atan2 of the difference instead of two angles. The uv angle
+// is taken unsigned, as the reference metrics do.
+double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double sine_uv,
+                        double cosine_uv) {
     const double sine_3d = a.cross(b).norm(), cosine_3d = a.dot(b);
-    const double sine_uv = std::abs(cross2(p, q)), cosine_uv = p.dot(q);
+    sine_uv = std::abs(sine_uv);
     return std::abs(std::atan2(sine_uv * cosine_3d - cosine_uv * sine_3d,
                                cosine_uv * cosine_3d + sine_uv * sine_3d));
 }
@@ -24,8 +21,7 @@ double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
 }  // namespace
 
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
-                                   const std::vector<Eigen::Vector2d>& uv,
-                                   const std::vector<Triangle>& triangles) {
+                                   const MapGeometry& map, const std::vector<Triangle>& triangles) {
     const size_t count = triangles.size();
     std::vector<double> area(count), uv_signed_area(count);
     double area_sum = 0;
@@ -34,7 +30,7 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         area[t] =
             0.5 *
             (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
-        uv_signed_area[t] = 0.5 * cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        uv_signed_area[t] = map.area(v[0], v[1], v[2]);
         area_sum += area[t];
     }
     const double degenerate_3d = 1e-12 * area_sum / static_cast<double>(count);
@@ -67,10 +63,11 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         stats.area_max = std::max(stats.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
         for (int k = 0; k < 3; ++k) {
             const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
-            const double degrees =
-                angle_difference(positions[j] - positions[i], positions[l] - positions[i],
-                                 uv[j] - uv[i], uv[l] - uv[i]) *
-                180.0 / M_PI;
+            double sine, cosine;
+            map.angle(i, j, l, &sine, &cosine);
+            const double degrees = angle_difference(positions[j] - positions[i],
+                                                    positions[l] - positions[i], sine, cosine) *
+                                   180.0 / M_PI;
             angle_sum += degrees;
             stats.angle_max_deg = std::max(stats.angle_max_deg, degrees);
         }
@@ -78,7 +75,8 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         // singular values in closed form (no squaring, so no cancellation near an isometry).
         const Eigen::Vector3d e1 = positions[v[1]] - positions[v[0]];
         const Eigen::Vector3d e2 = positions[v[2]] - positions[v[0]];
-        const Eigen::Vector2d d1 = uv[v[1]] - uv[v[0]], d2 = uv[v[2]] - uv[v[0]];
+        Eigen::Vector2d d1, d2;
+        map.edges(v[0], v[1], v[2], &d1, &d2);
         const double length = e1.norm();
         const double p2x = e2.dot(e1) / length, p2y = 2.0 * area[t] / length;
         const double j00 = d1.x() / length, j10 = d1.y() / length;

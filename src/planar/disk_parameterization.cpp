@@ -5,11 +5,11 @@
 #include "core/error.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/mesh_validation.h"
-#include "planar/adaptive_weights.h"
 #include "planar/convex_boundary.h"
-#include "planar/error_monitors.h"
 #include "planar/laplace_system.h"
-#include "planar/laplacian_weights.h"
+#include "weights/adaptive_weights.h"
+#include "weights/error_monitors.h"
+#include "weights/laplacian_weights.h"
 
 namespace raps {
 
@@ -57,7 +57,7 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
         std::vector<double> weights = base_weights;
         for (int step = 0; step < settings.iterations; ++step) {
             const std::vector<double> monitor =
-                error_monitor(mesh, adjacency, map.uv, settings.monitor);
+                error_monitor(mesh, adjacency, PlanarMapGeometry(map.uv), settings.monitor);
             const std::vector<double>& previous =
                 settings.iteration_mode == IterationMode::kAccumulate ? weights : base_weights;
             weights = adaptive_weights(adjacency, previous, monitor, settings.alpha);
