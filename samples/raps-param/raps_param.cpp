@@ -1,6 +1,7 @@
 // raps-param: parameterize a mesh file through the raps C API and write it back with UVs.
 //
 //   raps-param IN.(obj|off) -o OUT.obj [options]
+//   raps-param --sphere IN.(obj|off) -o OUT.obj [options]
 //
 // Prints one JSON object on stdout (statistics, settings, per-phase times); see --help. This
 // tool is a contract other tools and tests drive: keep its name, flags and OBJ-in/OBJ-out
@@ -21,6 +22,7 @@
 namespace {
 
 const char* kUsage = R"(usage: raps-param IN.(obj|off) -o OUT.obj [options]
+       raps-param --sphere IN.(obj|off) -o OUT.obj [options]
 
 Computes texture coordinates for a disk-like triangle or polygon mesh with r-adaptive
 parameterization (Zayer, Roessl, Seidel) and writes OUT.obj with the input's vertices and faces
@@ -28,6 +30,14 @@ in their original order plus one `vt` per vertex (`f v/vt ...`). Prints one JSON
 stdout: input and output sizes, the settings used, the distortion statistics and the time of
 each phase in milliseconds. On failure it prints {"error": {...}} on stdout, a message on
 stderr, writes nothing, and exits with 1 (2 for a usage error).
+
+With --sphere the mesh must be closed and of genus 0; it is mapped onto the unit sphere (paper
+section 7) and OUT.obj gets the same faces with the points on the sphere as its `v` lines, in
+input order, and no `vt`. With --sphere-uv octahedral the `v` lines are the same and the sphere
+is also unfolded onto [0,1]^2 through the octahedron: `vt` lines, one per output vertex (the
+vertices on the cut get one per side), faces `f v/vt`. The statistics are then those of the
+uvs; without it, those of the sphere map (exact spherical triangle areas, angles between
+great-circle arcs, flipped = det[a, b, c] < 0).
 
 options:
   -o, --output FILE          where to write the OBJ (required)
@@ -42,6 +52,18 @@ options:
                              how solves combine for K > 1 (default accumulate)
   --boundary circle|square   convex shape the boundary is fixed to (default circle)
   --max-triangles N          refuse meshes with more triangles (default 2^31 - 1)
+  --sphere                   map a closed genus-0 mesh onto the unit sphere
+  --sphere-method literal|robust
+                             literal: the paper's algorithm 7.1 as written (Gauss map,
+                             Gauss-Seidel, damping; may fold and collapse); robust (default):
+                             bijective start, fold-safe parallel relaxation, centring
+  --sphere-uv none|octahedral
+                             also unfold the sphere onto [0,1]^2 (default none)
+  --threads N                threads, 0 = all cores (default 0); the output is the same for any
+  --damping L                sphere relaxation damping lambda in (0, 1] (default 1)
+  --tolerance T              sphere relaxation stops below this residual (default 1e-4)
+  --max-sweeps N             most sweeps per sphere relaxation (default 2000)
+  --alpha-steps K            robust sphere method: continuation steps to alpha (default 4)
   -h, --help                 this text
   --version                  the raps library version
 )";
@@ -64,6 +86,8 @@ const std::map<std::string, std::vector<Choice>> kChoices = {
     {"--iteration-mode",
      {{"accumulate", RAPS_ITERATION_ACCUMULATE}, {"reapply", RAPS_ITERATION_REAPPLY}}},
     {"--boundary", {{"circle", RAPS_BOUNDARY_CIRCLE}, {"square", RAPS_BOUNDARY_SQUARE}}},
+    {"--sphere-method", {{"literal", RAPS_SPHERE_LITERAL}, {"robust", RAPS_SPHERE_ROBUST}}},
+    {"--sphere-uv", {{"none", RAPS_SPHERE_UV_NONE}, {"octahedral", RAPS_SPHERE_UV_OCTAHEDRAL}}},
 };
 
 const std::map<std::string, raps_param> kChoiceParams = {
@@ -71,6 +95,20 @@ const std::map<std::string, raps_param> kChoiceParams = {
     {"--monitor", RAPS_PARAM_MONITOR},
     {"--iteration-mode", RAPS_PARAM_ITERATION_MODE},
     {"--boundary", RAPS_PARAM_BOUNDARY},
+    {"--sphere-method", RAPS_PARAM_SPHERE_METHOD},
+    {"--sphere-uv", RAPS_PARAM_SPHERE_UV},
+};
+
+// Numeric flags and the parameter each sets.
+const std::map<std::string, raps_param> kNumberParams = {
+    {"--alpha", RAPS_PARAM_ALPHA},
+    {"--iterations", RAPS_PARAM_ITERATIONS},
+    {"--max-triangles", RAPS_PARAM_MAX_TRIANGLES},
+    {"--threads", RAPS_PARAM_THREADS},
+    {"--damping", RAPS_PARAM_SPHERE_DAMPING},
+    {"--tolerance", RAPS_PARAM_SPHERE_TOLERANCE},
+    {"--max-sweeps", RAPS_PARAM_SPHERE_MAX_SWEEPS},
+    {"--alpha-steps", RAPS_PARAM_SPHERE_ALPHA_STEPS},
 };
 
 struct UsageError : std::runtime_error {
@@ -148,6 +186,72 @@ void check(raps_status status, Message&& message) {
     if (status != RAPS_OK) throw Failure(status, message());
 }
 
+// The sphere domain's OBJ: the points on the sphere as `v` (input order), the input's faces; with
+// uvs (the octahedral unfold) one `vt` per output vertex and `f v/vt`. A polygon whose fan
+// triangles disagree on a corner's output vertex (the cut runs through it) is written as its
+// triangles.
+void write_sphere_obj(const std::string& path, const raps_samples::PolygonMesh& polygons,
+                      const raps_result* result, const std::vector<double>& uvs,
+                      const std::string& comment) {
+    const size_t vertices = raps_result_vertex_count(result);
+    std::vector<double> points(3 * vertices);
+    std::vector<uint32_t> remap(vertices), indices(raps_result_index_count(result));
+    check(raps_result_copy_sphere_points_f64(result, points.data(), vertices, 0),
+          [] { return "cannot copy sphere points"; });
+    check(raps_result_copy_vertex_remap(result, remap.data(), vertices),
+          [] { return "cannot copy the vertex remap"; });
+    check(raps_result_copy_indices_u32(result, indices.data(), indices.size()),
+          [] { return "cannot copy indices"; });
+    raps_samples::PolygonMesh out;
+    out.positions.resize(polygons.positions.size());
+    for (size_t o = 0; o < vertices; ++o) {
+        for (int c = 0; c < 3; ++c) out.positions[3 * remap[o] + c] = points[3 * o + c];
+    }
+    if (uvs.empty()) {
+        out.polygon_offsets = polygons.polygon_offsets;
+        out.corners = polygons.corners;
+        raps_samples::write_obj(path, out, uvs, {}, comment);
+        return;
+    }
+    // Output vertex per corner of each fan triangle, in the order PolygonMesh::triangles() made.
+    std::vector<uint32_t> uv_corners;
+    out.polygon_offsets.assign(1, 0);
+    size_t triangle = 0;
+    for (size_t f = 0; f < polygons.polygon_count(); ++f) {
+        const uint32_t first = polygons.polygon_offsets[f], end = polygons.polygon_offsets[f + 1];
+        const size_t fan = end - first - 2;
+        std::vector<uint32_t> corner_vertex(end - first, UINT32_MAX);
+        bool consistent = true;
+        for (size_t k = 0; k < fan; ++k) {
+            const uint32_t local[3] = {0, static_cast<uint32_t>(k + 1),
+                                       static_cast<uint32_t>(k + 2)};
+            for (int c = 0; c < 3; ++c) {
+                const uint32_t o = indices[3 * (triangle + k) + c];
+                if (corner_vertex[local[c]] != UINT32_MAX && corner_vertex[local[c]] != o) {
+                    consistent = false;
+                }
+                corner_vertex[local[c]] = o;
+            }
+        }
+        if (consistent) {
+            for (uint32_t c = first; c < end; ++c) out.corners.push_back(polygons.corners[c]);
+            uv_corners.insert(uv_corners.end(), corner_vertex.begin(), corner_vertex.end());
+            out.polygon_offsets.push_back(static_cast<uint32_t>(out.corners.size()));
+        } else {
+            for (size_t k = 0; k < fan; ++k) {
+                for (int c = 0; c < 3; ++c) {
+                    const uint32_t o = indices[3 * (triangle + k) + c];
+                    out.corners.push_back(remap[o]);
+                    uv_corners.push_back(o);
+                }
+                out.polygon_offsets.push_back(static_cast<uint32_t>(out.corners.size()));
+            }
+        }
+        triangle += fan;
+    }
+    raps_samples::write_obj(path, out, uvs, uv_corners, comment);
+}
+
 int run(int argc, char** argv) {
     std::string input, output;
     Handles h;
@@ -166,6 +270,9 @@ int run(int argc, char** argv) {
             return 0;
         } else if (arg == "-o" || arg == "--output") {
             output = value();
+        } else if (arg == "--sphere") {
+            check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_SPHERE),
+                  [&] { return raps_settings_last_error(h.settings); });
         } else if (kChoices.count(arg)) {
             const std::string name = value();
             bool found = false;
@@ -177,7 +284,7 @@ int run(int argc, char** argv) {
                 }
             }
             if (!found) throw UsageError("unknown value '" + name + "' for " + arg);
-        } else if (arg == "--alpha" || arg == "--iterations" || arg == "--max-triangles") {
+        } else if (kNumberParams.count(arg)) {
             const std::string text = value();
             char* end = nullptr;
             errno = 0;
@@ -185,17 +292,17 @@ int run(int argc, char** argv) {
             if (end == text.c_str() || *end != '\0' || errno != 0) {
                 throw UsageError(arg + " needs a number, not '" + text + "'");
             }
+            const raps_param param = kNumberParams.at(arg);
+            int32_t is_float = 0;
+            raps_param_info(param, nullptr, &is_float, nullptr, nullptr, nullptr);
             raps_status status;
-            if (arg == "--alpha") {
-                status = raps_settings_set_float(h.settings, RAPS_PARAM_ALPHA, number);
+            if (is_float) {
+                status = raps_settings_set_float(h.settings, param, number);
             } else {
                 if (number != std::floor(number) || std::abs(number) > 9e18) {
                     throw UsageError(arg + " needs a whole number, not '" + text + "'");
                 }
-                status = raps_settings_set_int(
-                    h.settings,
-                    arg == "--iterations" ? RAPS_PARAM_ITERATIONS : RAPS_PARAM_MAX_TRIANGLES,
-                    static_cast<int64_t>(number));
+                status = raps_settings_set_int(h.settings, param, static_cast<int64_t>(number));
             }
             if (status != RAPS_OK) throw UsageError(raps_settings_last_error(h.settings));
         } else if (!arg.empty() && arg[0] == '-') {
@@ -226,19 +333,34 @@ int run(int argc, char** argv) {
     check(raps_parameterize(h.mesh, h.settings, h.result),
           [&] { return raps_result_last_error(h.result); });
 
-    std::vector<double> uvs(2 * raps_result_vertex_count(h.result));
-    check(raps_result_copy_uvs_f64(h.result, uvs.data(), uvs.size() / 2, 0),
-          [] { return "cannot copy uvs"; });
+    int64_t domain, sphere_uv;
+    raps_settings_get_int(h.settings, RAPS_PARAM_DOMAIN, &domain);
+    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_UV, &sphere_uv);
+    const bool sphere = domain == RAPS_DOMAIN_SPHERE;
+    const bool has_uvs = !sphere || sphere_uv != RAPS_SPHERE_UV_NONE;
+    const size_t output_vertices = raps_result_vertex_count(h.result);
+    std::vector<double> uvs;
+    if (has_uvs) {
+        uvs.resize(2 * output_vertices);
+        check(raps_result_copy_uvs_f64(h.result, uvs.data(), output_vertices, 0),
+              [&] { return "cannot copy uvs"; });
+    }
     const auto write_start = std::chrono::steady_clock::now();
-    raps_samples::write_obj(output, polygons, uvs, polygons.corners,
-                            std::string("raps-param ") + raps_version_string() + " from " + input);
+    const std::string comment =
+        std::string("raps-param ") + raps_version_string() + " from " + input;
+    if (!sphere) {
+        raps_samples::write_obj(output, polygons, uvs, polygons.corners, comment);
+    } else {
+        write_sphere_obj(output, polygons, h.result, uvs, comment);
+    }
     const double write_ms = elapsed_ms(write_start);
 
     raps_stats stats;
     stats.struct_size = sizeof(stats);
     check(raps_result_get_stats(h.result, &stats), [] { return "cannot read statistics"; });
-    int64_t weights, monitor, iterations, mode, boundary, max_triangles;
-    double alpha;
+    int64_t weights, monitor, iterations, mode, boundary, max_triangles, threads, method,
+        max_sweeps, alpha_steps;
+    double alpha, damping, tolerance;
     raps_settings_get_int(h.settings, RAPS_PARAM_WEIGHTS, &weights);
     raps_settings_get_int(h.settings, RAPS_PARAM_MONITOR, &monitor);
     raps_settings_get_int(h.settings, RAPS_PARAM_ITERATIONS, &iterations);
@@ -246,6 +368,12 @@ int run(int argc, char** argv) {
     raps_settings_get_int(h.settings, RAPS_PARAM_BOUNDARY, &boundary);
     raps_settings_get_int(h.settings, RAPS_PARAM_MAX_TRIANGLES, &max_triangles);
     raps_settings_get_float(h.settings, RAPS_PARAM_ALPHA, &alpha);
+    raps_settings_get_int(h.settings, RAPS_PARAM_THREADS, &threads);
+    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_METHOD, &method);
+    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_MAX_SWEEPS, &max_sweeps);
+    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_ALPHA_STEPS, &alpha_steps);
+    raps_settings_get_float(h.settings, RAPS_PARAM_SPHERE_DAMPING, &damping);
+    raps_settings_get_float(h.settings, RAPS_PARAM_SPHERE_TOLERANCE, &tolerance);
 
     static const char* kPhaseNames[RAPS_PHASE_COUNT] = {"validate", "topology", "initial_map",
                                                         "adapt", "metrics"};
@@ -254,17 +382,28 @@ int run(int argc, char** argv) {
     json += ", \"vertices\": " + std::to_string(stats.vertex_count);
     json += ", \"triangles\": " + std::to_string(stats.triangle_count);
     json += ", \"polygons\": " + std::to_string(polygons.polygon_count());
-    json += ", \"settings\": {\"domain\": \"disk\", \"weights\": \"" +
-            std::string(choice_name("--weights", weights)) + "\", \"monitor\": \"" +
+    json += std::string(", \"settings\": {\"domain\": \"") + (sphere ? "sphere" : "disk") +
+            "\", \"weights\": \"" + choice_name("--weights", weights) + "\", \"monitor\": \"" +
             choice_name("--monitor", monitor) + "\", \"alpha\": " + json_number(alpha) +
             ", \"iterations\": " + std::to_string(iterations) + ", \"iteration_mode\": \"" +
-            choice_name("--iteration-mode", mode) + "\", \"boundary\": \"" +
-            choice_name("--boundary", boundary) +
-            "\", \"max_triangles\": " + std::to_string(max_triangles) + "}";
+            choice_name("--iteration-mode", mode) + "\", ";
+    if (sphere) {
+        json += std::string("\"sphere_method\": \"") + choice_name("--sphere-method", method) +
+                "\", \"sphere_uv\": \"" + choice_name("--sphere-uv", sphere_uv) +
+                "\", \"threads\": " + std::to_string(threads) +
+                ", \"damping\": " + json_number(damping) +
+                ", \"tolerance\": " + json_number(tolerance) +
+                ", \"max_sweeps\": " + std::to_string(max_sweeps) +
+                ", \"alpha_steps\": " + std::to_string(alpha_steps) + ", ";
+    } else {
+        json += "\"boundary\": \"" + std::string(choice_name("--boundary", boundary)) + "\", ";
+    }
+    json += "\"max_triangles\": " + std::to_string(max_triangles) + "}";
     json += ", \"stats\": {\"flipped_triangles\": " + std::to_string(stats.flipped_triangles) +
             ", \"zero_area_triangles\": " + std::to_string(stats.zero_area_triangles) +
             ", \"negative_weights\": " + std::to_string(stats.negative_weights) +
             ", \"adaptive_solves\": " + std::to_string(stats.adaptive_solves) +
+            ", \"relaxation_sweeps\": " + std::to_string(stats.relaxation_sweeps) +
             ", \"area_log_mean\": " + json_number(stats.area_log_mean) +
             ", \"area_max\": " + json_number(stats.area_max) +
             ", \"angle_mean_deg\": " + json_number(stats.angle_mean_deg) +
