@@ -42,11 +42,33 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         out.negative_weights = map.negative_weights;
         out.adaptive_solves = map.adaptive_solves;
         out.relaxation_sweeps = map.relaxation_sweeps;
-        identity_output(mesh, out);
-        out.sphere_points = std::move(map.points);
+        if (map.unfold.uv.empty()) {
+            identity_output(mesh, out);
+            out.sphere_points = std::move(map.points);
+            PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+            out.distortion = measure_distortion(
+                mesh.positions, SphericalMapGeometry(out.sphere_points), mesh.triangles);
+            timer.finish();
+            return out;
+        }
+        // The octahedral unfold: more output vertices than input (the cut's), statistics of
+        // the uvs over the output triangles.
+        out.uv = std::move(map.unfold.uv);
+        out.vertex_remap = std::move(map.unfold.vertex_remap);
+        out.indices = std::move(map.unfold.indices);
+        out.sphere_points.resize(out.vertex_remap.size());
+        std::vector<Eigen::Vector3d> positions(out.vertex_remap.size());
+        for (size_t o = 0; o < out.vertex_remap.size(); ++o) {
+            out.sphere_points[o] = map.points[out.vertex_remap[o]];
+            positions[o] = mesh.positions[out.vertex_remap[o]];
+        }
+        std::vector<Triangle> triangles(mesh.triangles.size());
+        for (size_t t = 0; t < triangles.size(); ++t) {
+            for (int k = 0; k < 3; ++k)
+                triangles[t][k] = static_cast<int32_t>(out.indices[3 * t + k]);
+        }
         PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-        out.distortion = measure_distortion(mesh.positions, SphericalMapGeometry(out.sphere_points),
-                                            mesh.triangles);
+        out.distortion = measure_distortion(positions, PlanarMapGeometry(out.uv), triangles);
         timer.finish();
         return out;
     }

@@ -97,6 +97,11 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
     }
     map.points.resize(points.size());
     for (size_t k = 0; k < order.size(); ++k) map.points[order[k]] = points[k];
+    if (settings.sphere_uv == SphereUv::kOctahedral) {
+        map.unfold = octahedral_unfold(input, map.points, [&](double) {
+            progress.report(Phase::kAdapt, 1.0);  // cancellation point inside the solve
+        });
+    }
     adapt_timer.finish();
     return map;
 }

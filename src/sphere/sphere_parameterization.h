@@ -12,6 +12,7 @@
 #include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
+#include "sphere/octahedral_unfold.h"
 
 namespace raps {
 
@@ -28,6 +29,8 @@ struct SphereMap {
     int64_t negative_weights = 0;         // directed edges whose base weight is negative
     int64_t adaptive_solves = 0;          // relaxations with adaptive weights
     int64_t relaxation_sweeps = 0;        // all sweeps, initial and adaptive
+    // With RAPS_SPHERE_UV_OCTAHEDRAL (octahedral_unfold.h); empty otherwise.
+    OctahedralUnfold unfold;
 };
 
 // Throws Error for invalid input (OPEN_MESH, NONZERO_GENUS, ... see mesh_topology.h), or a
