@@ -18,24 +18,21 @@ struct Sum3 {
     }
 };
 
-// Whether the map `after` leaves some triangle below its shape floor (and worse than in
-// `before`).
-bool breaks_floor(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& before,
-                  const std::vector<Eigen::Vector3d>& after, ThreadPool& pool) {
+// Whether the map `after` turns over a triangle that `before` does not.
+bool folds_more(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& before,
+                const std::vector<Eigen::Vector3d>& after, ThreadPool& pool) {
     const std::vector<Triangle>& triangles = problem.mesh.triangles;
-    const int64_t broken = parallel_sum<int64_t>(
+    const int64_t folded = parallel_sum<int64_t>(
         pool, static_cast<int64_t>(triangles.size()), [&](int64_t begin, int64_t end) {
             int64_t count = 0;
             for (int64_t t = begin; t < end; ++t) {
                 const Triangle& v = triangles[t];
-                const double now = shape(after[v[0]], after[v[1]], after[v[2]]);
-                if (now >= problem.floor[t]) continue;
-                count += !shape_allowed(problem, static_cast<int32_t>(t),
-                                        shape(before[v[0]], before[v[1]], before[v[2]]), now);
+                count += !(orientation(after[v[0]], after[v[1]], after[v[2]]) > 0.0) &&
+                         orientation(before[v[0]], before[v[1]], before[v[2]]) > 0.0;
             }
             return count;
         });
-    return broken > 0;
+    return folded > 0;
 }
 
 }  // namespace
@@ -75,7 +72,7 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
         parallel_for(pool, static_cast<int64_t>(u.size()), [&](int64_t begin, int64_t end) {
             for (int64_t i = begin; i < end; ++i) scratch[i] = mobius_boost(u[i], a);
         });
-        if (!breaks_floor(problem, u, scratch, pool)) {
+        if (!folds_more(problem, u, scratch, pool)) {
             u.swap(scratch);
             if (moved) *moved = true;
             break;
