@@ -27,8 +27,8 @@ bool folds_more(const SphereProblem& problem, const std::vector<Eigen::Vector3d>
             int64_t count = 0;
             for (int64_t t = begin; t < end; ++t) {
                 const Triangle& v = triangles[t];
-                count += !(orientation(after[v[0]], after[v[1]], after[v[2]]) > 0.0) &&
-                         orientation(before[v[0]], before[v[1]], before[v[2]]) > 0.0;
+                if (orientation(after[v[0]], after[v[1]], after[v[2]]) > 0.0) continue;
+                count += orientation(before[v[0]], before[v[1]], before[v[2]]) > 0.0;
             }
             return count;
         });

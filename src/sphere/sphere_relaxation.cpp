@@ -57,15 +57,19 @@ class Relaxer {
 
   private:
     // Whether moving i to `candidate` keeps every triangle of i at its shape floor (or no worse).
+    // The usual case, a triangle above its floor, is decided without a division.
     bool allowed(int32_t i, const Eigen::Vector3d& candidate) const {
         const VertexTriangles& stars = problem_.stars;
         for (int32_t e = stars.offsets[i]; e < stars.offsets[i + 1]; ++e) {
             const Eigen::Vector3d& b = u_[stars.first[e]];
             const Eigen::Vector3d& c = u_[stars.second[e]];
-            const double after = shape(candidate, b, c);
             const int32_t t = stars.triangle[e];
-            if (after >= problem_.floor[t]) continue;
-            if (!shape_allowed(problem_, t, shape(u_[i], b, c), after)) return false;
+            const double edges = (candidate - b).squaredNorm() + (b - c).squaredNorm() +
+                                 (c - candidate).squaredNorm();
+            if (candidate.dot(b.cross(c)) >= problem_.floor[t] * edges) continue;
+            if (!shape_allowed(problem_, t, shape(u_[i], b, c), shape(candidate, b, c))) {
+                return false;
+            }
         }
         return true;
     }
@@ -106,6 +110,8 @@ double squared_move_modulo_rotation(const std::vector<Eigen::Vector3d>& after,
     });
 }
 
+constexpr int64_t kMeasureEvery = 4;
+
 }  // namespace
 
 RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector<double>& weights,
@@ -125,7 +131,10 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
     int64_t last_report = 0;
     progress(0.0);
     while (report.sweeps < options.max_sweeps) {
-        before = u;
+        // The move is measured over every kMeasureEvery-th sweep (it costs a copy and two passes).
+        const bool measure = (report.sweeps + 1) % kMeasureEvery == 0 ||
+                             report.sweeps + 1 == options.max_sweeps || report.sweeps == 0;
+        if (measure) before = u;
         if (options.literal) {
             for (int32_t i = 0; i < n; ++i) relaxer.update(i, false);
         } else {
@@ -141,6 +150,7 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
             centring_step(problem, u, scratch, pool, nullptr);
         }
         ++report.sweeps;
+        if (!measure) continue;
         report.residual = std::sqrt(squared_move_modulo_rotation(u, before, pool)) * unit;
         if (report.sweeps == 1) first = report.residual;
         if (!(report.residual >= options.tolerance)) {  // NaN stops too
