@@ -226,10 +226,14 @@ enum {
     /* float. Sphere relaxation: damping lambda of algorithm 7.1, the fraction of the way to the
      * weighted mean of its ring that a vertex moves per sweep, in (0, 1]. Default 1. */
     RAPS_PARAM_SPHERE_DAMPING = 12,
-    /* float. Sphere relaxation: it stops when the root mean square of the vertices' tangential
-     * Laplacian, in mean edge lengths, is below this, in [1e-12, 1]. Default 1e-4. */
+    /* float. Sphere relaxation: it has converged when the root mean square of the vertices'
+     * moves in one sweep (after removing the rotation that best aligns the map with the one
+     * before), in units of the damping times the mean edge length, is below this, in
+     * [1e-12, 1]. Default 1e-4. */
     RAPS_PARAM_SPHERE_TOLERANCE = 13,
-    /* int. Sphere relaxation: most sweeps of one relaxation, 1..10^7. Default 2000. */
+    /* int. Sphere relaxation: most sweeps of one relaxation, 0..10^7; 0 = the method's own:
+     * 100 for ROBUST (its distortion is no better with more on the shared meshes; see README),
+     * 50000 for LITERAL. Default 0. */
     RAPS_PARAM_SPHERE_MAX_SWEEPS = 14,
     /* int. Robust sphere method: relaxations by which each adaptive iteration reaches its
      * exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.

@@ -49,13 +49,12 @@ std::vector<double> ring_angles(const TriangleMesh& mesh, int32_t pole,
 
 }  // namespace
 
-InitialSphereMap stereographic_initial_map(const SphereProblem& problem, WeightScheme weights,
-                                           ThreadPool& pool,
-                                           const std::function<void(double)>& progress) {
+std::vector<Eigen::Vector3d> stereographic_initial_map(
+    const SphereProblem& problem, WeightScheme weights, ThreadPool& pool,
+    const std::function<void(double)>& progress) {
     const TriangleMesh& mesh = problem.mesh;
-    InitialSphereMap map;
-    map.pole = choose_pole(problem);
-    const std::vector<int32_t> ring = vertex_ring(mesh, problem.halfedges, map.pole);
+    const int32_t pole = choose_pole(problem);
+    const std::vector<int32_t> ring = vertex_ring(mesh, problem.halfedges, pole);
 
     // The punctured mesh as a disk: the pole and its ring are fixed, every other vertex is an
     // unknown of the Laplace system (none of them is adjacent to the pole). The ring runs
@@ -63,9 +62,9 @@ InitialSphereMap stereographic_initial_map(const SphereProblem& problem, WeightS
     // out clockwise: the orientation that stereographic projection from the north pole, seen
     // from outside the sphere, turns counter-clockwise again.
     std::vector<char> fixed(mesh.positions.size(), 0);
-    fixed[map.pole] = 1;
+    fixed[pole] = 1;
     std::vector<Eigen::Vector2d> plane(mesh.positions.size(), Eigen::Vector2d::Zero());
-    const std::vector<double> angle = ring_angles(mesh, map.pole, ring);
+    const std::vector<double> angle = ring_angles(mesh, pole, ring);
     for (size_t m = 0; m < ring.size(); ++m) {
         fixed[ring[m]] = 1;
         plane[ring[m]] = Eigen::Vector2d(std::cos(angle[m]), std::sin(angle[m]));
@@ -80,20 +79,19 @@ InitialSphereMap stereographic_initial_map(const SphereProblem& problem, WeightS
     // Inverse stereographic projection of s * plane. The ring (radius 1) lands on the circle of
     // height (s^2 - 1) / (s^2 + 1), which leaves the cap above it 4 pi / (1 + s^2): the pole's
     // star gets the share of the sphere that it has of the 3D area.
-    const double star_share = std::clamp(3.0 * problem.mass[map.pole], 1e-12, 0.5);
+    const double star_share = std::clamp(3.0 * problem.mass[pole], 1e-12, 0.5);
     const double s = std::sqrt(1.0 / star_share - 1.0);
-    map.points.resize(mesh.positions.size());
+    std::vector<Eigen::Vector3d> points(mesh.positions.size());
     parallel_for(pool, mesh.vertex_count(), [&](int64_t begin, int64_t end) {
         for (int64_t i = begin; i < end; ++i) {
             const Eigen::Vector2d p = s * plane[i];
             const double r2 = p.squaredNorm();
-            map.points[i] = Eigen::Vector3d(2.0 * p.x(), 2.0 * p.y(), r2 - 1.0) / (r2 + 1.0);
+            points[i] = Eigen::Vector3d(2.0 * p.x(), 2.0 * p.y(), r2 - 1.0) / (r2 + 1.0);
         }
     });
-    map.points[map.pole] = Eigen::Vector3d::UnitZ();
-    map.folded_after_lift = count_folded_triangles(mesh, map.points);
-    mobius_centre(problem, map.points, pool, 1e-4, 100);
-    return map;
+    points[pole] = Eigen::Vector3d::UnitZ();
+    mobius_centre(problem, points, pool, 1e-4, 100);
+    return points;
 }
 
 }  // namespace raps

@@ -21,9 +21,8 @@
 // scale, where a removed triangle's own orientation bounds the scale from the other side.
 // Stereographic projection keeps circles, not straight edges, so a nearly flat planar triangle
 // whose circumcircle it lifts past a great circle can still come out with det[a, b, c] <= 0:
-// measured, 0 to 4 such triangles on the shared meshes (`folded_after_lift`), which the
-// centring and the relaxation that follow turn back (they never fold a triangle, and may
-// unfold one).
+// measured, 0 to 4 such triangles on the shared meshes, which the centring and the relaxation
+// that follow turn back (they never fold a triangle, and may unfold one).
 #pragma once
 
 #include <cstdint>
@@ -38,15 +37,10 @@
 
 namespace raps {
 
-struct InitialSphereMap {
-    std::vector<Eigen::Vector3d> points;  // one unit vector per vertex
-    int32_t pole = -1;                    // the punctured vertex
-    int64_t folded_after_lift = 0;        // triangles with det <= 0 right after the lift
-};
-
-// `progress` receives the fraction of the sparse factorization done (it may throw to cancel).
-InitialSphereMap stereographic_initial_map(const SphereProblem& problem, WeightScheme weights,
-                                           ThreadPool& pool,
-                                           const std::function<void(double)>& progress);
+// One unit vector per vertex. `progress` receives the fraction of the sparse factorization done
+// (it may throw to cancel).
+std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& problem,
+                                                       WeightScheme weights, ThreadPool& pool,
+                                                       const std::function<void(double)>& progress);
 
 }  // namespace raps

@@ -58,10 +58,9 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
         if (literal) {
             points = gauss_map(mesh);
         } else {
-            points =
-                stereographic_initial_map(problem, settings.weights, pool, [&](double fraction) {
-                    progress.report(Phase::kInitialMap, 0.5 * fraction);
-                }).points;
+            points = stereographic_initial_map(
+                problem, settings.weights, pool,
+                [&](double fraction) { progress.report(Phase::kInitialMap, 0.5 * fraction); });
         }
         map.relaxation_sweeps +=
             relax_on_sphere(problem, base_weights, points, options, pool, [&](double fraction) {

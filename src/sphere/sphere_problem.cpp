@@ -2,7 +2,6 @@
 
 #include "mesh/mesh_validation.h"
 #include "mesh/vertex_coloring.h"
-#include "sphere/spherical_geometry.h"
 
 namespace raps {
 
@@ -31,13 +30,6 @@ SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges)
                          std::move(colors),
                          std::move(mass),
                          std::move(floor)};
-}
-
-int64_t count_folded_triangles(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& u) {
-    int64_t folded = 0;
-    for (const Triangle& t : mesh.triangles)
-        folded += !(orientation(u[t[0]], u[t[1]], u[t[2]]) > 0);
-    return folded;
 }
 
 }  // namespace raps

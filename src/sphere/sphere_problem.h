@@ -51,7 +51,4 @@ inline bool shape_allowed(const SphereProblem& problem, int32_t t, double before
     return after >= problem.floor[t] || after >= before;
 }
 
-// Number of triangles with det[a, b, c] <= 0 in the map `u`.
-int64_t count_folded_triangles(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& u);
-
 }  // namespace raps

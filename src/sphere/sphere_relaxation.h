@@ -44,9 +44,9 @@
 
 namespace raps {
 
-// Measured (README): 1.5 converged bunny's initial map in 143 sweeps instead of 264 at 1.0 and
-// kept every adaptive relaxation convergent; 1.8 converged the initial map in 83 sweeps but
-// left adaptive relaxations oscillating (their residual grew).
+// Measured on bunny with uniform weights, every relaxation to convergence (README): the initial
+// relaxation took 312 sweeps at omega 1.0, 144 at 1.5, 80 at 1.8; all five relaxations 2,440,
+// 984 and 12,080 - at 1.8 the adaptive ones oscillate until their sweep limit.
 constexpr double kOverRelaxation = 1.5;
 
 struct RelaxationOptions {
