@@ -239,7 +239,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
     }
 }
 
-double* float_field(raps::Settings& s, raps_param id) {
+// The field of a float parameter (const or not, as the settings are).
+template <typename AnySettings>
+auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
     switch (id) {
         case RAPS_PARAM_ALPHA:
             return &s.alpha;
@@ -552,8 +554,7 @@ raps_status raps_settings_get_float(const raps_settings* settings, raps_param pa
     return guarded(nullptr, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
         checked_param(param, true);
-        raps::Settings copy = settings->settings;
-        *out_value = *float_field(copy, param);
+        *out_value = *float_field(settings->settings, param);
     });
 }
 

@@ -187,6 +187,15 @@ void check_one_piece(const TriangleMesh& mesh, const Halfedges& halfedges, const
     }
 }
 
+// "3, 17, 92": the first vertex of each of (at most 8 of) the loops, for messages.
+std::string loop_starts(const std::vector<std::vector<int32_t>>& loops) {
+    std::string starts;
+    for (size_t i = 0; i < loops.size() && i < 8; ++i) {
+        starts += (i ? ", " : "") + std::to_string(loops[i][0]);
+    }
+    return starts;
+}
+
 int64_t euler_characteristic(const TriangleMesh& mesh, const Halfedges& halfedges) {
     return static_cast<int64_t>(mesh.vertex_count()) - edge_count(halfedges) +
            mesh.triangle_count();
@@ -203,10 +212,7 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
                     "the mesh is closed (it has no boundary loop); a disk has exactly one");
     }
     if (loops.size() > 1) {
-        std::string starts;
-        for (size_t i = 0; i < loops.size() && i < 8; ++i) {
-            starts += (i ? ", " : "") + std::to_string(loops[i][0]);
-        }
+        const std::string starts = loop_starts(loops);
         throw Error(ErrorCode::kMultipleBoundaries,
                     "the mesh has " + std::to_string(loops.size()) +
                         " boundary loops (holes), through vertices " + starts +
@@ -227,10 +233,7 @@ void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedge
     check_one_piece(mesh, halfedges, "a sphere");
     const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
     if (!loops.empty()) {
-        std::string starts;
-        for (size_t i = 0; i < loops.size() && i < 8; ++i) {
-            starts += (i ? ", " : "") + std::to_string(loops[i][0]);
-        }
+        const std::string starts = loop_starts(loops);
         throw Error(ErrorCode::kOpenMesh, "the sphere domain needs a closed mesh: it has " +
                                               std::to_string(loops.size()) + " boundary loop" +
                                               (loops.size() > 1 ? "s" : "") +
