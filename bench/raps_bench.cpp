@@ -3,6 +3,13 @@
 // per phase the median of several runs, triangles per second and peak memory.
 //
 //   raps-bench [--data DIR] [--runs N] [--large-runs N] [--subdivide K] [--monitor area|none]
+//   raps-bench --sphere [--data DIR] [--runs N] [--large-runs N] [--subdivide K] [--threads N]
+//
+// --sphere times the sphere domain instead (robust method, area monitor, alpha 1) on the shared
+// closed genus-0 meshes and on bunny.off subdivided K times (default 2: 111K triangles): sweeps,
+// time per phase, spherical area distortion of the initial map (a run with no monitor) and of
+// the adapted one, folded triangles, peak memory, and the speed-up from 1 thread to N (default:
+// all cores).
 //
 // Every case runs in its own child process (fork), so the peak resident memory reported is that
 // case's alone. Numbers are printed, never judged: speed targets live here, not in tests.
@@ -63,11 +70,19 @@ struct Sample {
     double area_log_mean;
     uint64_t flipped;
     uint64_t triangles;
+    uint64_t sweeps;
     int ok;
 };
 
+// What one run asks of the library.
+struct Config {
+    int32_t domain = RAPS_DOMAIN_DISK;
+    int32_t monitor = RAPS_MONITOR_AREA;
+    int32_t threads = 0;
+};
+
 Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t>& triangles,
-                int32_t monitor) {
+                const Config& config) {
     Sample sample{};
     raps_mesh* mesh = nullptr;
     raps_settings* settings = nullptr;
@@ -75,7 +90,9 @@ Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t
     raps_mesh_create(&mesh);
     raps_settings_create(&settings);
     raps_result_create(&result);
-    raps_settings_set_int(settings, RAPS_PARAM_MONITOR, monitor);
+    raps_settings_set_int(settings, RAPS_PARAM_MONITOR, config.monitor);
+    raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, config.domain);
+    raps_settings_set_int(settings, RAPS_PARAM_THREADS, config.threads);
     const auto start = std::chrono::steady_clock::now();
     raps_mesh_set_positions_f64(mesh, positions.data(), positions.size() / 3, 0);
     raps_mesh_set_indices_u32(mesh, triangles.data(), triangles.size());
@@ -91,6 +108,7 @@ Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t
         sample.area_log_mean = stats.area_log_mean;
         sample.flipped = stats.flipped_triangles;
         sample.triangles = stats.triangle_count;
+        sample.sweeps = stats.relaxation_sweeps;
         sample.ok = 1;
     } else {
         std::fprintf(stderr, "raps-bench: %s\n", raps_result_last_error(result));
@@ -109,7 +127,7 @@ double median(std::vector<double> values) {
 
 // Runs `runs` samples in one child process (after loading the mesh there, so the parent stays
 // small), returning them and the child's peak resident set in MB.
-std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, int32_t monitor) {
+std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, const Config& config) {
     int fds[2];
     if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
     const pid_t pid = fork();
@@ -122,7 +140,7 @@ std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, int32_t
             std::vector<uint32_t> triangles = mesh.triangles();
             for (int s = 0; s < c.subdivisions; ++s) subdivide(positions, triangles);
             for (int r = 0; r < runs; ++r) {
-                const Sample sample = run_once(positions, triangles, monitor);
+                const Sample sample = run_once(positions, triangles, config);
                 if (write(fds[1], &sample, sizeof(sample)) != static_cast<ssize_t>(sizeof(sample)))
                     _exit(3);
             }
@@ -145,12 +163,72 @@ std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, int32_t
     return {samples, usage.ru_maxrss / 1024.0};
 }
 
+// The sphere section: per closed genus-0 mesh, the initial map's distortion (one run with no
+// monitor), then `runs` adapted runs on all threads and `runs` on one.
+int run_sphere(const std::string& data, int runs, int large_runs, int subdivisions, int threads) {
+    std::vector<Case> cases = {{"bunny", data + "/meshes/bunny.off", 0},
+                               {"cheburashka", data + "/meshes/cheburashka.off", 0},
+                               {"decimated-max", data + "/meshes/decimated-max.obj", 0},
+                               {"fandisk", data + "/meshes/fandisk.obj", 0},
+                               {"spot", data + "/meshes/spot.obj", 0}};
+    if (subdivisions > 0) {
+        cases.push_back({"bunny/" + std::to_string(1 << (2 * subdivisions)),
+                         data + "/meshes/bunny.off", subdivisions});
+    }
+    const int all = threads > 0 ? threads : static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
+    std::printf(
+        "raps %s, sphere domain: robust method, mean value weights, area monitor alpha 1 in 4 "
+        "continuation steps; median of runs per case; %d threads against 1\n\n",
+        raps_version_string(), all);
+    std::printf(
+        "| mesh | triangles | runs | sweeps | topology ms | initial map ms | adapt ms | "
+        "total ms | total ms, 1 thread | speed-up | peak MB | area initial -> adapted | "
+        "flips |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+    for (const Case& c : cases) {
+        const int n = c.subdivisions > 0 ? large_runs : runs;
+        Config initial;
+        initial.domain = RAPS_DOMAIN_SPHERE;
+        initial.monitor = RAPS_MONITOR_NONE;
+        initial.threads = all;
+        Config adapted = initial;
+        adapted.monitor = RAPS_MONITOR_AREA;
+        Config single = adapted;
+        single.threads = 1;
+        const auto first = run_case(c, 1, initial);
+        const auto [samples, peak_mb] = run_case(c, n, adapted);
+        const auto serial = run_case(c, n, single);
+        if (first.first.empty() || samples.empty() || serial.first.empty() || !samples[0].ok) {
+            std::printf("| %s | failed |\n", c.name.c_str());
+            continue;
+        }
+        std::vector<double> phase[RAPS_PHASE_COUNT], total, total_serial;
+        for (const Sample& s : samples) {
+            for (int p = 0; p < RAPS_PHASE_COUNT; ++p) phase[p].push_back(s.phase_ms[p]);
+            total.push_back(s.total_ms);
+        }
+        for (const Sample& s : serial.first) total_serial.push_back(s.total_ms);
+        const double t = median(total), t1 = median(total_serial);
+        std::printf(
+            "| %s | %llu | %zu | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.3f -> "
+            "%.3f | %llu |\n",
+            c.name.c_str(), static_cast<unsigned long long>(samples[0].triangles), samples.size(),
+            static_cast<unsigned long long>(samples[0].sweeps), median(phase[RAPS_PHASE_TOPOLOGY]),
+            median(phase[RAPS_PHASE_INITIAL_MAP]), median(phase[RAPS_PHASE_ADAPT]), t, t1, t1 / t,
+            peak_mb, first.first[0].area_log_mean, samples[0].area_log_mean,
+            static_cast<unsigned long long>(samples[0].flipped));
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::string data = RAPS_SHARED_DATA_DIR;
-    int runs = 7, large_runs = 3, subdivisions = 2;
+    int runs = 7, large_runs = 3, subdivisions = 2, threads = 0;
     int32_t monitor = RAPS_MONITOR_AREA;
+    bool sphere = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&]() -> std::string {
@@ -170,13 +248,20 @@ int main(int argc, char** argv) {
             subdivisions = std::max(0, std::atoi(value().c_str()));
         else if (arg == "--monitor")
             monitor = value() == "none" ? RAPS_MONITOR_NONE : RAPS_MONITOR_AREA;
+        else if (arg == "--sphere")
+            sphere = true;
+        else if (arg == "--threads")
+            threads = std::max(0, std::atoi(value().c_str()));
         else {
             std::fprintf(stderr,
                          "usage: raps-bench [--data DIR] [--runs N] [--large-runs N] "
-                         "[--subdivide K] [--monitor area|none]\n");
+                         "[--subdivide K] [--monitor area|none]\n"
+                         "       raps-bench --sphere [--data DIR] [--runs N] [--large-runs N] "
+                         "[--subdivide K] [--threads N]\n");
             return 2;
         }
     }
+    if (sphere) return run_sphere(data, runs, large_runs, subdivisions, threads);
     std::vector<Case> cases = {{"alligator", data + "/meshes/alligator.obj", 0},
                                {"camelhead", data + "/meshes/camelhead.off", 0},
                                {"lion", data + "/meshes/lion.off", 0},
@@ -195,7 +280,10 @@ int main(int argc, char** argv) {
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Case& c : cases) {
         const int n = c.subdivisions > 0 ? large_runs : runs;
-        const auto [samples, peak_mb] = run_case(c, n, monitor);
+        Config config;
+        config.monitor = monitor;
+        config.threads = threads;
+        const auto [samples, peak_mb] = run_case(c, n, config);
         if (samples.empty() || !samples[0].ok) {
             std::printf("| %s | failed |\n", c.name.c_str());
             continue;

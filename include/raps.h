@@ -8,6 +8,9 @@
  *   shape, one sparse solve), then one or more solves with adaptive weights
  *   W_ij = w_ij * e_ij^alpha built from an error monitor (area, edge length or angle) measured on
  *   the previous map (paper sections 3-6).
+ *   Given a closed genus-0 mesh and RAPS_DOMAIN_SPHERE, compute a bijective map onto the unit
+ *   sphere adapted with the same monitors (paper section 7), and optionally unfold it onto the
+ *   square through the octahedron to get one chart of UVs.
  *
  * How to use it (C; every other language binds these same functions)
  *
@@ -137,7 +140,9 @@ enum {
      * no map). */
     RAPS_ERROR_INVALID_OPERATION = 20,
     /* A bug in raps. Please report it with the message. */
-    RAPS_ERROR_INTERNAL = 21
+    RAPS_ERROR_INTERNAL = 21,
+    /* Sphere domain: the mesh is not closed (it has boundary loops; the message counts them). */
+    RAPS_ERROR_OPEN_MESH = 22
 };
 
 /* A short static description of a status ("invalid argument", ...); "unknown status" for values
@@ -211,9 +216,31 @@ enum {
     /* int. Largest triangle count accepted, 1..2^31-1; larger meshes get RAPS_ERROR_TOO_LARGE
      * before any work is done. Default 2^31-1. */
     RAPS_PARAM_MAX_TRIANGLES = 8,
-    /* int. Threads a run may use, 0..1024; 0 = every hardware thread. The output is
-     * bit-identical whatever the value. Default 0. */
+    /* int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
+     * bit-identical for every value. Used by the sphere relaxation and the atlas. Default 0. */
     RAPS_PARAM_THREADS = 9,
+
+    /* Sphere domain (RAPS_DOMAIN_SPHERE); ignored by the others. */
+    /* int. How the sphere domain computes its map, see RAPS_SPHERE_*. Default ROBUST. */
+    RAPS_PARAM_SPHERE_METHOD = 10,
+    /* int. Texture coordinates for the sphere domain, see RAPS_SPHERE_UV_*. Default NONE. */
+    RAPS_PARAM_SPHERE_UV = 11,
+    /* float. Sphere relaxation: damping lambda of algorithm 7.1, the fraction of the way to the
+     * weighted mean of its ring that a vertex moves per sweep, in (0, 1]. Default 1. */
+    RAPS_PARAM_SPHERE_DAMPING = 12,
+    /* float. Sphere relaxation: it has converged when the root mean square of the vertices'
+     * moves in one sweep (after removing the rotation that best aligns the map with the one
+     * before), in units of the damping times the mean edge length, is below this, in
+     * [1e-12, 1]. Default 1e-4. */
+    RAPS_PARAM_SPHERE_TOLERANCE = 13,
+    /* int. Sphere relaxation: most sweeps of one relaxation, 0..10^7; 0 = the method's own:
+     * 100 for ROBUST (its distortion is no better with more on the shared meshes; see README),
+     * 50000 for LITERAL. Default 0. */
+    RAPS_PARAM_SPHERE_MAX_SWEEPS = 14,
+    /* int. Robust sphere method: relaxations by which each adaptive iteration reaches its
+     * exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.
+     * Default 4. */
+    RAPS_PARAM_SPHERE_ALPHA_STEPS = 15,
 
     /* Atlas domain (RAPS_DOMAIN_ATLAS); ignored by the others. */
     /* int. Texels on the atlas's longer side, 16..16384. Default 1024. */
@@ -240,6 +267,12 @@ enum {
     /* A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
      * boundary on the convex shape of RAPS_PARAM_BOUNDARY. One output vertex per input vertex. */
     RAPS_DOMAIN_DISK = 0,
+    /* A closed genus-0 mesh (no boundary, one piece), mapped bijectively onto the unit sphere
+     * (paper section 7): read the points with raps_result_copy_sphere_points_*. One output
+     * vertex per input vertex, the input triangles, no uvs, unless RAPS_PARAM_SPHERE_UV asks
+     * for the octahedral unfold. Refuses an open mesh (RAPS_ERROR_OPEN_MESH), handles
+     * (NONZERO_GENUS), several pieces (MULTIPLE_COMPONENTS) and non-manifold input. */
+    RAPS_DOMAIN_SPHERE = 1,
     /* Any triangle mesh (several pieces, holes, handles, non-manifold or inconsistently wound
      * parts, zero-area and duplicate triangles): cut into charts, each mapped (a free-boundary
      * conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
@@ -248,6 +281,30 @@ enum {
      * normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
      * as a texture of that size maps them. */
     RAPS_DOMAIN_ATLAS = 2
+};
+
+/* RAPS_PARAM_SPHERE_METHOD values */
+enum {
+    /* Paper algorithm 7.1 as written: Gauss map (centroid at the origin, project), Gauss-Seidel
+     * sweeps in vertex order moving each vertex by lambda times the tangential Laplacian and
+     * back onto the sphere until converged, then the same with the adaptive weights. One thread,
+     * no safeguards: it may fold triangles and collapse towards a point (measured: README). */
+    RAPS_SPHERE_LITERAL = 0,
+    /* The same relaxation made robust (README, "The sphere domain"): a bijective initial map
+     * (puncture, Tutte embedding, inverse stereographic projection), moves that would fold a
+     * triangle halved or refused, Moebius centring after every sweep, parallel Gauss-Seidel over
+     * a vertex colouring, over-relaxation, and continuation in alpha. Never folds. */
+    RAPS_SPHERE_ROBUST = 1
+};
+
+/* RAPS_PARAM_SPHERE_UV values */
+enum {
+    RAPS_SPHERE_UV_NONE = 0, /* sphere points only */
+    /* Also unfold the sphere onto [0,1]^2 through the octahedron (Praun and Hoppe 2003): one
+     * chart, cut along four paths of edges from one vertex to the equator; the vertices on the
+     * cut are duplicated (more output vertices than input, see raps_result_copy_vertex_remap),
+     * and no uv triangle is flipped. The statistics then describe the uv map. */
+    RAPS_SPHERE_UV_OCTAHEDRAL = 1
 };
 
 /* RAPS_PARAM_WEIGHTS values */
@@ -320,10 +377,13 @@ RAPS_API raps_status raps_param_info(raps_param param, const char** out_name, in
 typedef int32_t raps_phase;
 enum {
     RAPS_PHASE_VALIDATE = 0,    /* checking the input */
-    RAPS_PHASE_TOPOLOGY = 1,    /* edges, boundary loop, system pattern and ordering; atlas: welding */
-    RAPS_PHASE_INITIAL_MAP = 2, /* boundary, base weights, first solve (paper sections 3, 5); atlas:
+    RAPS_PHASE_TOPOLOGY = 1,    /* edges, boundary loop, system pattern and ordering; atlas:
+                                 * welding */
+    RAPS_PHASE_INITIAL_MAP = 2, /* boundary, base weights, first solve (paper sections 3, 5);
+                                 * sphere: initial map and its relaxation (section 7); atlas:
                                  * every chart's map, its adaptive step included */
-    RAPS_PHASE_ADAPT = 3,       /* monitors and adaptive solves (section 6) */
+    RAPS_PHASE_ADAPT = 3,       /* monitors and adaptive solves (section 6); sphere: the
+                                 * adaptive relaxations, and the octahedral unfold */
     RAPS_PHASE_METRICS = 4,     /* distortion statistics */
     RAPS_PHASE_SEGMENT = 5,     /* atlas: growing charts */
     RAPS_PHASE_PACK = 6,        /* atlas: packing charts */
@@ -359,33 +419,45 @@ RAPS_API raps_status raps_result_create(raps_result** out_result);
 RAPS_API void raps_result_destroy(raps_result* result);
 
 /* Parameterizes mesh with settings (NULL: the defaults) into result, replacing what it held.
- * mesh and settings are only read (see Threading). Runs on the calling thread.
+ * mesh and settings are only read (see Threading). Runs on the calling thread; the sphere domain
+ * also starts up to RAPS_PARAM_THREADS - 1 worker threads of its own and joins them before it
+ * returns (the progress callback is still only called on the calling thread).
  * On success result holds the output vertices (UVs and the input vertex each comes from), the
  * output triangles and the statistics. On failure it holds nothing and its message names the
  * problem (for mesh problems: the first offending triangle, vertex or edge).
  * Errors: INVALID_ARGUMENT (mesh or result NULL), EMPTY_MESH, INDEX_OUT_OF_RANGE, TOO_LARGE,
  * REPEATED_VERTEX, ZERO_AREA_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX,
  * INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
- * MULTIPLE_BOUNDARIES, NONZERO_GENUS, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY, INTERNAL. */
+ * MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
+ * INTERNAL. */
 RAPS_API raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
                                        raps_result* result);
 
 /* The message of the last failed call on this result, "" after a success; never NULL. */
 RAPS_API const char* raps_result_last_error(const raps_result* result);
 
-/* Output sizes; 0 for NULL or an empty result. For RAPS_DOMAIN_DISK the output vertices are the
- * input vertices, in input order, and the output triangles are the input triangles. */
+/* Output sizes; 0 for NULL or an empty result. For RAPS_DOMAIN_DISK, and RAPS_DOMAIN_SPHERE
+ * without uvs, the output vertices are the input vertices, in input order, and the output
+ * triangles are the input triangles. */
 RAPS_API size_t raps_result_vertex_count(const raps_result* result);
 RAPS_API size_t raps_result_index_count(const raps_result* result);
 
 /* Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
  * i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
  * be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
- * INVALID_OPERATION (the result holds no map). */
+ * INVALID_OPERATION (the result holds no map, or a sphere map without uvs). */
 RAPS_API raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst,
                                               size_t capacity, size_t stride_bytes);
 RAPS_API raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst,
                                               size_t capacity, size_t stride_bytes);
+/* Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
+ * like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity >=
+ * raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
+ * INVALID_OPERATION (the result holds no sphere map, e.g. a disk result). */
+RAPS_API raps_status raps_result_copy_sphere_points_f32(const raps_result* result, float* dst,
+                                                        size_t capacity, size_t stride_bytes);
+RAPS_API raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,
+                                                        size_t capacity, size_t stride_bytes);
 /* Copy the output triangles (indices into the output vertices), capacity >= index_count. */
 RAPS_API raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,
                                                   size_t capacity);
@@ -399,7 +471,11 @@ RAPS_API raps_status raps_result_copy_chart_ids(const raps_result* result, uint3
 
 /* Distortion statistics of a result. Definitions (r_t, the per-triangle area ratio, is
  * (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area; the
- * atlas domain measures in texel space, where its map is isotropic):
+ * atlas domain measures in texel space, where its map is isotropic).
+ * For a sphere map without uvs "uv" reads "on the sphere": the exact area of the geodesic
+ * triangle, the angle between great-circle arcs, flipped when det[a, b, c] < 0 (clockwise seen
+ * from outside), and stretch of the flat triangle scaled to its spherical area. With the
+ * octahedral unfold they describe the uv map.
  * Caller sets struct_size = sizeof(raps_stats) before the call; the library fills only the
  * fields that fit in struct_size, so a caller built against an older, shorter raps_stats keeps
  * working. Fields are only ever appended. */
@@ -419,11 +495,12 @@ typedef struct raps_stats {
     double angle_max_deg;         /* max of the same */
     double stretch_l2;            /* Sander et al. 2001 L2 stretch, uv scaled to the 3D area */
     double stretch_linf;          /* Sander's Linf stretch (largest singular value); isometry 1 */
-    uint64_t relaxation_sweeps;   /* sphere domain: sweeps of the spherical relaxation; else 0 */
-    uint64_t chart_count;         /* charts (1 for the disk domain) */
+    uint64_t relaxation_sweeps;   /* sweeps of the sphere relaxation, all phases; else 0 */
+    uint64_t chart_count;         /* charts (1 for the disk and sphere domains) */
     uint64_t atlas_width;         /* atlas domain: texels; 0 otherwise */
     uint64_t atlas_height;
-    double utilization;           /* uv area over the unit square ([0,1]^2 after normalising) */
+    double utilization; /* uv area over the unit square ([0,1]^2 after normalising);
+                         * 0 for a sphere map without uvs */
 } raps_stats;
 
 /* Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size < 8),

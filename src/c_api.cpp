@@ -3,6 +3,8 @@
 // stored in the handle. No algorithm lives here.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <new>
 #include <string>
@@ -15,6 +17,7 @@
 #include "raps.h"
 
 static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8, "raps_stats layout is ABI");
+static_assert(offsetof(raps_stats, relaxation_sweeps) == 104, "raps_stats layout is ABI");
 
 #define RAPS_CHECK_CODE(name, value) \
     static_assert(static_cast<int32_t>(raps::ErrorCode::name) == (value), #value)
@@ -39,6 +42,7 @@ RAPS_CHECK_CODE(kCancelled, RAPS_ERROR_CANCELLED);
 RAPS_CHECK_CODE(kSolverFailed, RAPS_ERROR_SOLVER_FAILED);
 RAPS_CHECK_CODE(kInvalidOperation, RAPS_ERROR_INVALID_OPERATION);
 RAPS_CHECK_CODE(kInternal, RAPS_ERROR_INTERNAL);
+RAPS_CHECK_CODE(kOpenMesh, RAPS_ERROR_OPEN_MESH);
 #undef RAPS_CHECK_CODE
 
 struct raps_mesh {
@@ -117,6 +121,14 @@ constexpr ParamInfo kParams[] = {
      RAPS_BOUNDARY_CIRCLE},
     {RAPS_PARAM_MAX_TRIANGLES, "max_triangles", false, 1, kMaxElements, kMaxElements},
     {RAPS_PARAM_THREADS, "threads", false, 0, 1024, 0},
+    {RAPS_PARAM_SPHERE_METHOD, "sphere_method", false, RAPS_SPHERE_LITERAL, RAPS_SPHERE_ROBUST,
+     RAPS_SPHERE_ROBUST},
+    {RAPS_PARAM_SPHERE_UV, "sphere_uv", false, RAPS_SPHERE_UV_NONE, RAPS_SPHERE_UV_OCTAHEDRAL,
+     RAPS_SPHERE_UV_NONE},
+    {RAPS_PARAM_SPHERE_DAMPING, "sphere_damping", true, 2.2250738585072014e-308, 1.0, 1.0},
+    {RAPS_PARAM_SPHERE_TOLERANCE, "sphere_tolerance", true, 1e-12, 1.0, 1e-4},
+    {RAPS_PARAM_SPHERE_MAX_SWEEPS, "sphere_max_sweeps", false, 0, 10000000, 0},
+    {RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", false, 1, 100, 4},
     {RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", false, 16, 16384, 1024},
     {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 1},
     {RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", true, 0.0, 1.7976931348623157e308, 0.0},
@@ -125,26 +137,16 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, "atlas_max_linf_stretch", true, 1.0, 1000.0, 2.9},
 };
 
-// Values inside a parameter's bounds that it still does not take.
-bool is_valid_value(raps_param id, int64_t v) {
-    return id != RAPS_PARAM_DOMAIN || v == RAPS_DOMAIN_DISK || v == RAPS_DOMAIN_ATLAS;
-}
-
-double* float_field(raps::Settings& s, raps_param id) {
-    switch (id) {
-        case RAPS_PARAM_ALPHA:
-            return &s.alpha;
-        case RAPS_PARAM_WELD_TOLERANCE:
-            return &s.weld_tolerance;
-        case RAPS_PARAM_HARD_EDGE_ANGLE:
-            return &s.hard_edge_angle_deg;
-        case RAPS_PARAM_ATLAS_MAX_L2_STRETCH:
-            return &s.atlas_target_l2;
-        case RAPS_PARAM_ATLAS_MAX_LINF_STRETCH:
-            return &s.atlas_max_linf;
-        default:
-            throw Error(ErrorCode::kInternal, "float parameter without a field");
+// "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
+// smallest normal double means "positive").
+std::string float_bounds(const ParamInfo& info) {
+    char text[64];
+    if (info.min <= 2.2250738585072014e-308) {
+        std::snprintf(text, sizeof(text), "(0, %g]", info.max);
+    } else {
+        std::snprintf(text, sizeof(text), "[%g, %g]", info.min, info.max);
     }
+    return text;
 }
 
 const ParamInfo* find_param(raps_param id) {
@@ -190,6 +192,14 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.atlas_resolution;
         case RAPS_PARAM_ATLAS_PADDING:
             return s.atlas_padding;
+        case RAPS_PARAM_SPHERE_METHOD:
+            return static_cast<int64_t>(s.sphere_method);
+        case RAPS_PARAM_SPHERE_UV:
+            return static_cast<int64_t>(s.sphere_uv);
+        case RAPS_PARAM_SPHERE_MAX_SWEEPS:
+            return s.sphere_max_sweeps;
+        case RAPS_PARAM_SPHERE_ALPHA_STEPS:
+            return s.sphere_alpha_steps;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -227,8 +237,43 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
         case RAPS_PARAM_ATLAS_PADDING:
             s.atlas_padding = static_cast<int32_t>(v);
             break;
+        case RAPS_PARAM_SPHERE_METHOD:
+            s.sphere_method = static_cast<raps::SphereMethod>(v);
+            break;
+        case RAPS_PARAM_SPHERE_UV:
+            s.sphere_uv = static_cast<raps::SphereUv>(v);
+            break;
+        case RAPS_PARAM_SPHERE_MAX_SWEEPS:
+            s.sphere_max_sweeps = v;
+            break;
+        case RAPS_PARAM_SPHERE_ALPHA_STEPS:
+            s.sphere_alpha_steps = static_cast<int>(v);
+            break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
+    }
+}
+
+// The field of a float parameter (const or not, as the settings are).
+template <typename AnySettings>
+auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
+    switch (id) {
+        case RAPS_PARAM_ALPHA:
+            return &s.alpha;
+        case RAPS_PARAM_SPHERE_DAMPING:
+            return &s.sphere_damping;
+        case RAPS_PARAM_SPHERE_TOLERANCE:
+            return &s.sphere_tolerance;
+        case RAPS_PARAM_WELD_TOLERANCE:
+            return &s.weld_tolerance;
+        case RAPS_PARAM_HARD_EDGE_ANGLE:
+            return &s.hard_edge_angle_deg;
+        case RAPS_PARAM_ATLAS_MAX_L2_STRETCH:
+            return &s.atlas_target_l2;
+        case RAPS_PARAM_ATLAS_MAX_LINF_STRETCH:
+            return &s.atlas_max_linf;
+        default:
+            throw Error(ErrorCode::kInternal, "float parameter without a field");
     }
 }
 
@@ -291,24 +336,52 @@ void read_indices(raps_mesh* mesh, const T* indices, size_t count) {
     mesh->indices_are_u16 = sizeof(T) == 2;
 }
 
+// Copies per-output-vertex vectors of N coordinates (uvs, sphere points) as T at `stride` bytes.
+template <typename T, int N>
+void copy_points(const raps_result* result, const std::vector<Eigen::Matrix<double, N, 1>>& points,
+                 T* dst, size_t capacity, size_t stride, const char* what) {
+    require(dst != nullptr, "dst is NULL");
+    if (stride == 0) stride = N * sizeof(T);
+    if (stride < N * sizeof(T)) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    std::string("stride_bytes is smaller than one of the ") + what);
+    }
+    const size_t count = result->map.vertex_remap.size();
+    if (capacity < count) {
+        throw Error(ErrorCode::kInvalidArgument, "capacity " + std::to_string(capacity) +
+                                                     " is smaller than the " +
+                                                     std::to_string(count) + " output vertices");
+    }
+    unsigned char* bytes = reinterpret_cast<unsigned char*>(dst);
+    for (size_t i = 0; i < points.size(); ++i) {
+        T point[N];
+        for (int c = 0; c < N; ++c) point[c] = static_cast<T>(points[i][c]);
+        std::memcpy(bytes + i * stride, point, sizeof(point));
+    }
+}
+
 template <typename T>
 void copy_uvs(const raps_result* result, T* dst, size_t capacity, size_t stride) {
     require(result != nullptr, "result is NULL");
-    require(dst != nullptr, "dst is NULL");
     if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
-    const auto& uv = result->map.uv;
-    if (stride == 0) stride = 2 * sizeof(T);
-    require(stride >= 2 * sizeof(T), "stride_bytes is smaller than one uv pair");
-    if (capacity < uv.size()) {
-        throw Error(ErrorCode::kInvalidArgument,
-                    "capacity " + std::to_string(capacity) + " is smaller than the " +
-                        std::to_string(uv.size()) + " output vertices");
+    if (result->map.uv.empty()) {
+        throw Error(ErrorCode::kInvalidOperation,
+                    "the result holds no uvs: a sphere map has them only with "
+                    "RAPS_SPHERE_UV_OCTAHEDRAL (read its points with "
+                    "raps_result_copy_sphere_points_*)");
     }
-    unsigned char* bytes = reinterpret_cast<unsigned char*>(dst);
-    for (size_t i = 0; i < uv.size(); ++i) {
-        const T pair[2] = {static_cast<T>(uv[i].x()), static_cast<T>(uv[i].y())};
-        std::memcpy(bytes + i * stride, pair, sizeof(pair));
+    copy_points<T, 2>(result, result->map.uv, dst, capacity, stride, "uv pairs");
+}
+
+template <typename T>
+void copy_sphere_points(const raps_result* result, T* dst, size_t capacity, size_t stride) {
+    require(result != nullptr, "result is NULL");
+    if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
+    if (result->map.sphere_points.empty()) {
+        throw Error(ErrorCode::kInvalidOperation,
+                    "the result holds no sphere points (only RAPS_DOMAIN_SPHERE has them)");
     }
+    copy_points<T, 3>(result, result->map.sphere_points, dst, capacity, stride, "points");
 }
 
 void copy_u32(const raps_result* result, const std::vector<uint32_t>& source, uint32_t* dst,
@@ -390,6 +463,8 @@ const char* raps_status_string(raps_status status) {
             return "invalid operation";
         case RAPS_ERROR_INTERNAL:
             return "internal error";
+        case RAPS_ERROR_OPEN_MESH:
+            return "open mesh (the sphere domain needs a closed one)";
         default:
             return "unknown status";
     }
@@ -471,11 +546,6 @@ raps_status raps_settings_set_int(raps_settings* settings, raps_param param, int
                             info.name + " is outside [" + std::to_string(int64_t(info.min)) + ", " +
                             std::to_string(int64_t(info.max)) + "]");
         }
-        if (!is_valid_value(param, value)) {
-            throw Error(ErrorCode::kInvalidArgument, std::string("value ") + std::to_string(value) +
-                                                         " is not one of parameter " + info.name +
-                                                         "'s values");
-        }
         set_int(settings->settings, param, value);
     });
 }
@@ -485,11 +555,9 @@ raps_status raps_settings_set_float(raps_settings* settings, raps_param param, d
         require(settings != nullptr, "settings is NULL");
         const ParamInfo& info = checked_param(param, true);
         if (!(value >= info.min && value <= info.max)) {  // also refuses NaN
-            throw Error(ErrorCode::kInvalidArgument,
-                        std::string("value ") + std::to_string(value) + " of parameter " +
-                            info.name + " is outside [" + std::to_string(info.min) + ", " +
-                            std::to_string(info.max) + "]" +
-                            (param == RAPS_PARAM_ALPHA ? " (alpha must be > 0)" : ""));
+            throw Error(ErrorCode::kInvalidArgument, std::string("value ") + std::to_string(value) +
+                                                         " of parameter " + info.name +
+                                                         " is outside " + float_bounds(info));
         }
         *float_field(settings->settings, param) = value;
     });
@@ -509,7 +577,7 @@ raps_status raps_settings_get_float(const raps_settings* settings, raps_param pa
     return guarded(nullptr, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
         checked_param(param, true);
-        *out_value = *float_field(const_cast<raps::Settings&>(settings->settings), param);
+        *out_value = *float_field(settings->settings, param);
     });
 }
 
@@ -581,7 +649,7 @@ const char* raps_result_last_error(const raps_result* result) {
 }
 
 size_t raps_result_vertex_count(const raps_result* result) {
-    return result && result->has_map ? result->map.uv.size() : 0;
+    return result && result->has_map ? result->map.vertex_remap.size() : 0;
 }
 
 size_t raps_result_index_count(const raps_result* result) {
@@ -596,6 +664,16 @@ raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst, size
 raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst, size_t capacity,
                                      size_t stride_bytes) {
     return guarded(nullptr, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
+}
+
+raps_status raps_result_copy_sphere_points_f32(const raps_result* result, float* dst,
+                                               size_t capacity, size_t stride_bytes) {
+    return guarded(nullptr, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
+}
+
+raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,
+                                               size_t capacity, size_t stride_bytes) {
+    return guarded(nullptr, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
 }
 
 raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,
@@ -637,7 +715,7 @@ raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats) 
     raps_stats full;
     std::memset(&full, 0, sizeof(full));
     full.struct_size = static_cast<uint32_t>(std::min<size_t>(stats->struct_size, sizeof(full)));
-    full.vertex_count = map.uv.size();
+    full.vertex_count = map.vertex_remap.size();
     full.triangle_count = map.indices.size() / 3;
     full.flipped_triangles = static_cast<uint64_t>(map.distortion.flipped_triangles);
     full.zero_area_triangles = static_cast<uint64_t>(map.distortion.zero_area_triangles);
@@ -649,10 +727,11 @@ raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats) 
     full.angle_max_deg = map.distortion.angle_max_deg;
     full.stretch_l2 = map.distortion.stretch_l2;
     full.stretch_linf = map.distortion.stretch_linf;
-    full.chart_count = static_cast<uint64_t>(std::max<int64_t>(map.chart_count, 1));
+    full.chart_count = static_cast<uint64_t>(map.chart_count);
     full.atlas_width = static_cast<uint64_t>(map.atlas_width);
     full.atlas_height = static_cast<uint64_t>(map.atlas_height);
     full.utilization = map.utilization;
+    full.relaxation_sweeps = static_cast<uint64_t>(map.relaxation_sweeps);
     // Only what fits the caller's (possibly older, shorter) struct.
     std::memcpy(stats, &full, full.struct_size);
     return RAPS_OK;

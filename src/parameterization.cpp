@@ -6,8 +6,35 @@
 #include "atlas/atlas_pipeline.h"
 #include "core/error.h"
 #include "planar/disk_parameterization.h"
+#include "sphere/sphere_parameterization.h"
+#include "sphere/spherical_geometry.h"
 
 namespace raps {
+namespace {
+
+// One output vertex per input vertex, the input triangles.
+void identity_output(const TriangleMesh& mesh, Parameterization& out) {
+    out.indices.reserve(3 * mesh.triangles.size());
+    for (const Triangle& t : mesh.triangles) {
+        for (int32_t v : t) out.indices.push_back(static_cast<uint32_t>(v));
+    }
+    out.vertex_remap.resize(mesh.positions.size());
+    for (size_t v = 0; v < out.vertex_remap.size(); ++v) {
+        out.vertex_remap[v] = static_cast<uint32_t>(v);
+    }
+}
+
+// Total uv area of `triangles`: the fraction of [0,1]^2 the map covers.
+double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles) {
+    double area = 0;
+    for (const Triangle& t : triangles) {
+        const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    }
+    return area;
+}
+
+}  // namespace
 
 Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings,
                               const Progress& progress) {
@@ -22,6 +49,42 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                                               std::to_string(settings.max_triangles));
     }
     Parameterization out;
+    if (settings.domain == Domain::kSphere) {
+        SphereMap map = parameterize_sphere(mesh, settings, progress, out.phase_ms);
+        out.negative_weights = map.negative_weights;
+        out.adaptive_solves = map.adaptive_solves;
+        out.relaxation_sweeps = map.relaxation_sweeps;
+        if (map.unfold.uv.empty()) {
+            identity_output(mesh, out);
+            out.sphere_points = std::move(map.points);
+            PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+            out.distortion = measure_distortion(
+                mesh.positions, SphericalMapGeometry(out.sphere_points), mesh.triangles);
+            timer.finish();
+            return out;
+        }
+        // The octahedral unfold: more output vertices than input (the cut's), statistics of
+        // the uvs over the output triangles.
+        out.uv = std::move(map.unfold.uv);
+        out.vertex_remap = std::move(map.unfold.vertex_remap);
+        out.indices = std::move(map.unfold.indices);
+        out.sphere_points.resize(out.vertex_remap.size());
+        std::vector<Eigen::Vector3d> positions(out.vertex_remap.size());
+        for (size_t o = 0; o < out.vertex_remap.size(); ++o) {
+            out.sphere_points[o] = map.points[out.vertex_remap[o]];
+            positions[o] = mesh.positions[out.vertex_remap[o]];
+        }
+        std::vector<Triangle> triangles(mesh.triangles.size());
+        for (size_t t = 0; t < triangles.size(); ++t) {
+            for (int k = 0; k < 3; ++k)
+                triangles[t][k] = static_cast<int32_t>(out.indices[3 * t + k]);
+        }
+        PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+        out.distortion = measure_distortion(positions, PlanarMapGeometry(out.uv), triangles);
+        out.utilization = uv_area(out.uv, triangles);
+        timer.finish();
+        return out;
+    }
     if (settings.domain == Domain::kAtlas) {
         AtlasOutput atlas = build_atlas(mesh, settings, progress, out.phase_ms);
         PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
@@ -34,16 +97,12 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                 Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
         }
         std::vector<Triangle> triangles(mesh.triangles.size());
-        double uv_area = 0;
         for (size_t t = 0; t < triangles.size(); ++t) {
             for (int k = 0; k < 3; ++k)
                 triangles[t][k] = static_cast<int32_t>(atlas.indices[3 * t + k]);
-            const Eigen::Vector2d a = atlas.uv[triangles[t][1]] - atlas.uv[triangles[t][0]];
-            const Eigen::Vector2d b = atlas.uv[triangles[t][2]] - atlas.uv[triangles[t][0]];
-            uv_area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
         }
-        out.distortion = measure_distortion(positions, texels, triangles);
-        out.utilization = uv_area;
+        out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles);
+        out.utilization = uv_area(atlas.uv, triangles);
         out.uv = std::move(atlas.uv);
         out.indices = std::move(atlas.indices);
         out.vertex_remap = std::move(atlas.remap);
@@ -59,21 +118,10 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
     out.uv = std::move(map.uv);
     out.negative_weights = map.negative_weights;
     out.adaptive_solves = map.adaptive_solves;
-    out.indices.reserve(3 * mesh.triangles.size());
-    for (const Triangle& t : mesh.triangles) {
-        for (int32_t v : t) out.indices.push_back(static_cast<uint32_t>(v));
-    }
-    out.vertex_remap.resize(mesh.positions.size());
-    for (size_t v = 0; v < out.vertex_remap.size(); ++v) {
-        out.vertex_remap[v] = static_cast<uint32_t>(v);
-    }
+    identity_output(mesh, out);
     PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-    out.distortion = measure_distortion(mesh.positions, out.uv, mesh.triangles);
-    for (const Triangle& t : mesh.triangles) {
-        const Eigen::Vector2d a = out.uv[t[1]] - out.uv[t[0]], b = out.uv[t[2]] - out.uv[t[0]];
-        out.utilization += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
-    out.chart_count = 1;
+    out.distortion = measure_distortion(mesh.positions, PlanarMapGeometry(out.uv), mesh.triangles);
+    out.utilization = uv_area(out.uv, mesh.triangles);
     timer.finish();
     return out;
 }

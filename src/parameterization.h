@@ -17,15 +17,17 @@
 namespace raps {
 
 struct Parameterization {
-    std::vector<Eigen::Vector2d> uv;     // per output vertex
-    std::vector<uint32_t> indices;       // output triangles, 3 per triangle
     std::vector<uint32_t> vertex_remap;  // per output vertex: the input vertex it comes from
+    std::vector<uint32_t> indices;       // output triangles, 3 per triangle
+    std::vector<Eigen::Vector2d> uv;     // per output vertex; empty when the map has no uvs
+    std::vector<Eigen::Vector3d> sphere_points;  // per output vertex; empty for the disk
     DistortionStats distortion;
     int64_t negative_weights = 0;
     int64_t adaptive_solves = 0;
+    int64_t relaxation_sweeps = 0;
     // Atlas domain.
     std::vector<uint32_t> chart_ids;  // per output triangle
-    int64_t chart_count = 0;
+    int64_t chart_count = 1;          // the disk and sphere domains: one chart
     int32_t atlas_width = 0, atlas_height = 0;
     double utilization = 0;  // uv area over the unit square
     PhaseTimes phase_ms{};

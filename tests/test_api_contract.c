@@ -48,23 +48,37 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_ERROR_SOLVER_FAILED, 19);
     assert_int_equal(RAPS_ERROR_INVALID_OPERATION, 20);
     assert_int_equal(RAPS_ERROR_INTERNAL, 21);
+    assert_int_equal(RAPS_ERROR_OPEN_MESH, 22);
     assert_int_equal(RAPS_PARAM_DOMAIN, 1);
     assert_int_equal(RAPS_PARAM_MAX_TRIANGLES, 8);
-    assert_int_equal(RAPS_PHASE_METRICS, 4);
     assert_int_equal(RAPS_PARAM_THREADS, 9);
+    assert_int_equal(RAPS_PARAM_SPHERE_METHOD, 10);
+    assert_int_equal(RAPS_PARAM_SPHERE_UV, 11);
+    assert_int_equal(RAPS_PARAM_SPHERE_DAMPING, 12);
+    assert_int_equal(RAPS_PARAM_SPHERE_TOLERANCE, 13);
+    assert_int_equal(RAPS_PARAM_SPHERE_MAX_SWEEPS, 14);
+    assert_int_equal(RAPS_PARAM_SPHERE_ALPHA_STEPS, 15);
+    assert_int_equal(RAPS_DOMAIN_DISK, 0);
+    assert_int_equal(RAPS_DOMAIN_SPHERE, 1);
+    assert_int_equal(RAPS_SPHERE_LITERAL, 0);
+    assert_int_equal(RAPS_SPHERE_ROBUST, 1);
+    assert_int_equal(RAPS_SPHERE_UV_NONE, 0);
+    assert_int_equal(RAPS_SPHERE_UV_OCTAHEDRAL, 1);
+    assert_int_equal(RAPS_PHASE_METRICS, 4);
     assert_int_equal(RAPS_PARAM_ATLAS_RESOLUTION, 32);
     assert_int_equal(RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, 37);
     assert_int_equal(RAPS_DOMAIN_ATLAS, 2);
     assert_int_equal(RAPS_PHASE_PACK, 6);
     assert_int_equal(sizeof(raps_stats), 144);
     assert_int_equal(offsetof(raps_stats, area_log_mean), 56);
+    assert_int_equal(offsetof(raps_stats, stretch_linf), 96);
     assert_int_equal(offsetof(raps_stats, relaxation_sweeps), 104);
     assert_int_equal(offsetof(raps_stats, utilization), 136);
 }
 
 static void every_status_has_a_description(void** state) {
     (void)state;
-    for (int s = RAPS_OK; s <= RAPS_ERROR_INTERNAL; ++s) {
+    for (int s = RAPS_OK; s <= RAPS_ERROR_OPEN_MESH; ++s) {
         const char* text = raps_status_string(s);
         assert_non_null(text);
         assert_string_not_equal(text, "unknown status");
@@ -102,7 +116,12 @@ static void settings_hold_the_documented_defaults(void** state) {
                     {RAPS_PARAM_ITERATIONS, 1},
                     {RAPS_PARAM_ITERATION_MODE, RAPS_ITERATION_ACCUMULATE},
                     {RAPS_PARAM_BOUNDARY, RAPS_BOUNDARY_CIRCLE},
-                    {RAPS_PARAM_MAX_TRIANGLES, 2147483647}};
+                    {RAPS_PARAM_MAX_TRIANGLES, 2147483647},
+                    {RAPS_PARAM_THREADS, 0},
+                    {RAPS_PARAM_SPHERE_METHOD, RAPS_SPHERE_ROBUST},
+                    {RAPS_PARAM_SPHERE_UV, RAPS_SPHERE_UV_NONE},
+                    {RAPS_PARAM_SPHERE_MAX_SWEEPS, 0},
+                    {RAPS_PARAM_SPHERE_ALPHA_STEPS, 4}};
     for (size_t i = 0; i < sizeof(expected) / sizeof(expected[0]); ++i) {
         int64_t value = -1;
         assert_status(raps_settings_get_int(s, expected[i].param, &value), RAPS_OK);
@@ -116,9 +135,23 @@ static void settings_hold_the_documented_defaults(void** state) {
         assert_int_equal(is_float, 0);
         assert_near(fallback, (double)expected[i].value, 0);
     }
-    double alpha = 0;
-    assert_status(raps_settings_get_float(s, RAPS_PARAM_ALPHA, &alpha), RAPS_OK);
-    assert_near(alpha, 1.0, 0);
+    const struct {
+        raps_param param;
+        double value;
+    } expected_float[] = {{RAPS_PARAM_ALPHA, 1.0},
+                          {RAPS_PARAM_SPHERE_DAMPING, 1.0},
+                          {RAPS_PARAM_SPHERE_TOLERANCE, 1e-4}};
+    for (size_t i = 0; i < sizeof(expected_float) / sizeof(expected_float[0]); ++i) {
+        double value = 0, fallback = -1;
+        int32_t is_float = -1;
+        assert_status(raps_settings_get_float(s, expected_float[i].param, &value), RAPS_OK);
+        assert_near(value, expected_float[i].value, 0);
+        assert_status(
+            raps_param_info(expected_float[i].param, NULL, &is_float, NULL, NULL, &fallback),
+            RAPS_OK);
+        assert_int_equal(is_float, 1);
+        assert_near(fallback, expected_float[i].value, 0);
+    }
     raps_settings_destroy(s);
 }
 
@@ -149,7 +182,7 @@ static void every_parameter_round_trips(void** state) {
             assert_int_equal(v, (int64_t)fallback);
             for (int64_t value = (int64_t)lo; value <= (int64_t)hi && value <= (int64_t)lo + 2;
                  ++value) {
-                if (raps_settings_set_int(s, p, value) != RAPS_OK) continue; /* a gap in an enum */
+                assert_status(raps_settings_set_int(s, p, value), RAPS_OK);
                 assert_status(raps_settings_get_int(s, p, &v), RAPS_OK);
                 assert_int_equal(v, value);
             }
@@ -160,7 +193,7 @@ static void every_parameter_round_trips(void** state) {
                           RAPS_ERROR_INVALID_ARGUMENT);
         }
     }
-    assert_true(known >= 15);
+    assert_int_equal(known, 21);
     raps_settings_destroy(s);
 }
 

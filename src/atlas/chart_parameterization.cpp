@@ -9,7 +9,7 @@
 #include "metrics/distortion.h"
 #include "planar/adaptive_map.h"
 #include "planar/convex_boundary.h"
-#include "planar/laplacian_weights.h"
+#include "weights/laplacian_weights.h"
 
 namespace raps {
 namespace {
@@ -31,7 +31,7 @@ void normalise(const ChartDisk& disk, ChartMap& map) {
     const double scale = uv_area > 0 ? std::sqrt(area / uv_area) : 1.0;
     for (Eigen::Vector2d& p : map.uv) p = (p - centroid) * scale;
     const DistortionStats stats =
-        measure_distortion(disk.mesh.positions, map.uv, disk.mesh.triangles);
+        measure_distortion(disk.mesh.positions, PlanarMapGeometry(map.uv), disk.mesh.triangles);
     map.stretch_l2 = stats.stretch_l2;
     map.stretch_linf = stats.stretch_linf;
 }

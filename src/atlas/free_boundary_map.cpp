@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "planar/laplacian_weights.h"
 #include "solver/sparse_solver.h"
+#include "weights/laplacian_weights.h"
 
 namespace raps {
 

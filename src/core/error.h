@@ -32,6 +32,7 @@ enum class ErrorCode : int32_t {
     kSolverFailed = 19,
     kInvalidOperation = 20,
     kInternal = 21,
+    kOpenMesh = 22,
 };
 
 class Error : public std::runtime_error {

@@ -6,11 +6,13 @@
 
 namespace raps {
 
-enum class Domain { kDisk = 0, kAtlas = 2 };
+enum class Domain { kDisk = 0, kSphere = 1, kAtlas = 2 };
 enum class WeightScheme { kMeanValue, kCotangent, kUniform };
 enum class Monitor { kNone, kArea, kEdgeLength, kAngle };
 enum class IterationMode { kAccumulate, kReapply };
 enum class BoundaryShape { kCircle, kSquare };
+enum class SphereMethod { kLiteral, kRobust };
+enum class SphereUv { kNone, kOctahedral };
 
 struct Settings {
     Domain domain = Domain::kDisk;
@@ -23,12 +25,20 @@ struct Settings {
     int64_t max_triangles = 0x7fffffff;
     int threads = 0;  // 0: all hardware threads
 
+    // Sphere domain.
+    SphereMethod sphere_method = SphereMethod::kRobust;
+    SphereUv sphere_uv = SphereUv::kNone;
+    double sphere_damping = 1.0;
+    double sphere_tolerance = 1e-4;
+    int64_t sphere_max_sweeps = 0;  // 0: the method's own
+    int sphere_alpha_steps = 4;
+
     // Atlas domain.
     int32_t atlas_resolution = 1024;   // texels on the atlas's longer side
     int32_t atlas_padding = 1;         // texels between charts
     double weld_tolerance = 0.0;       // distance under which vertices are one
     double hard_edge_angle_deg = 180;  // dihedral angle above which an edge is a seam (180: off)
-    double atlas_target_l2 = 1.01;    // charts are split until the atlas's L2 stretch meets it
+    double atlas_target_l2 = 1.01;     // charts are split until the atlas's L2 stretch meets it
     double atlas_max_linf = 2.9;       // largest stretch allowed in any chart
 };
 

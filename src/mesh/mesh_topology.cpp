@@ -174,33 +174,51 @@ int64_t edge_count(const Halfedges& halfedges) {
     return count;
 }
 
-std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges) {
-    check_manifold_vertices(mesh, halfedges);
+namespace {
+
+void check_one_piece(const TriangleMesh& mesh, const Halfedges& halfedges, const char* shape) {
     const std::vector<int32_t> pieces = piece_representatives(mesh, halfedges);
     if (pieces.size() > 1) {
         throw Error(ErrorCode::kMultipleComponents,
                     "the mesh has " + std::to_string(pieces.size()) +
                         " separate pieces (triangles " + std::to_string(pieces[0]) + " and " +
-                        std::to_string(pieces[1]) +
-                        " are not connected through edges); a disk is one piece");
+                        std::to_string(pieces[1]) + " are not connected through edges); " + shape +
+                        " is one piece");
     }
+}
+
+// "3, 17, 92": the first vertex of each of (at most 8 of) the loops, for messages.
+std::string loop_starts(const std::vector<std::vector<int32_t>>& loops) {
+    std::string starts;
+    for (size_t i = 0; i < loops.size() && i < 8; ++i) {
+        starts += (i ? ", " : "") + std::to_string(loops[i][0]);
+    }
+    return starts;
+}
+
+int64_t euler_characteristic(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    return static_cast<int64_t>(mesh.vertex_count()) - edge_count(halfedges) +
+           mesh.triangle_count();
+}
+
+}  // namespace
+
+std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    check_manifold_vertices(mesh, halfedges);
+    check_one_piece(mesh, halfedges, "a disk");
     std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
     if (loops.empty()) {
         throw Error(ErrorCode::kNoBoundary,
                     "the mesh is closed (it has no boundary loop); a disk has exactly one");
     }
     if (loops.size() > 1) {
-        std::string starts;
-        for (size_t i = 0; i < loops.size() && i < 8; ++i) {
-            starts += (i ? ", " : "") + std::to_string(loops[i][0]);
-        }
+        const std::string starts = loop_starts(loops);
         throw Error(ErrorCode::kMultipleBoundaries,
                     "the mesh has " + std::to_string(loops.size()) +
                         " boundary loops (holes), through vertices " + starts +
                         "; a disk has exactly one");
     }
-    const int64_t euler =
-        static_cast<int64_t>(mesh.vertex_count()) - edge_count(halfedges) + mesh.triangle_count();
+    const int64_t euler = euler_characteristic(mesh, halfedges);
     if (euler != 1) {
         throw Error(ErrorCode::kNonzeroGenus,
                     "the mesh has handles: genus " + std::to_string((1 - euler) / 2) +
@@ -208,6 +226,64 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
                         " with one boundary loop; a disk has V - E + F = 1)");
     }
     return std::move(loops[0]);
+}
+
+void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges) {
+    check_manifold_vertices(mesh, halfedges);
+    check_one_piece(mesh, halfedges, "a sphere");
+    const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
+    if (!loops.empty()) {
+        const std::string starts = loop_starts(loops);
+        throw Error(ErrorCode::kOpenMesh, "the sphere domain needs a closed mesh: it has " +
+                                              std::to_string(loops.size()) + " boundary loop" +
+                                              (loops.size() > 1 ? "s" : "") +
+                                              " (through vertices " + starts + ")");
+    }
+    const int64_t euler = euler_characteristic(mesh, halfedges);
+    if (euler != 2) {
+        throw Error(ErrorCode::kNonzeroGenus, "the mesh has handles: genus " +
+                                                  std::to_string((2 - euler) / 2) +
+                                                  " (V - E + F = " + std::to_string(euler) +
+                                                  "; a closed genus-0 mesh has V - E + F = 2)");
+    }
+}
+
+std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& halfedges, int32_t v) {
+    int32_t start = -1;
+    for (int32_t h = 0; h < static_cast<int32_t>(halfedges.twin.size()) && start < 0; ++h) {
+        if (halfedge_origin(mesh, h) == v) start = h;
+    }
+    std::vector<int32_t> ring;
+    if (start < 0) return ring;
+    int32_t h = start;
+    do {
+        ring.push_back(halfedge_target(mesh, h));
+        h = halfedges.twin[Halfedges::prev(h)];  // the next triangle around v
+    } while (h >= 0 && h != start);
+    return ring;
+}
+
+VertexTriangles build_vertex_triangles(const TriangleMesh& mesh) {
+    VertexTriangles stars;
+    stars.offsets.assign(mesh.positions.size() + 1, 0);
+    for (const Triangle& t : mesh.triangles) {
+        for (int32_t v : t) ++stars.offsets[v + 1];
+    }
+    std::partial_sum(stars.offsets.begin(), stars.offsets.end(), stars.offsets.begin());
+    stars.first.resize(stars.offsets.back());
+    stars.second.resize(stars.offsets.back());
+    stars.triangle.resize(stars.offsets.back());
+    std::vector<int32_t> fill(stars.offsets.begin(), stars.offsets.end() - 1);
+    for (int32_t f = 0; f < mesh.triangle_count(); ++f) {
+        const Triangle& t = mesh.triangles[f];
+        for (int k = 0; k < 3; ++k) {
+            const int32_t e = fill[t[k]]++;
+            stars.first[e] = t[(k + 1) % 3];
+            stars.second[e] = t[(k + 2) % 3];
+            stars.triangle[e] = f;
+        }
+    }
+    return stars;
 }
 
 VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges) {

@@ -50,6 +50,26 @@ int64_t edge_count(const Halfedges& halfedges);
 // Euler characteristic 1) and returns its boundary loop.
 std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges);
 
+// Checks everything the sphere domain needs (manifold, oriented, one piece, no boundary loop,
+// Euler characteristic 2). Throws OPEN_MESH when the mesh has boundary loops, NONZERO_GENUS when
+// it has handles.
+void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges);
+
+// The neighbours of vertex v of a closed mesh in the order of its triangles: (v, ring[m],
+// ring[m + 1]) is a triangle for every m (cyclically). Needs manifold vertices and no boundary
+// at v.
+std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& halfedges, int32_t v);
+
+// The triangles around each vertex, as the two other vertices in the triangle's order: for the
+// entries e in [offsets[v], offsets[v + 1]), (v, first[e], second[e]) is triangle triangle[e] of
+// the mesh with its orientation. Used to check that moving v folds none of its triangles.
+struct VertexTriangles {
+    std::vector<int32_t> offsets;
+    std::vector<int32_t> first, second, triangle;
+};
+
+VertexTriangles build_vertex_triangles(const TriangleMesh& mesh);
+
 // Symmetric vertex adjacency in compressed rows: the neighbours of v are
 // neighbors[offsets[v] .. offsets[v + 1]), sorted ascending. A "slot" is a position in neighbors,
 // i.e. one directed edge v -> neighbors[slot].

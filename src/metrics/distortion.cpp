@@ -13,11 +13,12 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }
 
 // |uv angle - 3D angle| at a corner from the sine and cosine of each (both scaled by the side
-// lengths, which atan2 ignores): one atan2 of the difference instead of two angles.
-double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                        const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+// lengths, which atan2 ignores): one atan2 of the difference instead of two angles. The uv angle
+// is taken unsigned, as the reference metrics do.
+double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double sine_uv,
+                        double cosine_uv) {
     const double sine_3d = a.cross(b).norm(), cosine_3d = a.dot(b);
-    const double sine_uv = std::abs(cross2(p, q)), cosine_uv = p.dot(q);
+    sine_uv = std::abs(sine_uv);
     return std::abs(std::atan2(sine_uv * cosine_3d - cosine_uv * sine_3d,
                                cosine_uv * cosine_3d + sine_uv * sine_3d));
 }
@@ -73,8 +74,7 @@ Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
 }
 
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
-                                   const std::vector<Eigen::Vector2d>& uv,
-                                   const std::vector<Triangle>& triangles) {
+                                   const MapGeometry& map, const std::vector<Triangle>& triangles) {
     const size_t count = triangles.size();
     std::vector<double> area(count), uv_signed_area(count);
     double area_sum = 0;
@@ -83,7 +83,7 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         area[t] =
             0.5 *
             (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
-        uv_signed_area[t] = 0.5 * cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        uv_signed_area[t] = map.area(v[0], v[1], v[2]);
         area_sum += area[t];
     }
     const double degenerate_3d = 1e-12 * area_sum / static_cast<double>(count);
@@ -116,16 +116,18 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         stats.area_max = std::max(stats.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
         for (int k = 0; k < 3; ++k) {
             const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
-            const double degrees =
-                angle_difference(positions[j] - positions[i], positions[l] - positions[i],
-                                 uv[j] - uv[i], uv[l] - uv[i]) *
-                180.0 / M_PI;
+            double sine, cosine;
+            map.angle(i, j, l, &sine, &cosine);
+            const double degrees = angle_difference(positions[j] - positions[i],
+                                                    positions[l] - positions[i], sine, cosine) *
+                                   180.0 / M_PI;
             angle_sum += degrees;
             stats.angle_max_deg = std::max(stats.angle_max_deg, degrees);
         }
-        const auto [uv_big, uv_small] =
-            uv_singular_values(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]],
-                               area[t], uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        Eigen::Vector2d d1, d2;
+        map.edges(v[0], v[1], v[2], &d1, &d2);
+        const auto [uv_big, uv_small] = uv_singular_values(
+            positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]], area[t], d1, d2);
         const double big = scale * uv_big, small = scale * uv_small;
         const double stretch_max = 1.0 / small, stretch_min = 1.0 / big;
         stretch_sum += weight * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);

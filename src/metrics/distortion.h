@@ -2,7 +2,10 @@
 // measurement (shared/tools/uvmetrics.py), so the two can be cross-checked figure by figure:
 // triangles whose 3D area is below 1e-12 of the mean are left out; r_t is the triangle's share
 // of the uv area over its share of the 3D area; stretch is Sander et al. 2001 with the uv scaled
-// so that its area equals the 3D area (an isometry gives 1).
+// so that its area equals the 3D area (an isometry gives 1). The map is seen through MapGeometry:
+// for the sphere domain "uv area" reads spherical triangle area (exact), "uv angle" the angle
+// between great-circle arcs, "flipped" a negative det[a, b, c], and stretch is that of each
+// triangle's flat image scaled to its spherical area.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "core/triangle_mesh.h"
+#include "metrics/map_geometry.h"
 
 namespace raps {
 
@@ -34,9 +38,8 @@ Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
                         const std::vector<Eigen::Vector2d>& uv,
                         const std::vector<Triangle>& triangles);
 
-// Statistics of the map of `triangles` (indices into positions and uv alike).
+// Statistics of the map of `triangles` (indices into positions and the map alike).
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
-                                   const std::vector<Eigen::Vector2d>& uv,
-                                   const std::vector<Triangle>& triangles);
+                                   const MapGeometry& map, const std::vector<Triangle>& triangles);
 
 }  // namespace raps

@@ -1,7 +1,7 @@
 #include "planar/adaptive_map.h"
 
-#include "planar/adaptive_weights.h"
-#include "planar/error_monitors.h"
+#include "weights/adaptive_weights.h"
+#include "weights/error_monitors.h"
 
 namespace raps {
 
@@ -11,7 +11,8 @@ int64_t adapt_map(const TriangleMesh& mesh, const VertexAdjacency& adjacency, La
     if (settings.monitor == Monitor::kNone) return 0;
     std::vector<double> weights = base_weights;
     for (int step = 0; step < settings.iterations; ++step) {
-        const std::vector<double> monitor = error_monitor(mesh, adjacency, uv, settings.monitor);
+        const std::vector<double> monitor =
+            error_monitor(mesh, adjacency, PlanarMapGeometry(uv), settings.monitor);
         const std::vector<double>& previous =
             settings.iteration_mode == IterationMode::kAccumulate ? weights : base_weights;
         weights = adaptive_weights(adjacency, previous, monitor, settings.alpha);

@@ -8,7 +8,7 @@
 #include "planar/adaptive_map.h"
 #include "planar/convex_boundary.h"
 #include "planar/laplace_system.h"
-#include "planar/laplacian_weights.h"
+#include "weights/laplacian_weights.h"
 
 namespace raps {
 
@@ -47,8 +47,9 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
     }
 
     PhaseTimer adapt_timer(Phase::kAdapt, progress, times);
-    map.adaptive_solves = adapt_map(mesh, adjacency, system, base_weights, settings, map.uv,
-                                    [&](double fraction) { progress.report(Phase::kAdapt, fraction); });
+    map.adaptive_solves =
+        adapt_map(mesh, adjacency, system, base_weights, settings, map.uv,
+                  [&](double fraction) { progress.report(Phase::kAdapt, fraction); });
     adapt_timer.finish();
     return map;
 }

@@ -1,7 +1,8 @@
 """raps-param's contract: OBJ/OFF in, OBJ out with the input's vertices and faces in order plus
 one vt per vertex; one JSON object on stdout; clear errors, exit codes, and no output file on
 failure. Its statistics are cross-checked against the project's reference metrics tool,
-shared/tools/uvmetrics.py.
+shared/tools/uvmetrics.py. With --sphere: the points on the unit sphere as v lines, and with
+--sphere-uv octahedral one vt per output vertex (the seams' vertices once per side).
 
 usage: test_raps_param.py RAPS_PARAM SHARED_DATA_DIR
 """
@@ -197,8 +198,85 @@ class RapsParamTest(unittest.TestCase):
         rc, out, _ = run('--help')
         self.assertEqual(rc, 0)
         for flag in ('--output', '--weights', '--monitor', '--alpha', '--iterations',
-                     '--iteration-mode', '--boundary', '--max-triangles', '--version'):
+                     '--iteration-mode', '--boundary', '--max-triangles', '--version',
+                     '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
+                     '--tolerance', '--max-sweeps', '--alpha-steps'):
             self.assertIn(flag, out)
+
+    def test_sphere_writes_the_points_on_the_unit_sphere(self):
+        rc, out, err = run('--sphere', self.mesh('spot.obj'), '-o', self.out)
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual(d['settings']['domain'], 'sphere')
+        self.assertEqual(d['settings']['sphere_method'], 'robust')
+        self.assertEqual(d['settings']['sphere_uv'], 'none')
+        self.assertEqual(d['stats']['flipped_triangles'], 0)
+        self.assertGreater(d['stats']['relaxation_sweeps'], 0)
+        self.assertLess(d['stats']['area_log_mean'], 0.72)  # measured 0.689 (README)
+        for phase in ('validate', 'topology', 'initial_map', 'adapt', 'metrics'):
+            self.assertGreaterEqual(d['time_ms'][phase], 0.0)
+        v_in, _, f_in = obj_records(self.mesh('spot.obj'))
+        v_out, vt_out, f_out = obj_records(self.out)
+        self.assertEqual(len(v_out), len(v_in))
+        self.assertEqual(vt_out, [])
+        self.assertEqual([[c[0] for c in face] for face in f_out], [[c[0] for c in face] for face in f_in])
+        for p in v_out:
+            self.assertAlmostEqual(sum(x * x for x in p), 1.0, delta=1e-12)
+
+    def test_sphere_octahedral_uvs_are_one_chart_with_seams(self):
+        rc, out, err = run('--sphere', self.mesh('spot.obj'), '-o', self.out,
+                           '--sphere-uv', 'octahedral', '--threads', '1')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual(d['settings']['sphere_uv'], 'octahedral')
+        self.assertEqual(d['stats']['flipped_triangles'], 0)
+        v_in, _, f_in = obj_records(self.mesh('spot.obj'))
+        v_out, vt_out, f_out = obj_records(self.out)
+        self.assertEqual(len(v_out), len(v_in))     # v: the sphere points, input order
+        self.assertEqual(len(vt_out), d['vertices'])  # vt: one per output vertex
+        self.assertGreater(len(vt_out), len(v_in))    # the seams' vertices, once per side
+        self.assertEqual([[c[0] for c in face] for face in f_out], [[c[0] for c in face] for face in f_in])
+        signed = 0.0
+        for face in f_out:
+            a, b, c = (vt_out[corner[1] - 1] for corner in face)
+            area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+            self.assertGreater(area, 0.0)
+            signed += area
+        self.assertAlmostEqual(signed, 1.0, delta=1e-6)  # the whole square, once
+        for u, w in vt_out:
+            self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= w <= 1.0)
+
+    def test_sphere_literal_method_and_its_settings(self):
+        rc, out, err = run('--sphere', self.mesh('spot.obj'), '-o', self.out,
+                           '--sphere-method', 'literal', '--monitor', 'none', '--damping', '0.5',
+                           '--max-sweeps', '200', '--tolerance', '1e-6', '--threads', '2',
+                           '--alpha-steps', '2')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual(d['settings'], {'domain': 'sphere', 'weights': 'mvc', 'monitor': 'none',
+                                         'alpha': 1, 'iterations': 1, 'iteration_mode': 'accumulate',
+                                         'sphere_method': 'literal', 'sphere_uv': 'none', 'threads': 2,
+                                         'damping': 0.5, 'tolerance': 1e-6, 'max_sweeps': 200,
+                                         'alpha_steps': 2, 'max_triangles': 2147483647})
+        self.assertEqual(d['stats']['relaxation_sweeps'], 200)
+
+    def test_sphere_refuses_open_meshes_and_handles(self):
+        for mesh, status, fragment in (('alligator.obj', 'open mesh', '1 boundary loop'),
+                                       ('rocker-arm.obj', 'genus greater than zero', 'genus 1')):
+            rc, out, err = run('--sphere', self.mesh(mesh), '-o', self.out)
+            self.assertEqual(rc, 1, mesh)
+            d = json.loads(out)
+            self.assertTrue(d['error']['status_name'].startswith(status), d)
+            self.assertIn(fragment, d['error']['message'])
+            self.assertFalse(os.path.exists(self.out))
+
+    def test_sphere_usage_errors_exit_2(self):
+        for args in (['--sphere-method', 'bogus'], ['--sphere-uv', 'cube'], ['--damping', '2'],
+                     ['--threads', '-1'], ['--max-sweeps', '1.5']):
+            rc, out, err = run('--sphere', self.mesh('spot.obj'), '-o', self.out, *args)
+            self.assertEqual(rc, 2, args)
+            self.assertIn('error', json.loads(out))
+            self.assertFalse(os.path.exists(self.out))
 
 
 if __name__ == '__main__':

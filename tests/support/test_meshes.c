@@ -206,7 +206,7 @@ test_mesh make_icosphere(int subdivisions) {
     return b.mesh;
 }
 
-test_mesh make_punctured_torus(int nu, int nv) {
+static test_mesh make_torus(int nu, int nv, int punctured) {
     builder b;
     memset(&b, 0, sizeof(b));
     for (int i = 0; i < nu; ++i) {
@@ -217,7 +217,7 @@ test_mesh make_punctured_torus(int nu, int nv) {
     }
     for (int i = 0; i < nu; ++i) {
         for (int j = 0; j < nv; ++j) {
-            if (i == 0 && j == 0) continue; /* the puncture: one quad left out */
+            if (punctured && i == 0 && j == 0) continue; /* the puncture: one quad left out */
             const size_t a = (size_t)i * nv + j, c = (size_t)((i + 1) % nu) * nv + j;
             const size_t a1 = (size_t)i * nv + (j + 1) % nv,
                          c1 = (size_t)((i + 1) % nu) * nv + (j + 1) % nv;
@@ -226,6 +226,35 @@ test_mesh make_punctured_torus(int nu, int nv) {
         }
     }
     return b.mesh;
+}
+
+test_mesh make_punctured_torus(int nu, int nv) {
+    return make_torus(nu, nv, 1);
+}
+
+test_mesh make_closed_torus(int nu, int nv) {
+    return make_torus(nu, nv, 0);
+}
+
+test_mesh join_meshes(const test_mesh* a, const test_mesh* b, double dx, double dy, double dz) {
+    builder out;
+    memset(&out, 0, sizeof(out));
+    for (size_t i = 0; i < a->vertex_count; ++i) {
+        add_vertex(&out, a->positions[3 * i], a->positions[3 * i + 1], a->positions[3 * i + 2]);
+    }
+    for (size_t i = 0; i < b->vertex_count; ++i) {
+        add_vertex(&out, b->positions[3 * i] + dx, b->positions[3 * i + 1] + dy,
+                   b->positions[3 * i + 2] + dz);
+    }
+    for (size_t t = 0; t < a->index_count; t += 3) {
+        add_triangle(&out, a->indices[t], a->indices[t + 1], a->indices[t + 2]);
+    }
+    const size_t offset = a->vertex_count;
+    for (size_t t = 0; t < b->index_count; t += 3) {
+        add_triangle(&out, offset + b->indices[t], offset + b->indices[t + 1],
+                     offset + b->indices[t + 2]);
+    }
+    return out.mesh;
 }
 
 raps_mesh* to_raps_mesh(const test_mesh* mesh) {

@@ -44,6 +44,9 @@ test_mesh make_grid(int nx, int ny, double width, double height);
 test_mesh make_icosphere(int subdivisions);
 test_mesh make_annulus(int rings, int sectors); /* two boundary loops */
 test_mesh make_punctured_torus(int nu, int nv); /* one boundary loop, genus 1 */
+test_mesh make_closed_torus(int nu, int nv);    /* no boundary, genus 1 */
+/* `a` and `b` in one mesh (b's vertices after a's), b moved by (dx, dy, dz). */
+test_mesh join_meshes(const test_mesh* a, const test_mesh* b, double dx, double dy, double dz);
 
 /* Reads a mesh of the shared data set (.obj or .off; polygons fanned into triangles).
  * name is relative to the shared data's meshes/ folder. Fails the test if it cannot. */

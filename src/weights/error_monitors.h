@@ -1,5 +1,8 @@
 // Paper section 6: error monitors e_ij measured on a map, one per directed edge i -> j (a slot of
-// VertexAdjacency), strictly positive and increasing in the distortion they measure.
+// VertexAdjacency), strictly positive and increasing in the distortion they measure. The map is
+// seen through MapGeometry, so the same monitors serve the disk (uv areas, lengths, angles) and
+// the sphere (section 7: exact spherical triangle areas, great-circle arc lengths, the angles
+// between great-circle arcs).
 //
 // Decisions the paper leaves open, and why:
 // - Normalisation. Area and length ratios are divided by their global value (total uv area over
@@ -18,22 +21,21 @@
 
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
 #include "mesh/mesh_topology.h"
+#include "metrics/map_geometry.h"
 
 namespace raps {
 
 constexpr double kMonitorFloor = 1e-12;
 
-// e_ij for every slot of `adjacency`, measured on the map `uv` (one point per vertex).
-// area (6.1):   e_ijk = uv area / 3D area of triangle ijk; e_ij = mean over the triangles at ij.
-// length (6.2): e_ij = |u_i - u_j| / |x_i - x_j|.
-// angle (6.3):  e_ijk = uv angle / 3D angle at corner i of triangle ijk; e_ij = mean over the
+// e_ij for every slot of `adjacency`, measured on the map `map` (whose vertices are the mesh's).
+// area (6.1):   e_ijk = map area / 3D area of triangle ijk; e_ij = mean over the triangles at ij.
+// length (6.2): e_ij = |u_i - u_j| / |x_i - x_j| (in the map's own metric).
+// angle (6.3):  e_ijk = map angle / 3D angle at corner i of triangle ijk; e_ij = mean over the
 //               triangles at ij, both measured at i (so e_ij != e_ji).
 std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const std::vector<Eigen::Vector2d>& uv, Monitor monitor);
+                                  const MapGeometry& map, Monitor monitor);
 
 }  // namespace raps

@@ -1,4 +1,4 @@
-#include "planar/adaptive_weights.h"
+#include "weights/adaptive_weights.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "planar/laplacian_weights.h"
+#include "weights/laplacian_weights.h"
 
 namespace raps {
 

@@ -1,4 +1,4 @@
-#include "planar/error_monitors.h"
+#include "weights/error_monitors.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,6 @@
 
 namespace raps {
 namespace {
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
 
 // Accumulates per-triangle values onto directed edges and averages them.
 class EdgeAverage {
@@ -33,21 +29,21 @@ class EdgeAverage {
 };
 
 std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                 const std::vector<Eigen::Vector2d>& uv) {
+                                 const MapGeometry& map) {
     const int32_t triangle_count = mesh.triangle_count();
     std::vector<double> ratio(triangle_count);
-    double total_uv = 0.0, total_3d = 0.0;
+    double total_map = 0.0, total_3d = 0.0;
     for (int32_t t = 0; t < triangle_count; ++t) {
         const Triangle& v = mesh.triangles[t];
-        const double uv_area = 0.5 * cross2(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
+        const double map_area = map.area(v[0], v[1], v[2]);
         const double area = 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
                                       .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
                                       .norm();
-        ratio[t] = uv_area / area;
-        total_uv += std::abs(uv_area);
+        ratio[t] = map_area / area;
+        total_map += std::abs(map_area);
         total_3d += area;
     }
-    const double scale = total_3d / total_uv;
+    const double scale = total_3d / total_map;
     EdgeAverage average(adjacency.neighbors.size());
     for (int32_t t = 0; t < triangle_count; ++t) {
         const double e = std::max(ratio[t] * scale, kMonitorFloor);
@@ -60,26 +56,26 @@ std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency
 }
 
 std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                   const std::vector<Eigen::Vector2d>& uv) {
+                                   const MapGeometry& map) {
     std::vector<double> e(adjacency.neighbors.size());
-    double total_uv = 0.0, total_3d = 0.0;
+    double total_map = 0.0, total_3d = 0.0;
     for (int32_t i = 0; i < mesh.vertex_count(); ++i) {
         for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
             const int32_t j = adjacency.neighbors[s];
-            const double uv_length = (uv[i] - uv[j]).norm();
+            const double map_length = map.length(i, j);
             const double length = (mesh.positions[i] - mesh.positions[j]).norm();
-            e[s] = uv_length / length;
-            total_uv += uv_length;
+            e[s] = map_length / length;
+            total_map += map_length;
             total_3d += length;
         }
     }
-    const double scale = total_3d / total_uv;
+    const double scale = total_3d / total_map;
     for (double& value : e) value = std::max(value * scale, kMonitorFloor);
     return e;
 }
 
 std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const std::vector<Eigen::Vector2d>& uv) {
+                                  const MapGeometry& map) {
     EdgeAverage average(adjacency.neighbors.size());
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
         const Triangle& v = mesh.triangles[t];
@@ -88,10 +84,11 @@ std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacenc
             const Eigen::Vector3d a = mesh.positions[j] - mesh.positions[i];
             const Eigen::Vector3d b = mesh.positions[l] - mesh.positions[i];
             const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
-            const Eigen::Vector2d p = uv[j] - uv[i], q = uv[l] - uv[i];
-            // Signed: a flipped triangle has a negative uv angle and gets the floor.
-            const double uv_angle = std::atan2(cross2(p, q), p.dot(q));
-            const double e = std::max(uv_angle / angle, kMonitorFloor);
+            double sine, cosine;
+            map.angle(i, j, l, &sine, &cosine);
+            // Signed: a flipped triangle has a negative angle in the map and gets the floor.
+            const double map_angle = std::atan2(sine, cosine);
+            const double e = std::max(map_angle / angle, kMonitorFloor);
             average.add(adjacency.forward_slot[3 * t + k], e);             // i -> j
             average.add(adjacency.backward_slot[3 * t + (k + 2) % 3], e);  // i -> l
         }
@@ -102,14 +99,14 @@ std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacenc
 }  // namespace
 
 std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const std::vector<Eigen::Vector2d>& uv, Monitor monitor) {
+                                  const MapGeometry& map, Monitor monitor) {
     switch (monitor) {
         case Monitor::kArea:
-            return area_monitor(mesh, adjacency, uv);
+            return area_monitor(mesh, adjacency, map);
         case Monitor::kEdgeLength:
-            return length_monitor(mesh, adjacency, uv);
+            return length_monitor(mesh, adjacency, map);
         case Monitor::kAngle:
-            return angle_monitor(mesh, adjacency, uv);
+            return angle_monitor(mesh, adjacency, map);
         case Monitor::kNone:
             break;
     }

@@ -1,0 +1,83 @@
+#include "parallel/thread_pool.h"
+
+#include <algorithm>
+
+namespace raps {
+
+ThreadPool::ThreadPool(int threads) {
+    if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    workers_.reserve(static_cast<size_t>(threads - 1));
+    for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { work(); });
+}
+
+ThreadPool::~ThreadPool() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& worker : workers_) worker.join();
+}
+
+void ThreadPool::take_blocks(std::unique_lock<std::mutex>& lock) {
+    while (next_block_ < blocks_) {
+        const int64_t block = next_block_++;
+        const std::function<void(int64_t)>* task = task_;
+        lock.unlock();
+        try {
+            (*task)(block);
+        } catch (...) {
+            lock.lock();
+            if (!error_) error_ = std::current_exception();
+            lock.unlock();
+        }
+        lock.lock();
+        if (++finished_blocks_ == blocks_) done_.notify_all();
+    }
+}
+
+void ThreadPool::work() {
+    uint64_t seen = 0;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+        wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+        if (stopping_) return;
+        seen = generation_;
+        take_blocks(lock);
+    }
+}
+
+void ThreadPool::run(int64_t blocks, const std::function<void(int64_t)>& task) {
+    if (blocks <= 0) return;
+    if (workers_.empty()) {
+        for (int64_t b = 0; b < blocks; ++b) task(b);
+        return;
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    task_ = &task;
+    blocks_ = blocks;
+    next_block_ = 0;
+    finished_blocks_ = 0;
+    error_ = nullptr;
+    ++generation_;
+    wake_.notify_all();
+    take_blocks(lock);
+    done_.wait(lock, [&] { return finished_blocks_ == blocks_; });
+    task_ = nullptr;
+    blocks_ = 0;
+    next_block_ = 0;
+    std::exception_ptr error = error_;
+    error_ = nullptr;
+    lock.unlock();
+    if (error) std::rethrow_exception(error);
+}
+
+int choose_thread_count(int requested, int64_t items, int64_t per_thread) {
+    int threads = requested > 0
+                      ? requested
+                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int64_t useful = std::max<int64_t>(1, items / std::max<int64_t>(1, per_thread));
+    return static_cast<int>(std::max<int64_t>(1, std::min<int64_t>(threads, useful)));
+}
+
+}  // namespace raps

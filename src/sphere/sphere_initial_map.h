@@ -1,0 +1,46 @@
+// The robust initial spherical map, bijective by construction, instead of algorithm 7.1's Gauss
+// map (after Choi, Lam and Lui, "Fast spherical quasiconformal parameterization of genus-0
+// closed surfaces", 2015: puncture, flatten with one sparse solve, lift back):
+//
+//  1. Remove the star of one vertex, the pole. What remains is a topological disk whose
+//     boundary is the pole's ring.
+//  2. Put the ring on the unit circle (angles proportional to the 3D corner angles at the pole)
+//     and solve the Laplace system of paper eq. (1) with positive weights (the base weights;
+//     mean value in place of cotangent weights, which may be negative): by Tutte's and
+//     Floater's theorems the disk is embedded without a fold.
+//  3. Lift by inverse stereographic projection from the north pole, with the pole vertex at the
+//     north pole itself: a conformal bijection of the plane onto the sphere minus the pole, so
+//     the lifted map is quasi-conformal like the paper's initial map. The scale gives the pole's
+//     star the share of the sphere that it has of the 3D area.
+//  4. Moebius-centre it (mobius_centring.h).
+//
+// Measured, why: the Gauss map of a mesh that is not star-shaped about its centroid starts with
+// folds (issue: hundreds to thousands), and relaxation cannot be trusted to undo them. Why a
+// puncture at a vertex rather than a removed triangle (as Choi et al. do): the ring is a convex
+// polygon around the origin, so the pole's star is positively oriented on the sphere at any
+// scale, where a removed triangle's own orientation bounds the scale from the other side.
+// Stereographic projection keeps circles, not straight edges, so a nearly flat planar triangle
+// whose circumcircle it lifts past a great circle can still come out with det[a, b, c] <= 0:
+// measured, 0 to 4 such triangles on the shared meshes, which the centring and the relaxation
+// that follow turn back (they never fold a triangle, and may unfold one).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/settings.h"
+#include "parallel/thread_pool.h"
+#include "sphere/sphere_problem.h"
+
+namespace raps {
+
+// One unit vector per vertex. `progress` receives the fraction of the sparse factorization done
+// (it may throw to cancel).
+std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& problem,
+                                                       WeightScheme weights, ThreadPool& pool,
+                                                       const std::function<void(double)>& progress);
+
+}  // namespace raps

@@ -1,0 +1,108 @@
+#include "sphere/sphere_parameterization.h"
+
+#include "mesh/mesh_topology.h"
+#include "mesh/mesh_validation.h"
+#include "mesh/vertex_order.h"
+#include "parallel/thread_pool.h"
+#include "sphere/gauss_map.h"
+#include "sphere/sphere_initial_map.h"
+#include "sphere/sphere_problem.h"
+#include "sphere/sphere_relaxation.h"
+#include "sphere/spherical_geometry.h"
+#include "weights/adaptive_weights.h"
+#include "weights/error_monitors.h"
+#include "weights/laplacian_weights.h"
+
+namespace raps {
+
+SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& settings,
+                              const Progress& progress, PhaseTimes& times) {
+    {
+        PhaseTimer timer(Phase::kValidate, progress, times);
+        check_indices_in_range(input);
+        check_no_repeated_vertices(input);
+        check_no_isolated_vertices(input);
+        check_no_zero_area_triangles(input);
+        timer.finish();
+    }
+
+    // Checked on the input, so that messages name its vertices; then everything runs on the
+    // vertices in Morton order (vertex_order.h) and the points go back to input order at the end.
+    PhaseTimer topology_timer(Phase::kTopology, progress, times);
+    check_closed_genus_zero(input, build_halfedges(input));
+    const std::vector<int32_t> order = morton_vertex_order(input.positions);
+    const TriangleMesh mesh = reorder_vertices(input, order);
+    const SphereProblem problem = make_sphere_problem(mesh, build_halfedges(mesh));
+    topology_timer.finish();
+
+    const bool literal = settings.sphere_method == SphereMethod::kLiteral;
+    // The thread count changes nothing in the output (thread_pool.h); a few thousand vertices
+    // per thread keep the synchronisation between colours cheap.
+    ThreadPool pool(literal ? 1 : choose_thread_count(settings.threads, mesh.vertex_count(), 4096));
+    RelaxationOptions options;
+    options.literal = literal;
+    options.damping = settings.sphere_damping;
+    options.tolerance = settings.sphere_tolerance;
+    options.max_sweeps = settings.sphere_max_sweeps > 0 ? settings.sphere_max_sweeps
+                         : literal                      ? kLiteralMaxSweeps
+                                                        : kRobustMaxSweeps;
+
+    SphereMap map;
+    std::vector<Eigen::Vector3d> points;
+    const std::vector<double> base_weights =
+        laplacian_weights(mesh, problem.adjacency, settings.weights);
+    for (double w : base_weights) map.negative_weights += w < 0.0;
+    {
+        // Progress: the initial map is the first half of the phase, its relaxation the second.
+        PhaseTimer timer(Phase::kInitialMap, progress, times);
+        if (literal) {
+            points = gauss_map(mesh);
+        } else {
+            points = stereographic_initial_map(
+                problem, settings.weights, pool,
+                [&](double fraction) { progress.report(Phase::kInitialMap, 0.5 * fraction); });
+        }
+        map.relaxation_sweeps +=
+            relax_on_sphere(problem, base_weights, points, options, pool, [&](double fraction) {
+                progress.report(Phase::kInitialMap, 0.5 + 0.5 * fraction);
+            }).sweeps;
+        timer.finish();
+    }
+
+    PhaseTimer adapt_timer(Phase::kAdapt, progress, times);
+    if (settings.monitor != Monitor::kNone) {
+        // Iterations as in the plane (RAPS_PARAM_ITERATIONS, RAPS_PARAM_ITERATION_MODE). The
+        // robust method reaches each iteration's exponent alpha by continuation: alpha_steps
+        // relaxations, each multiplying the weights by e^(alpha / steps) measured on the map
+        // the previous one left.
+        const int steps = literal ? 1 : settings.sphere_alpha_steps;
+        const int total = settings.iterations * steps;
+        std::vector<double> weights = base_weights;
+        for (int iteration = 0; iteration < settings.iterations; ++iteration) {
+            if (settings.iteration_mode == IterationMode::kReapply) weights = base_weights;
+            for (int step = 0; step < steps; ++step) {
+                const int done = iteration * steps + step;
+                const std::vector<double> monitor = error_monitor(
+                    mesh, problem.adjacency, SphericalMapGeometry(points), settings.monitor);
+                weights =
+                    adaptive_weights(problem.adjacency, weights, monitor, settings.alpha / steps);
+                map.relaxation_sweeps +=
+                    relax_on_sphere(problem, weights, points, options, pool, [&](double fraction) {
+                        progress.report(Phase::kAdapt, (done + fraction) / total);
+                    }).sweeps;
+                ++map.adaptive_solves;
+            }
+        }
+    }
+    map.points.resize(points.size());
+    for (size_t k = 0; k < order.size(); ++k) map.points[order[k]] = points[k];
+    if (settings.sphere_uv == SphereUv::kOctahedral) {
+        map.unfold = octahedral_unfold(input, map.points, [&](double) {
+            progress.report(Phase::kAdapt, 1.0);  // cancellation point inside the solve
+        });
+    }
+    adapt_timer.finish();
+    return map;
+}
+
+}  // namespace raps

@@ -1,0 +1,179 @@
+#include "sphere/sphere_relaxation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/SVD>
+
+#include "sphere/mobius_centring.h"
+
+namespace raps {
+namespace {
+
+// Weights divided by their row sum.
+std::vector<double> normalized_rows(const VertexAdjacency& adjacency,
+                                    const std::vector<double>& weights) {
+    std::vector<double> normalized(weights.size());
+    const int32_t n = static_cast<int32_t>(adjacency.offsets.size()) - 1;
+    for (int32_t v = 0; v < n; ++v) {
+        double sum = 0.0;
+        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) sum += weights[s];
+        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
+            normalized[s] = weights[s] / sum;
+        }
+    }
+    return normalized;
+}
+
+class Relaxer {
+  public:
+    Relaxer(const SphereProblem& problem, const std::vector<double>& weights,
+            std::vector<Eigen::Vector3d>& u, double step)
+        : problem_(problem),
+          weights_(normalized_rows(problem.adjacency, weights)),
+          u_(u),
+          step_(step) {}
+
+    // Moves vertex i (refusing moves that break a shape floor when `guarded`); returns whether
+    // it was refused.
+    bool update(int32_t i, bool guarded) {
+        const VertexAdjacency& adjacency = problem_.adjacency;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
+            mean += weights_[s] * u_[adjacency.neighbors[s]];
+        }
+        const Eigen::Vector3d ui = u_[i];
+        const Eigen::Vector3d laplacian = mean - ui;
+        Eigen::Vector3d move = step_ * (laplacian - laplacian.dot(ui) * ui);
+        for (int attempt = 0; attempt < 3; ++attempt, move *= 0.5) {
+            const Eigen::Vector3d candidate = (ui + move).normalized();
+            if (!guarded || allowed(i, candidate)) {
+                u_[i] = candidate;
+                return false;
+            }
+        }
+        return true;
+    }
+
+  private:
+    // Whether moving i to `candidate` keeps every triangle of i at its shape floor (or no worse).
+    // The usual case, a triangle above its floor, is decided without a division.
+    bool allowed(int32_t i, const Eigen::Vector3d& candidate) const {
+        const VertexTriangles& stars = problem_.stars;
+        for (int32_t e = stars.offsets[i]; e < stars.offsets[i + 1]; ++e) {
+            const Eigen::Vector3d& b = u_[stars.first[e]];
+            const Eigen::Vector3d& c = u_[stars.second[e]];
+            const int32_t t = stars.triangle[e];
+            const double edges = (candidate - b).squaredNorm() + (b - c).squaredNorm() +
+                                 (c - candidate).squaredNorm();
+            if (candidate.dot(b.cross(c)) >= problem_.floor[t] * edges) continue;
+            if (!shape_allowed(problem_, t, shape(u_[i], b, c), shape(candidate, b, c))) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    const SphereProblem& problem_;
+    std::vector<double> weights_;
+    std::vector<Eigen::Vector3d>& u_;
+    double step_;
+};
+
+struct Sum9 {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    Sum9& operator+=(const Sum9& o) {
+        m += o.m;
+        return *this;
+    }
+};
+
+// Sum of |after_i - R before_i|^2 for the rotation R that fits `before` to `after` best
+// (Kabsch).
+double squared_move_modulo_rotation(const std::vector<Eigen::Vector3d>& after,
+                                    const std::vector<Eigen::Vector3d>& before, ThreadPool& pool) {
+    const int64_t n = static_cast<int64_t>(after.size());
+    const Sum9 covariance = parallel_sum<Sum9>(pool, n, [&](int64_t begin, int64_t end) {
+        Sum9 s;
+        for (int64_t i = begin; i < end; ++i) s.m += after[i] * before[i].transpose();
+        return s;
+    });
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance.m,
+                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d flip = Eigen::Matrix3d::Identity();
+    if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) flip(2, 2) = -1.0;
+    const Eigen::Matrix3d rotation = svd.matrixU() * flip * svd.matrixV().transpose();
+    return parallel_sum<double>(pool, n, [&](int64_t begin, int64_t end) {
+        double m = 0.0;
+        for (int64_t i = begin; i < end; ++i) m += (after[i] - rotation * before[i]).squaredNorm();
+        return m;
+    });
+}
+
+constexpr int64_t kMeasureEvery = 4;
+
+}  // namespace
+
+RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector<double>& weights,
+                                 std::vector<Eigen::Vector3d>& u, const RelaxationOptions& options,
+                                 ThreadPool& pool, const std::function<void(double)>& progress) {
+    const TriangleMesh& mesh = problem.mesh;
+    const int32_t n = mesh.vertex_count();
+    const double step = options.damping * (options.literal ? 1.0 : kOverRelaxation);
+    // Edge length of equilateral triangles that tile the sphere with this many triangles.
+    const double mean_edge =
+        std::sqrt(16.0 * M_PI / (std::sqrt(3.0) * static_cast<double>(mesh.triangle_count())));
+    const double unit = 1.0 / (step * mean_edge * std::sqrt(static_cast<double>(n)));
+    Relaxer relaxer(problem, weights, u, step);
+    std::vector<Eigen::Vector3d> before, scratch;
+    RelaxationReport report;
+    double first = 0.0, reported = 0.0;
+    int64_t last_report = 0;
+    progress(0.0);
+    while (report.sweeps < options.max_sweeps) {
+        // The move is measured over every kMeasureEvery-th sweep (it costs a copy and two passes).
+        const bool measure = (report.sweeps + 1) % kMeasureEvery == 0 ||
+                             report.sweeps + 1 == options.max_sweeps || report.sweeps == 0;
+        if (measure) before = u;
+        if (options.literal) {
+            for (int32_t i = 0; i < n; ++i) relaxer.update(i, false);
+        } else {
+            for (const std::vector<int32_t>& color : problem.colors) {
+                report.refused += parallel_sum<int64_t>(
+                    pool, static_cast<int64_t>(color.size()), [&](int64_t begin, int64_t end) {
+                        int64_t refused = 0;
+                        for (int64_t k = begin; k < end; ++k)
+                            refused += relaxer.update(color[k], true);
+                        return refused;
+                    });
+            }
+            centring_step(problem, u, scratch, pool, nullptr);
+        }
+        ++report.sweeps;
+        if (!measure) continue;
+        report.residual = std::sqrt(squared_move_modulo_rotation(u, before, pool)) * unit;
+        if (report.sweeps == 1) first = report.residual;
+        if (!(report.residual >= options.tolerance)) {  // NaN stops too
+            report.converged = report.residual < options.tolerance;
+            break;
+        }
+        // Progress: the larger of the sweeps' share and the residual's way down (log scale) to
+        // the tolerance.
+        const double by_sweeps =
+            static_cast<double>(report.sweeps) / static_cast<double>(options.max_sweeps);
+        const double by_residual =
+            first > options.tolerance && report.residual < first
+                ? std::log(first / report.residual) / std::log(first / options.tolerance)
+                : 0.0;
+        const double fraction = std::min(1.0, std::max(by_sweeps, by_residual));
+        if (fraction >= reported + 0.01 || report.sweeps - last_report >= 16) {
+            reported = std::max(reported, fraction);
+            last_report = report.sweeps;
+            progress(reported);
+        }
+    }
+    progress(1.0);
+    return report;
+}
+
+}  // namespace raps
