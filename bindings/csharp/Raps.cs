@@ -151,8 +151,9 @@ namespace Raps
 
         internal static RapsException NoMap()
         {
-            return new RapsException(Status.InvalidOperation,
-                                     "the result holds no map (Parameterize failed or has not run)");
+            return new RapsException(
+                Status.InvalidOperation,
+                "the result holds no map (Parameterize failed or has not run)");
         }
 
         internal static RapsException BadInput(string detail)

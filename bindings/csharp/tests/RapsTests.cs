@@ -34,14 +34,16 @@ static class RapsTests
         int nv = int.Parse(words[1]), nf = int.Parse(words[2]);
         int at = 4;
         var xyz = new double[3 * nv];
-        for (int i = 0; i < 3 * nv; i++) xyz[i] = double.Parse(words[at++], CultureInfo.InvariantCulture);
+        for (int i = 0; i < 3 * nv; i++)
+            xyz[i] = double.Parse(words[at++], CultureInfo.InvariantCulture);
         var indices = new List<uint>();
         for (int f = 0; f < nf; f++)
         {
             int n = int.Parse(words[at++]);
             var face = new uint[n];
             for (int k = 0; k < n; k++) face[k] = uint.Parse(words[at++]);
-            for (int k = 1; k + 1 < n; k++) indices.AddRange(new[] { face[0], face[k], face[k + 1] });
+            for (int k = 1; k + 1 < n; k++)
+                indices.AddRange(new[] { face[0], face[k], face[k + 1] });
         }
         return new Off { Xyz = xyz, Indices = indices.ToArray() };
     }
@@ -225,7 +227,8 @@ static class RapsTests
         Off ico = Icosahedron();
         using (var mesh = new Mesh(ico.Xyz, ico.Indices))
         {
-            RapsException error = ExpectFailure(Status.NoBoundary, () => Library.Parameterize(mesh));
+            RapsException error =
+                ExpectFailure(Status.NoBoundary, () => Library.Parameterize(mesh));
             Expect(error.Detail.Length > 0, "a message from the library");
             Expect(error.StatusName.Length > 0 && error.StatusName != "unknown status",
                    "the status's name");
@@ -255,9 +258,9 @@ static class RapsTests
     {
         using (var mesh = new Mesh())
         {
-            Expect(ExpectFailure(Status.IndexCount, () => mesh.SetIndices(new uint[] { 0, 1, 2, 3 }))
-                       .Detail.Length > 0,
-                   "a message");
+            RapsException error =
+                ExpectFailure(Status.IndexCount, () => mesh.SetIndices(new uint[] { 0, 1, 2, 3 }));
+            Expect(error.Detail.Length > 0, "a message");
             ExpectFailure(Status.NonFinitePosition,
                           () => mesh.SetPositions(new float[] { 0, float.NaN, 0 }));
             Expect(mesh.VertexCount == 0, "a failed setter changes nothing");
@@ -290,7 +293,8 @@ static class RapsTests
         {
             settings.Iterations = 7;
             Expect(copy.Iterations == 3 && copy.Weights == Weights.Uniform &&
-                       copy.Monitor == ErrorMonitor.Angle && copy.IterationMode == IterationMode.Reapply &&
+                       copy.Monitor == ErrorMonitor.Angle &&
+                       copy.IterationMode == IterationMode.Reapply &&
                        copy.Boundary == Boundary.Square && copy.MaxTriangles == 1000 &&
                        copy.Domain == Domain.Disk,
                    "an independent copy");
