@@ -628,13 +628,16 @@ impl Drop for Settings {
 impl fmt::Debug for Settings {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut s = f.debug_struct("Settings");
-        for param in (1..=sys::RAPS_PARAM_MAX_TRIANGLES).map(Param) {
-            if let Ok(info) = Settings::param_info(param) {
-                if info.is_float {
-                    s.field(info.name, &self.float(param).unwrap_or(f64::NAN));
-                } else {
-                    s.field(info.name, &self.int(param).unwrap_or(-1));
-                }
+        // Parameters are numbered from 1 without gaps: every one the loaded library knows.
+        for param in (1..).map(Param) {
+            let info = match Settings::param_info(param) {
+                Ok(info) => info,
+                Err(_) => break,
+            };
+            if info.is_float {
+                s.field(info.name, &self.float(param).unwrap_or(f64::NAN));
+            } else {
+                s.field(info.name, &self.int(param).unwrap_or(-1));
             }
         }
         s.finish()
