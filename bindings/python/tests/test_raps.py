@@ -1,0 +1,338 @@
+"""Tests of the Python binding against the real libraps (unittest, standard library only).
+
+Environment (CTest sets it): RAPS_LIBRARY, the library to test; RAPS_SHARED_DATA_DIR, the
+shared meshes (missing data fails the tests, it never skips them); RAPS_TEST_WITHOUT_NUMPY=1
+runs the whole suite as on a machine without numpy (plain sequences in, lists out).
+"""
+
+import gc
+import math
+import os
+import subprocess
+import sys
+import threading
+import unittest
+
+if os.environ.get("RAPS_TEST_WITHOUT_NUMPY") == "1":
+    sys.modules["numpy"] = None  # makes `import numpy` raise ImportError, as if absent
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import raps  # noqa: E402
+
+try:
+    import numpy
+except ImportError:
+    numpy = None
+
+DATA = os.environ.get("RAPS_SHARED_DATA_DIR", "")
+
+
+def read_off(path):
+    """positions [(x, y, z)], triangles [(a, b, c)] of an OFF file (polygons fanned)."""
+    with open(path) as stream:
+        words = [w for line in stream for w in line.split("#")[0].split()]
+    assert words[0] == "OFF", path
+    nv, nf = int(words[1]), int(words[2])
+    numbers = words[4:]
+    positions = [tuple(float(v) for v in numbers[3 * i:3 * i + 3]) for i in range(nv)]
+    triangles, at = [], 3 * nv
+    for _ in range(nf):
+        n = int(numbers[at])
+        face = [int(v) for v in numbers[at + 1:at + 1 + n]]
+        triangles += [(face[0], face[k], face[k + 1]) for k in range(1, n - 1)]
+        at += 1 + n
+    return positions, triangles
+
+
+def icosahedron():
+    """A closed mesh: no boundary loop, so the disk domain refuses it."""
+    t = (1 + 5 ** 0.5) / 2
+    positions = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                 (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    triangles = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9),
+                 (5, 11, 4), (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2),
+                 (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10),
+                 (8, 6, 7), (9, 8, 1)]
+    return positions, triangles
+
+
+def rows(values):
+    """Output rows as a list of tuples, whether numpy is there or not."""
+    return [tuple(row) for row in (values.tolist() if numpy is not None else values)]
+
+
+def signed_area(a, b, c):
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+class SharedMesh(unittest.TestCase):
+    """camelhead.off, a real disk-shaped scan, through the whole binding."""
+
+    @classmethod
+    def setUpClass(cls):
+        path = os.path.join(DATA, "meshes", "camelhead.off")
+        if not os.path.isfile(path):
+            raise AssertionError("shared test data missing: %r (set RAPS_SHARED_DATA_DIR)" % path)
+        cls.positions, cls.triangles = read_off(path)
+        cls.mesh = raps.Mesh(cls.positions, cls.triangles)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.mesh.close()
+
+    def test_mesh_counts(self):
+        self.assertEqual(self.mesh.vertex_count, len(self.positions))
+        self.assertEqual(self.mesh.triangle_count, len(self.triangles))
+
+    def test_area_monitor_map_is_valid_and_less_distorted(self):
+        with raps.Settings(monitor=raps.Monitor.NONE) as plain, raps.Settings() as adaptive:
+            self.assertEqual(adaptive.monitor, raps.Monitor.AREA)  # the default
+            first = raps.parameterize(self.mesh, plain)
+            second = raps.parameterize(self.mesh, adaptive)
+        for result in (first, second):
+            stats = result.stats()
+            self.assertEqual(stats.flipped_triangles, 0)
+            self.assertEqual(stats.vertex_count, len(self.positions))
+            self.assertEqual(stats.triangle_count, len(self.triangles))
+            uvs = rows(result.uvs())
+            self.assertEqual(len(uvs), len(self.positions))
+            for u, v in uvs:
+                self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= v <= 1.0, (u, v))
+            # Counter-clockwise in 3D stays counter-clockwise in uv: check it here too.
+            for a, b, c in self.triangles[::97]:
+                self.assertGreater(signed_area(uvs[a], uvs[b], uvs[c]), 0.0)
+            self.assertEqual(rows(result.indices()), [tuple(t) for t in self.triangles])
+            self.assertEqual(list(result.vertex_remap()), list(range(len(self.positions))))
+        self.assertEqual(first.stats().adaptive_solves, 0)
+        self.assertEqual(second.stats().adaptive_solves, 1)
+        # The adaptive step equidistributes area: README measures 2.509 -> 0.721.
+        self.assertLess(second.stats().area_log_mean, 0.5 * first.stats().area_log_mean)
+        self.assertGreater(second.phase_ms(raps.Phase.ADAPT), 0.0)
+        first.close()
+        second.close()
+
+    def test_float32_and_float64_agree(self):
+        with raps.parameterize(self.mesh) as result:
+            single = rows(result.uvs("float32"))
+            double = rows(result.uvs())
+        for (u32, v32), (u64, v64) in zip(single, double):
+            self.assertAlmostEqual(u32, u64, delta=1e-6)
+            self.assertAlmostEqual(v32, v64, delta=1e-6)
+
+    def test_result_is_refilled(self):
+        result = raps.Result()
+        self.assertIs(raps.parameterize(self.mesh, result=result), result)
+        self.assertEqual(result.vertex_count, len(self.positions))
+        result.close()
+
+    @unittest.skipIf(numpy is None, "the numpy path")
+    def test_numpy_strided_and_u16_inputs(self):
+        # An interleaved buffer (x, y, z, nx, ny, nz) read through a strided view, float32,
+        # and uint16 indices: the library is given the stride and reads in place.
+        interleaved = numpy.zeros((len(self.positions), 6), dtype=numpy.float32)
+        interleaved[:, :3] = self.positions
+        view = interleaved[:, :3]
+        self.assertEqual(view.strides[0], 24)
+        with raps.Mesh(view, numpy.array(self.triangles, dtype=numpy.uint32)) as packed, \
+                raps.Mesh(numpy.ascontiguousarray(view), numpy.array(self.triangles)) as plain:
+            a = raps.parameterize(packed).uvs()
+            b = raps.parameterize(plain).uvs()
+        self.assertTrue(numpy.array_equal(a, b))
+        self.assertEqual(a.shape, (len(self.positions), 2))
+        self.assertEqual(a.dtype, numpy.float64)
+
+    def test_concurrent_runs_share_mesh_and_settings(self):
+        settings = raps.Settings(iterations=2)
+        expected = rows(raps.parameterize(self.mesh, settings).uvs())
+        outputs = [None] * 4
+
+        def run(k):
+            outputs[k] = rows(raps.parameterize(self.mesh, settings).uvs())
+
+        threads = [threading.Thread(target=run, args=(k,)) for k in range(4)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        for output in outputs:
+            self.assertEqual(output, expected)
+        settings.close()
+
+    def test_progress_reports_phases_in_order(self):
+        calls = []
+        raps.parameterize(self.mesh, progress=lambda phase, fraction: calls.append(
+            (phase, fraction)))
+        phases = [phase for phase, _ in calls]
+        self.assertEqual(phases, sorted(phases))
+        self.assertEqual(set(phases), set(raps.Phase))
+        self.assertTrue(all(isinstance(p, raps.Phase) for p in phases))
+        self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
+
+    def test_progress_cancels_and_handles_stay_usable(self):
+        settings = raps.Settings()
+        result = raps.Result()
+        with self.assertRaises(raps.Error) as caught:
+            raps.parameterize(self.mesh, settings, progress=lambda p, f: p < raps.Phase.ADAPT,
+                              result=result)
+        self.assertEqual(caught.exception.status, raps.Status.CANCELLED)
+        self.assertEqual(result.vertex_count, 0)
+        # The callback was on a private copy: the shared settings never saw it.
+        raps.parameterize(self.mesh, settings, result=result)
+        self.assertEqual(result.vertex_count, len(self.positions))
+        settings.close()
+        result.close()
+
+    def test_exception_in_progress_propagates(self):
+        class Stop(Exception):
+            pass
+
+        def fail(phase, fraction):
+            raise Stop()
+
+        with self.assertRaises(Stop):
+            raps.parameterize(self.mesh, progress=fail)
+
+
+class Errors(unittest.TestCase):
+    def test_closed_mesh_has_no_boundary(self):
+        positions, triangles = icosahedron()
+        with raps.Mesh(positions, triangles) as mesh:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(mesh)
+        error = caught.exception
+        self.assertEqual(error.status, raps.Status.NO_BOUNDARY)
+        self.assertTrue(error.name)
+        self.assertNotEqual(error.name, "unknown status")
+        self.assertTrue(error.message)
+        self.assertIn(error.name, str(error))
+        self.assertIn(error.message, str(error))
+
+    def test_index_out_of_range_names_the_triangle(self):
+        positions, triangles = icosahedron()
+        triangles[3] = (0, 7, 12)
+        with raps.Mesh(positions, triangles) as mesh:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(mesh)
+        self.assertEqual(caught.exception.status, raps.Status.INDEX_OUT_OF_RANGE)
+        self.assertIn("12", caught.exception.message)
+
+    def test_setter_errors_carry_the_mesh_message(self):
+        with raps.Mesh() as mesh:
+            with self.assertRaises(raps.Error) as caught:
+                mesh.set_indices([0, 1, 2, 3])
+            self.assertEqual(caught.exception.status, raps.Status.INDEX_COUNT)
+            self.assertTrue(caught.exception.message)
+            with self.assertRaises(raps.Error) as caught:
+                mesh.set_positions([(0.0, float("nan"), 0.0)])
+            self.assertEqual(caught.exception.status, raps.Status.NON_FINITE_POSITION)
+            self.assertEqual(mesh.vertex_count, 0)  # a failed setter changes nothing
+            with self.assertRaises(ValueError):
+                mesh.set_indices([0, -1, 2])
+            with self.assertRaises(ValueError):
+                mesh.set_positions([0.0, 1.0])
+
+    def test_settings_reject_bad_values_and_stay_unchanged(self):
+        with raps.Settings(alpha=2.0) as settings:
+            with self.assertRaises(raps.Error) as caught:
+                settings.alpha = -1.0
+            self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+            self.assertIn("alpha", caught.exception.message)
+            self.assertEqual(settings.alpha, 2.0)
+            with self.assertRaises(raps.Error):
+                settings.iterations = 0
+            self.assertEqual(settings.iterations, 1)
+        with self.assertRaises(TypeError):
+            raps.Settings(no_such_parameter=1)
+
+    def test_empty_result_cannot_be_read(self):
+        with raps.Result() as result:
+            for read in (result.uvs, result.indices, result.vertex_remap, result.stats):
+                with self.assertRaises(raps.Error) as caught:
+                    read()
+                self.assertEqual(caught.exception.status, raps.Status.INVALID_OPERATION)
+
+
+class Handles(unittest.TestCase):
+    def test_close_twice_and_use_after_close(self):
+        for make in (raps.Mesh, raps.Settings, raps.Result):
+            handle = make()
+            handle.close()
+            handle.close()  # no double free
+            self.assertTrue(handle.closed)
+        with self.assertRaises(ValueError):
+            handle.vertex_count
+        mesh = raps.Mesh()
+        mesh.close()
+        with self.assertRaises(ValueError):
+            raps.parameterize(mesh)
+
+    def test_collected_without_close(self):
+        # Many handles left to the collector: each destroyed once (a double free or a leak of
+        # this size would show under ASan or valgrind; here it must at least not crash).
+        for _ in range(2000):
+            raps.Mesh([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)])
+            raps.Settings(alpha=3.0).clone()
+        gc.collect()
+
+    def test_settings_properties_and_clone(self):
+        settings = raps.Settings(weights="uniform", monitor=raps.Monitor.ANGLE, iterations=3,
+                                 iteration_mode=raps.IterationMode.REAPPLY, boundary="square")
+        copy = settings.clone()
+        settings.iterations = 7
+        self.assertEqual(copy.iterations, 3)
+        self.assertEqual(copy.weights, raps.Weights.UNIFORM)
+        self.assertEqual(copy.boundary, raps.Boundary.SQUARE)
+        self.assertEqual(copy.iteration_mode, raps.IterationMode.REAPPLY)
+        self.assertEqual(settings.as_dict()["iterations"], 7)
+        info = raps.Settings.param_info(raps.Param.ALPHA)
+        self.assertEqual(info.name, "alpha")
+        self.assertTrue(info.is_float)
+        self.assertEqual(info.default, 1.0)
+        self.assertEqual(copy.domain, raps.Domain.DISK)
+        settings.close()
+        copy.close()
+
+    def test_version(self):
+        self.assertEqual(raps.version()[0], 0)
+        self.assertEqual(raps.version_string(), "%d.%d.%d" % raps.version())
+
+    def test_plain_lists_are_accepted(self):
+        # Sequences in either shape, also when numpy is present.
+        ring = [(math.cos(k * math.pi / 3), math.sin(k * math.pi / 3), 0.0) for k in range(6)]
+        flat = [c for p in [(0.0, 0.0, 0.5)] + ring for c in p]
+        triangles = [i for k in range(6) for i in (0, 1 + k, 1 + (k + 1) % 6)]
+        with raps.Mesh(flat, triangles) as mesh:
+            uvs = rows(raps.parameterize(mesh).uvs())
+        self.assertAlmostEqual(uvs[0][0], 0.5, delta=1e-12)
+        self.assertAlmostEqual(uvs[0][1], 0.5, delta=1e-12)
+
+    def test_found_through_the_loader_path_too(self):
+        # Without RAPS_LIBRARY, the module asks the dynamic loader (LD_LIBRARY_PATH here).
+        env = dict(os.environ)
+        folder = os.path.dirname(os.path.abspath(raps.library_path))
+        env.pop("RAPS_LIBRARY", None)
+        env["LD_LIBRARY_PATH"] = folder
+        code = "import raps; print(raps.library_path, raps.version_string())"
+        output = subprocess.run([sys.executable, "-c", code], env=env, check=True,
+                                cwd=os.path.join(os.path.dirname(__file__), ".."),
+                                stdout=subprocess.PIPE, universal_newlines=True).stdout
+        self.assertIn(raps.version_string(), output)
+        # And an explicit RAPS_LIBRARY that does not load is an error, not a fallback.
+        env["RAPS_LIBRARY"] = os.path.join(folder, "no-such-libraps.so")
+        failed = subprocess.run([sys.executable, "-c", code], env=env,
+                                cwd=os.path.join(os.path.dirname(__file__), ".."),
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.assertNotEqual(failed.returncode, 0)
+        self.assertIn(b"no-such-libraps.so", failed.stderr)
+
+    def test_numpy_is_used_when_present(self):
+        with raps.Mesh(*icosahedron()[:1], [(0, 11, 5), (0, 5, 1), (0, 1, 7)]) as mesh:
+            self.assertEqual(mesh.triangle_count, 3)
+        if os.environ.get("RAPS_TEST_WITHOUT_NUMPY") == "1":
+            self.assertIsNone(raps.numpy)
+        else:
+            self.assertIsNotNone(raps.numpy)
+
+
+if __name__ == "__main__":
+    unittest.main()
