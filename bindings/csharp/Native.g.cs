@@ -66,7 +66,8 @@ namespace Raps
 
     /// <summary>
     /// Distortion statistics of a result. Definitions (r_t, the per-triangle area ratio, is
-    /// (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area):
+    /// (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area; the
+    /// atlas domain measures in texel space, where its map is isotropic):
     /// Caller sets struct_size = sizeof(raps_stats) before the call; the library fills only the
     /// fields that fit in struct_size, so a caller built against an older, shorter raps_stats keeps
     /// working. Fields are only ever appended.
@@ -124,14 +125,32 @@ namespace Raps
         /// Sander's Linf stretch (largest singular value); isometry 1
         /// </summary>
         public double StretchLinf;
+        /// <summary>
+        /// sphere domain: sweeps of the spherical relaxation; else 0
+        /// </summary>
+        public ulong RelaxationSweeps;
+        /// <summary>
+        /// charts (1 for the disk domain)
+        /// </summary>
+        public ulong ChartCount;
+        /// <summary>
+        /// atlas domain: texels; 0 otherwise
+        /// </summary>
+        public ulong AtlasWidth;
+        public ulong AtlasHeight;
+        /// <summary>
+        /// uv area over the unit square ([0,1]^2 after normalising)
+        /// </summary>
+        public double Utilization;
     }
 
     /// <summary>
     /// Progress callback: called with the phase and the fraction of it done, in [0, 1], at least at
     /// the start and end of every phase and about every 1% of the long ones. Return nonzero to go on,
     /// 0 to cancel: the run then stops soon and returns RAPS_ERROR_CANCELLED. It is called on the
-    /// thread that called raps_parameterize; calls for one run never overlap. When one settings
-    /// handle is shared by concurrent runs, the callback receives calls from each of them.
+    /// thread that called raps_parameterize or, with RAPS_PARAM_THREADS != 1, on the run's worker
+    /// threads; calls for one run never overlap. When one settings handle is shared by concurrent
+    /// runs, the callback receives calls from each of them.
     /// </summary>
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public delegate int ProgressFn(IntPtr user, int phase, double fraction);
@@ -249,7 +268,7 @@ namespace Raps
         /// </summary>
         public const int RAPS_PARAM_MONITOR = 3;
         /// <summary>
-        /// float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 16]. Default 1.
+        /// float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 100]. Default 1.
         /// </summary>
         public const int RAPS_PARAM_ALPHA = 4;
         /// <summary>
@@ -270,6 +289,40 @@ namespace Raps
         /// before any work is done. Default 2^31-1.
         /// </summary>
         public const int RAPS_PARAM_MAX_TRIANGLES = 8;
+        /// <summary>
+        /// int. Threads a run may use, 0..1024; 0 = every hardware thread. The output is
+        /// bit-identical whatever the value. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_THREADS = 9;
+        /// <summary>
+        /// int. Texels on the atlas's longer side, 16..16384. Default 1024.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_RESOLUTION = 32;
+        /// <summary>
+        /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
+        /// charts, more keeps mip levels apart too. Default 1 (as xatlas's bilinear option).
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_PADDING = 33;
+        /// <summary>
+        /// float. Vertices closer than this (in position units) are welded before charts are made,
+        /// &gt;= 0; 0 welds identical positions only. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_WELD_TOLERANCE = 34;
+        /// <summary>
+        /// float, degrees in [0, 180]. Edges whose two triangles' normals differ by more become chart
+        /// seams; 180 turns this off. Default 180.
+        /// </summary>
+        public const int RAPS_PARAM_HARD_EDGE_ANGLE = 35;
+        /// <summary>
+        /// float in [1, 10]. Charts are split until the atlas's L2 stretch (Sander et al. 2001) is at
+        /// most this. Default 1.008.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_MAX_L2_STRETCH = 36;
+        /// <summary>
+        /// float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
+        /// larger ones are split. Default 2.9.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37;
 
         // RAPS_PARAM_DOMAIN values
         /// <summary>
@@ -277,6 +330,16 @@ namespace Raps
         /// boundary on the convex shape of RAPS_PARAM_BOUNDARY. One output vertex per input vertex.
         /// </summary>
         public const int RAPS_DOMAIN_DISK = 0;
+        /// <summary>
+        /// Any triangle mesh (several pieces, holes, handles, non-manifold or inconsistently wound
+        /// parts, zero-area and duplicate triangles): cut into charts, each mapped (a free-boundary
+        /// conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
+        /// are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
+        /// output triangles are the input triangles, in input order, with a chart id each. uvs are
+        /// normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
+        /// as a texture of that size maps them.
+        /// </summary>
+        public const int RAPS_DOMAIN_ATLAS = 2;
 
         // RAPS_PARAM_WEIGHTS values
         /// <summary>
@@ -340,11 +403,12 @@ namespace Raps
         /// </summary>
         public const int RAPS_PHASE_VALIDATE = 0;
         /// <summary>
-        /// edges, boundary loop, system pattern and ordering
+        /// edges, boundary loop, system pattern and ordering; atlas: welding
         /// </summary>
         public const int RAPS_PHASE_TOPOLOGY = 1;
         /// <summary>
-        /// boundary, base weights, first solve (paper sections 3, 5)
+        /// boundary, base weights, first solve (paper sections 3, 5); atlas:
+        /// every chart's map, its adaptive step included
         /// </summary>
         public const int RAPS_PHASE_INITIAL_MAP = 2;
         /// <summary>
@@ -356,9 +420,17 @@ namespace Raps
         /// </summary>
         public const int RAPS_PHASE_METRICS = 4;
         /// <summary>
+        /// atlas: growing charts
+        /// </summary>
+        public const int RAPS_PHASE_SEGMENT = 5;
+        /// <summary>
+        /// atlas: packing charts
+        /// </summary>
+        public const int RAPS_PHASE_PACK = 6;
+        /// <summary>
         /// number of phases in this version
         /// </summary>
-        public const int RAPS_PHASE_COUNT = 5;
+        public const int RAPS_PHASE_COUNT = 7;
 
         /// <summary>
         /// The version of the library actually loaded, encoded like RAPS_VERSION. Thread-safe.
@@ -597,6 +669,13 @@ namespace Raps
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_copy_vertex_remap(ResultHandle result, [Out] uint[] dst, UIntPtr capacity);
+
+        /// <summary>
+        /// Copy, per output triangle, its chart (0 .. raps_stats.chart_count - 1); capacity &gt;=
+        /// index_count / 3. Disk domain: every triangle is in chart 0.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_result_copy_chart_ids(ResultHandle result, [Out] uint[] dst, UIntPtr capacity);
 
         /// <summary>
         /// Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size &lt; 8),

@@ -65,7 +65,7 @@ RAPS_PARAM_DOMAIN = 1
 RAPS_PARAM_WEIGHTS = 2
 #   int. Error monitor e_ij of the adaptive step; NONE returns the initial map. Default AREA.
 RAPS_PARAM_MONITOR = 3
-#   float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 16]. Default 1.
+#   float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 100]. Default 1.
 RAPS_PARAM_ALPHA = 4
 #   int. Number of adaptive solves, 1..100 (the paper: 1). Ignored with monitor NONE.
 #   Default 1.
@@ -77,11 +77,39 @@ RAPS_PARAM_BOUNDARY = 7
 #   int. Largest triangle count accepted, 1..2^31-1; larger meshes get RAPS_ERROR_TOO_LARGE
 #   before any work is done. Default 2^31-1.
 RAPS_PARAM_MAX_TRIANGLES = 8
+#   int. Threads a run may use, 0..1024; 0 = every hardware thread. The output is
+#   bit-identical whatever the value. Default 0.
+RAPS_PARAM_THREADS = 9
+#   int. Texels on the atlas's longer side, 16..16384. Default 1024.
+RAPS_PARAM_ATLAS_RESOLUTION = 32
+#   int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
+#   charts, more keeps mip levels apart too. Default 1 (as xatlas's bilinear option).
+RAPS_PARAM_ATLAS_PADDING = 33
+#   float. Vertices closer than this (in position units) are welded before charts are made,
+#   >= 0; 0 welds identical positions only. Default 0.
+RAPS_PARAM_WELD_TOLERANCE = 34
+#   float, degrees in [0, 180]. Edges whose two triangles' normals differ by more become chart
+#   seams; 180 turns this off. Default 180.
+RAPS_PARAM_HARD_EDGE_ANGLE = 35
+#   float in [1, 10]. Charts are split until the atlas's L2 stretch (Sander et al. 2001) is at
+#   most this. Default 1.008.
+RAPS_PARAM_ATLAS_MAX_L2_STRETCH = 36
+#   float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
+#   larger ones are split. Default 2.9.
+RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37
 
 # RAPS_PARAM_DOMAIN values
 #   A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
 #   boundary on the convex shape of RAPS_PARAM_BOUNDARY. One output vertex per input vertex.
 RAPS_DOMAIN_DISK = 0
+#   Any triangle mesh (several pieces, holes, handles, non-manifold or inconsistently wound
+#   parts, zero-area and duplicate triangles): cut into charts, each mapped (a free-boundary
+#   conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
+#   are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
+#   output triangles are the input triangles, in input order, with a chart id each. uvs are
+#   normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
+#   as a texture of that size maps them.
+RAPS_DOMAIN_ATLAS = 2
 
 # RAPS_PARAM_WEIGHTS values
 #   Floater's mean value weights (paper section 5): positive, so the map never folds.
@@ -120,16 +148,21 @@ RAPS_BOUNDARY_SQUARE = 1
 # Progress phases, reported to the progress callback and timed in raps_result_phase_ms.
 #   checking the input
 RAPS_PHASE_VALIDATE = 0
-#   edges, boundary loop, system pattern and ordering
+#   edges, boundary loop, system pattern and ordering; atlas: welding
 RAPS_PHASE_TOPOLOGY = 1
-#   boundary, base weights, first solve (paper sections 3, 5)
+#   boundary, base weights, first solve (paper sections 3, 5); atlas:
+#   every chart's map, its adaptive step included
 RAPS_PHASE_INITIAL_MAP = 2
 #   monitors and adaptive solves (section 6)
 RAPS_PHASE_ADAPT = 3
 #   distortion statistics
 RAPS_PHASE_METRICS = 4
+#   atlas: growing charts
+RAPS_PHASE_SEGMENT = 5
+#   atlas: packing charts
+RAPS_PHASE_PACK = 6
 #   number of phases in this version
-RAPS_PHASE_COUNT = 5
+RAPS_PHASE_COUNT = 7
 
 raps_status = ctypes.c_int32
 raps_param = ctypes.c_int32
@@ -150,7 +183,8 @@ class raps_result(ctypes.Structure):
 
 
 # Distortion statistics of a result. Definitions (r_t, the per-triangle area ratio, is
-# (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area):
+# (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area; the
+# atlas domain measures in texel space, where its map is isotropic):
 # Caller sets struct_size = sizeof(raps_stats) before the call; the library fills only the
 # fields that fit in struct_size, so a caller built against an older, shorter raps_stats keeps
 # working. Fields are only ever appended.
@@ -182,14 +216,24 @@ class raps_stats(ctypes.Structure):
         ('stretch_l2', ctypes.c_double),
         # Sander's Linf stretch (largest singular value); isometry 1
         ('stretch_linf', ctypes.c_double),
+        # sphere domain: sweeps of the spherical relaxation; else 0
+        ('relaxation_sweeps', ctypes.c_uint64),
+        # charts (1 for the disk domain)
+        ('chart_count', ctypes.c_uint64),
+        # atlas domain: texels; 0 otherwise
+        ('atlas_width', ctypes.c_uint64),
+        ('atlas_height', ctypes.c_uint64),
+        # uv area over the unit square ([0,1]^2 after normalising)
+        ('utilization', ctypes.c_double),
     ]
 
 
 # Progress callback: called with the phase and the fraction of it done, in [0, 1], at least at
 # the start and end of every phase and about every 1% of the long ones. Return nonzero to go on,
 # 0 to cancel: the run then stops soon and returns RAPS_ERROR_CANCELLED. It is called on the
-# thread that called raps_parameterize; calls for one run never overlap. When one settings
-# handle is shared by concurrent runs, the callback receives calls from each of them.
+# thread that called raps_parameterize or, with RAPS_PARAM_THREADS != 1, on the run's worker
+# threads; calls for one run never overlap. When one settings handle is shared by concurrent
+# runs, the callback receives calls from each of them.
 raps_progress_fn = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_void_p, raps_phase, ctypes.c_double)
 
 # name: (restype, argtypes), in header order.
@@ -226,6 +270,7 @@ FUNCTIONS = {
     'raps_result_copy_uvs_f64': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_result_copy_indices_u32': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_result_copy_vertex_remap': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_result_copy_chart_ids': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_result_get_stats': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(raps_stats)]),
     'raps_result_phase_ms': (ctypes.c_double, [ctypes.POINTER(raps_result), raps_phase]),
 }

@@ -67,7 +67,7 @@ pub const RAPS_PARAM_DOMAIN: i32 = 1;
 pub const RAPS_PARAM_WEIGHTS: i32 = 2;
 /// int. Error monitor e_ij of the adaptive step; NONE returns the initial map. Default AREA.
 pub const RAPS_PARAM_MONITOR: i32 = 3;
-/// float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 16]. Default 1.
+/// float. Exponent alpha of W_ij = w_ij * e_ij^alpha, in (0, 100]. Default 1.
 pub const RAPS_PARAM_ALPHA: i32 = 4;
 /// int. Number of adaptive solves, 1..100 (the paper: 1). Ignored with monitor NONE.
 /// Default 1.
@@ -79,11 +79,39 @@ pub const RAPS_PARAM_BOUNDARY: i32 = 7;
 /// int. Largest triangle count accepted, 1..2^31-1; larger meshes get RAPS_ERROR_TOO_LARGE
 /// before any work is done. Default 2^31-1.
 pub const RAPS_PARAM_MAX_TRIANGLES: i32 = 8;
+/// int. Threads a run may use, 0..1024; 0 = every hardware thread. The output is
+/// bit-identical whatever the value. Default 0.
+pub const RAPS_PARAM_THREADS: i32 = 9;
+/// int. Texels on the atlas's longer side, 16..16384. Default 1024.
+pub const RAPS_PARAM_ATLAS_RESOLUTION: i32 = 32;
+/// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
+/// charts, more keeps mip levels apart too. Default 1 (as xatlas's bilinear option).
+pub const RAPS_PARAM_ATLAS_PADDING: i32 = 33;
+/// float. Vertices closer than this (in position units) are welded before charts are made,
+/// >= 0; 0 welds identical positions only. Default 0.
+pub const RAPS_PARAM_WELD_TOLERANCE: i32 = 34;
+/// float, degrees in [0, 180]. Edges whose two triangles' normals differ by more become chart
+/// seams; 180 turns this off. Default 180.
+pub const RAPS_PARAM_HARD_EDGE_ANGLE: i32 = 35;
+/// float in [1, 10]. Charts are split until the atlas's L2 stretch (Sander et al. 2001) is at
+/// most this. Default 1.008.
+pub const RAPS_PARAM_ATLAS_MAX_L2_STRETCH: i32 = 36;
+/// float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
+/// larger ones are split. Default 2.9.
+pub const RAPS_PARAM_ATLAS_MAX_LINF_STRETCH: i32 = 37;
 
 // RAPS_PARAM_DOMAIN values
 /// A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
 /// boundary on the convex shape of RAPS_PARAM_BOUNDARY. One output vertex per input vertex.
 pub const RAPS_DOMAIN_DISK: i32 = 0;
+/// Any triangle mesh (several pieces, holes, handles, non-manifold or inconsistently wound
+/// parts, zero-area and duplicate triangles): cut into charts, each mapped (a free-boundary
+/// conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
+/// are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
+/// output triangles are the input triangles, in input order, with a chart id each. uvs are
+/// normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
+/// as a texture of that size maps them.
+pub const RAPS_DOMAIN_ATLAS: i32 = 2;
 
 // RAPS_PARAM_WEIGHTS values
 /// Floater's mean value weights (paper section 5): positive, so the map never folds.
@@ -122,16 +150,21 @@ pub const RAPS_BOUNDARY_SQUARE: i32 = 1;
 // Progress phases, reported to the progress callback and timed in raps_result_phase_ms.
 /// checking the input
 pub const RAPS_PHASE_VALIDATE: i32 = 0;
-/// edges, boundary loop, system pattern and ordering
+/// edges, boundary loop, system pattern and ordering; atlas: welding
 pub const RAPS_PHASE_TOPOLOGY: i32 = 1;
-/// boundary, base weights, first solve (paper sections 3, 5)
+/// boundary, base weights, first solve (paper sections 3, 5); atlas:
+/// every chart's map, its adaptive step included
 pub const RAPS_PHASE_INITIAL_MAP: i32 = 2;
 /// monitors and adaptive solves (section 6)
 pub const RAPS_PHASE_ADAPT: i32 = 3;
 /// distortion statistics
 pub const RAPS_PHASE_METRICS: i32 = 4;
+/// atlas: growing charts
+pub const RAPS_PHASE_SEGMENT: i32 = 5;
+/// atlas: packing charts
+pub const RAPS_PHASE_PACK: i32 = 6;
 /// number of phases in this version
-pub const RAPS_PHASE_COUNT: i32 = 5;
+pub const RAPS_PHASE_COUNT: i32 = 7;
 
 pub type raps_status = i32;
 pub type raps_param = i32;
@@ -157,7 +190,8 @@ pub struct raps_result {
 }
 
 /// Distortion statistics of a result. Definitions (r_t, the per-triangle area ratio, is
-/// (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area):
+/// (uv area / total uv area) / (3D area / total 3D area); averages "weighted" use 3D area; the
+/// atlas domain measures in texel space, where its map is isotropic):
 /// Caller sets struct_size = sizeof(raps_stats) before the call; the library fills only the
 /// fields that fit in struct_size, so a caller built against an older, shorter raps_stats keeps
 /// working. Fields are only ever appended.
@@ -190,13 +224,23 @@ pub struct raps_stats {
     pub stretch_l2: f64,
     /// Sander's Linf stretch (largest singular value); isometry 1
     pub stretch_linf: f64,
+    /// sphere domain: sweeps of the spherical relaxation; else 0
+    pub relaxation_sweeps: u64,
+    /// charts (1 for the disk domain)
+    pub chart_count: u64,
+    /// atlas domain: texels; 0 otherwise
+    pub atlas_width: u64,
+    pub atlas_height: u64,
+    /// uv area over the unit square ([0,1]^2 after normalising)
+    pub utilization: f64,
 }
 
 /// Progress callback: called with the phase and the fraction of it done, in [0, 1], at least at
 /// the start and end of every phase and about every 1% of the long ones. Return nonzero to go on,
 /// 0 to cancel: the run then stops soon and returns RAPS_ERROR_CANCELLED. It is called on the
-/// thread that called raps_parameterize; calls for one run never overlap. When one settings
-/// handle is shared by concurrent runs, the callback receives calls from each of them.
+/// thread that called raps_parameterize or, with RAPS_PARAM_THREADS != 1, on the run's worker
+/// threads; calls for one run never overlap. When one settings handle is shared by concurrent
+/// runs, the callback receives calls from each of them.
 #[rustfmt::skip]
 pub type raps_progress_fn = Option<unsafe extern "C" fn(user: *mut c_void, phase: raps_phase, fraction: f64) -> i32>;
 
@@ -345,6 +389,10 @@ extern "C" {
 
     /// Copy, per output vertex, the input vertex it comes from; capacity >= vertex_count.
     pub fn raps_result_copy_vertex_remap(result: *const raps_result, dst: *mut u32, capacity: usize) -> raps_status;
+
+    /// Copy, per output triangle, its chart (0 .. raps_stats.chart_count - 1); capacity >=
+    /// index_count / 3. Disk domain: every triangle is in chart 0.
+    pub fn raps_result_copy_chart_ids(result: *const raps_result, dst: *mut u32, capacity: usize) -> raps_status;
 
     /// Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size < 8),
     /// INVALID_OPERATION (the result holds no map).
