@@ -21,6 +21,38 @@ def replaced(old, new):
     return HEADER.replace(old, new, 1)
 
 
+# The header's code with every comment blanked to spaces (newlines kept), so that offsets in it
+# are offsets in HEADER and a brace or name inside a comment is never matched.
+CODE = re.sub(r"/\*.*?\*/|//[^\n]*", lambda m: re.sub(r"[^\n]", " ", m.group()), HEADER,
+              flags=re.DOTALL)
+MODEL = generate.parse(HEADER)
+
+
+def with_enum_member(member, name):
+    """(HEADER with `name` appended as the last member of the enum block holding `member`, the
+    value given). The value is the block's largest plus one, as the header appends them; the
+    block and its last member are found in the text, so the header may grow around them."""
+    assert name not in HEADER, "%s already exists: choose another name for the test" % name
+    values = {constant.name: constant.value for constant in MODEL.constants}
+    group = next(names for _, names in MODEL.enum_groups if member in names)
+    value = max(values[other] for other in group) + 1
+    for block in re.finditer(r"\benum\s*\{([^}]*)\}", CODE):
+        if re.search(r"\b%s\b" % member, block.group(1)):
+            body = block.group(1).rstrip()
+            end = block.start(1) + len(body)  # just after the last member (or its comma)
+            template = "\n    %s = %d," if body.endswith(",") else ",\n    %s = %d"
+            addition = template % (name, value)
+            return HEADER[:end] + addition + HEADER[end:], value
+    raise AssertionError("no enum block holds %s" % member)
+
+
+def with_struct_field(struct, declaration):
+    """HEADER with the field `declaration` appended after the last field of `struct`."""
+    match = re.search(r"\btypedef struct %s \{[^}]*\n(\}\s*%s\s*;)" % (struct, struct), CODE)
+    assert match, "no 'typedef struct %s {...} %s;' in raps.h" % (struct, struct)
+    return HEADER[:match.start(1)] + "    " + declaration + "\n" + HEADER[match.start(1):]
+
+
 class Growth(unittest.TestCase):
     """The changes the sphere and atlas branches make must flow into all three bindings."""
 
@@ -34,12 +66,15 @@ class Growth(unittest.TestCase):
         self.assertGreaterEqual(len(declared), 30)
 
     def test_appended_enum_constant(self):
-        text = replaced("RAPS_DOMAIN_DISK = 0\n",
-                        "RAPS_DOMAIN_DISK = 0,\n    RAPS_DOMAIN_SPHERE = 1\n")
+        text, value = with_enum_member("RAPS_DOMAIN_DISK", "RAPS_DOMAIN_CYLINDER")
+        # Appended to the domain block, after its current last member.
+        group = next(names for _, names in generate.parse(text).enum_groups
+                     if "RAPS_DOMAIN_DISK" in names)
+        self.assertEqual(group[-1], "RAPS_DOMAIN_CYLINDER")
         files = generate.generate(text)
-        self.assertIn("public const int RAPS_DOMAIN_SPHERE = 1;", files["csharp"])
-        self.assertIn("pub const RAPS_DOMAIN_SPHERE: i32 = 1;", files["rust"])
-        self.assertIn("RAPS_DOMAIN_SPHERE = 1", files["python"])
+        self.assertIn("public const int RAPS_DOMAIN_CYLINDER = %d;" % value, files["csharp"])
+        self.assertIn("pub const RAPS_DOMAIN_CYLINDER: i32 = %d;" % value, files["rust"])
+        self.assertIn("\nRAPS_DOMAIN_CYLINDER = %d\n" % value, files["python"])
 
     def test_new_function_spanning_lines(self):
         text = replaced("#ifdef __cplusplus\n}", "/* Copies seams. */\nRAPS_API raps_status "
@@ -56,12 +91,13 @@ class Growth(unittest.TestCase):
         self.assertIn("/// Copies seams.", files["rust"])
 
     def test_appended_stats_field(self):
-        text = replaced("    double stretch_linf;", "    uint64_t charts; /* charts */\n"
-                        "    double stretch_linf;")
+        text = with_struct_field("raps_stats", "uint64_t seam_count; /* seams */")
+        fields, _ = generate.parse(text).structs["raps_stats"]
+        self.assertEqual(fields[-1].name, "seam_count")
         files = generate.generate(text)
-        self.assertIn("public ulong Charts;", files["csharp"])
-        self.assertIn("pub charts: u64,", files["rust"])
-        self.assertIn("('charts', ctypes.c_uint64),", files["python"])
+        self.assertIn("public ulong SeamCount;", files["csharp"])
+        self.assertIn("pub seam_count: u64,", files["rust"])
+        self.assertIn("('seam_count', ctypes.c_uint64),", files["python"])
 
     def test_new_opaque_handle_gets_a_safe_handle(self):
         text = replaced("typedef struct raps_result raps_result;",
@@ -116,27 +152,36 @@ class Refusals(unittest.TestCase):
                               "typedef struct raps_atlas raps_atlas;"), ["raps_atlas_destroy"])
 
     def test_struct_with_pointer_field(self):
-        self.refused(replaced("    double stretch_linf;", "    double stretch_linf;\n"
-                              "    const float* data;"), ["data"])
+        self.refused(with_struct_field("raps_stats", "const float* data;"), ["data"])
 
 
 class Command(unittest.TestCase):
     def test_check_reports_a_stale_file_with_a_diff(self):
+        # Files written from raps.h, then checked against a header that has grown since: the
+        # committed files are stale, and --check must fail and show what is missing.
+        grown, value = with_enum_member("RAPS_DOMAIN_DISK", "RAPS_DOMAIN_CYLINDER")
+        self.assertNotEqual(grown, HEADER)
         with tempfile.TemporaryDirectory() as root:
             header = os.path.join(root, "raps.h")
             with open(header, "w", encoding="utf-8") as stream:
-                stream.write(HEADER.replace("RAPS_DOMAIN_DISK = 0\n",
-                                            "RAPS_DOMAIN_DISK = 0,\n    RAPS_DOMAIN_SPHERE = 1\n"))
+                stream.write(grown)
             for relative in generate.OUTPUTS.values():
                 os.makedirs(os.path.dirname(os.path.join(root, relative)), exist_ok=True)
             script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "generate.py")
             subprocess.run([sys.executable, script, "--root", root], check=True)
-            fresh = subprocess.run([sys.executable, script, "--root", root, "--header", header,
-                                    "--check"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                   universal_newlines=True)
-            self.assertEqual(fresh.returncode, 1)
-            self.assertIn("+RAPS_DOMAIN_SPHERE = 1", fresh.stdout)
-            self.assertIn("do not match include/raps.h", fresh.stderr)
+
+            def check(*extra):
+                return subprocess.run([sys.executable, script, "--root", root, "--check"] +
+                                      list(extra), stdout=subprocess.PIPE,
+                                      stderr=subprocess.PIPE, universal_newlines=True)
+
+            # The files match the header they were written from...
+            self.assertEqual(check().returncode, 0)
+            # ...and not the grown one.
+            stale = check("--header", header)
+            self.assertEqual(stale.returncode, 1)
+            self.assertIn("+RAPS_DOMAIN_CYLINDER = %d" % value, stale.stdout)
+            self.assertIn("do not match include/raps.h", stale.stderr)
 
 
 if __name__ == "__main__":
