@@ -394,8 +394,9 @@ Stats = collections.namedtuple(
 
 class Result(_Handle):
     """The map: per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes from,
-    the output triangles, the statistics and the time of each phase. Filled by parameterize;
-    reading an empty result (after a failure) raises Error(Status.INVALID_OPERATION)."""
+    the output triangles with their chart ids, the statistics and the time of each phase.
+    Filled by parameterize; reading an empty result (after a failure) raises
+    Error(Status.INVALID_OPERATION)."""
 
     def __init__(self):
         super().__init__(_lib.raps_result_create, _native.raps_result, _lib.raps_result_destroy)
@@ -452,6 +453,13 @@ class Result(_Handle):
         values = self._copy(_lib.raps_result_copy_vertex_remap, ctypes.c_uint32, n, n)
         return values if numpy is not None else list(values)
 
+    def chart_ids(self):
+        """Per output triangle, its chart (0 .. stats().chart_count - 1; all 0 for the disk
+        domain): a uint32 numpy array or a list."""
+        count = self.triangle_count
+        values = self._copy(_lib.raps_result_copy_chart_ids, ctypes.c_uint32, count, count)
+        return values if numpy is not None else list(values)
+
     def stats(self):
         """The distortion statistics (see raps_stats in raps.h) as a Stats named tuple."""
         native = _native.raps_stats()
@@ -470,9 +478,10 @@ class Result(_Handle):
 def parameterize(mesh, settings=None, progress=None, result=None):
     """Computes the map of mesh with settings (None: the defaults) and returns a Result.
 
-    progress, if given, is called as progress(phase, fraction) from this thread, at the start
-    and end of every phase and about every 1% of the long ones; returning False (or 0)
-    cancels, which raises Error(Status.CANCELLED). An exception raised by progress (also
+    progress, if given, is called as progress(phase, fraction) at the start and end of every
+    phase and about every 1% of the long ones, from this thread or, unless threads is 1, from
+    the run's worker threads (never two calls at once); returning False (or 0) cancels, which
+    raises Error(Status.CANCELLED). An exception raised by progress (also
     KeyboardInterrupt) cancels the run and is raised here. result, if given, is refilled
     instead of creating one. mesh and settings are only read: threads may share them (the
     library runs without the GIL), each with its own result."""

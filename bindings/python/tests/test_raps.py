@@ -65,6 +65,16 @@ def signed_area(a, b, c):
     return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 
 
+def phase_sequence(calls):
+    """The phases of (phase, fraction) progress calls in the order entered, each once: a phase
+    entered twice, or calls of two phases interleaved, show up as a repeat."""
+    sequence = []
+    for phase, _ in calls:
+        if not sequence or sequence[-1] != phase:
+            sequence.append(phase)
+    return sequence
+
+
 class SharedMesh(unittest.TestCase):
     """camelhead.off, a real disk-shaped scan, through the whole binding."""
 
@@ -159,13 +169,14 @@ class SharedMesh(unittest.TestCase):
         settings.close()
 
     def test_progress_reports_phases_in_order(self):
+        # The disk domain goes through the first five phases; SEGMENT and PACK are the atlas's.
         calls = []
         raps.parameterize(self.mesh, progress=lambda phase, fraction: calls.append(
             (phase, fraction)))
-        phases = [phase for phase, _ in calls]
-        self.assertEqual(phases, sorted(phases))
-        self.assertEqual(set(phases), set(raps.Phase))
-        self.assertTrue(all(isinstance(p, raps.Phase) for p in phases))
+        self.assertEqual(phase_sequence(calls), [
+            raps.Phase.VALIDATE, raps.Phase.TOPOLOGY, raps.Phase.INITIAL_MAP, raps.Phase.ADAPT,
+            raps.Phase.METRICS])
+        self.assertTrue(all(isinstance(p, raps.Phase) for p, _ in calls))
         self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
 
     def test_progress_cancels_and_handles_stay_usable(self):
@@ -191,6 +202,133 @@ class SharedMesh(unittest.TestCase):
 
         with self.assertRaises(Stop):
             raps.parameterize(self.mesh, progress=fail)
+
+
+class Atlas(unittest.TestCase):
+    """The atlas domain on bunny.off, a closed mesh the disk domain refuses."""
+
+    @classmethod
+    def setUpClass(cls):
+        path = os.path.join(DATA, "meshes", "bunny.off")
+        if not os.path.isfile(path):
+            raise AssertionError("shared test data missing: %r (set RAPS_SHARED_DATA_DIR)" % path)
+        cls.positions, cls.triangles = read_off(path)
+        cls.mesh = raps.Mesh(cls.positions, cls.triangles)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.mesh.close()
+
+    def run_atlas(self, threads, progress=None):
+        with raps.Settings(domain=raps.Domain.ATLAS, threads=threads) as settings:
+            self.assertEqual(settings.domain, raps.Domain.ATLAS)
+            self.assertEqual(settings.threads, threads)
+            return raps.parameterize(self.mesh, settings, progress=progress)
+
+    def test_closed_mesh_becomes_a_valid_atlas(self):
+        with self.assertRaises(raps.Error) as caught:
+            raps.parameterize(self.mesh)  # the disk domain needs a boundary
+        self.assertEqual(caught.exception.status, raps.Status.NO_BOUNDARY)
+        with self.run_atlas(threads=1) as result:
+            stats = result.stats()
+            uvs = rows(result.uvs())
+            indices = rows(result.indices())
+            remap = list(result.vertex_remap())
+            charts = list(result.chart_ids())
+        # The input triangles, in input order, over vertices duplicated along seams.
+        self.assertEqual(len(indices), len(self.triangles))
+        self.assertEqual(stats.triangle_count, len(self.triangles))
+        self.assertEqual(stats.vertex_count, len(uvs))
+        self.assertEqual(len(remap), len(uvs))
+        self.assertGreaterEqual(len(uvs), len(self.positions))
+        self.assertTrue(all(0 <= r < len(self.positions) for r in remap))
+        for output, triangle in zip(indices, self.triangles):
+            self.assertEqual(tuple(remap[i] for i in output), tuple(triangle))
+        # One chart id per triangle, below the chart count.
+        self.assertEqual(len(charts), len(self.triangles))
+        self.assertGreaterEqual(stats.chart_count, 1)
+        self.assertTrue(all(0 <= c < stats.chart_count for c in charts))
+        for u, v in uvs:
+            self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= v <= 1.0, (u, v))
+        self.assertEqual(stats.flipped_triangles, 0)
+        self.assertGreater(stats.atlas_width, 0)
+        self.assertGreater(stats.atlas_height, 0)
+        self.assertTrue(0.0 < stats.utilization <= 1.0, stats.utilization)
+
+    def test_threads_do_not_change_the_map(self):
+        with self.run_atlas(threads=1) as one, self.run_atlas(threads=2) as two:
+            self.assertEqual(rows(one.uvs()), rows(two.uvs()))
+            self.assertEqual(list(one.chart_ids()), list(two.chart_ids()))
+
+    def test_progress_reports_the_atlas_phases(self):
+        calls = []
+        with self.run_atlas(threads=2, progress=lambda phase, fraction: calls.append(
+                (phase, fraction))) as result:
+            self.assertGreater(result.phase_ms(raps.Phase.SEGMENT), 0.0)
+            self.assertGreater(result.phase_ms(raps.Phase.PACK), 0.0)
+        self.assertEqual(phase_sequence(calls), [
+            raps.Phase.VALIDATE, raps.Phase.TOPOLOGY, raps.Phase.SEGMENT,
+            raps.Phase.INITIAL_MAP, raps.Phase.PACK, raps.Phase.METRICS])
+        self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
+
+    def test_exception_from_a_worker_thread_propagates(self):
+        # With threads != 1 the atlas reports chart progress from its worker threads too; an
+        # exception raised there still cancels the run and is raised by parameterize.
+        class Stop(Exception):
+            pass
+
+        def fail(phase, fraction):
+            if phase == raps.Phase.INITIAL_MAP and fraction > 0.0:
+                raise Stop()
+
+        result = raps.Result()
+        with raps.Settings(domain="atlas", threads=2) as settings:
+            with self.assertRaises(Stop):
+                raps.parameterize(self.mesh, settings, progress=fail, result=result)
+        self.assertEqual(result.vertex_count, 0)
+        result.close()
+
+    def test_atlas_settings(self):
+        expected = {"threads": (False, 0, 1024, 0), "atlas_resolution": (False, 16, 16384, 1024),
+                    "atlas_padding": (False, 0, 64, 1), "weld_tolerance": (True, 0.0, None, 0.0),
+                    "hard_edge_angle": (True, 0.0, 180.0, 180.0),
+                    "atlas_max_l2_stretch": (True, 1.0, 10.0, 1.008),
+                    "atlas_max_linf_stretch": (True, 1.0, 1000.0, 2.9)}
+        with raps.Settings() as settings:
+            for name, (is_float, low, high, default) in expected.items():
+                info = raps.Settings.param_info(raps.Param[name.upper()])
+                self.assertEqual(info.name, name)
+                self.assertEqual((info.is_float, info.min, info.default),
+                                 (is_float, low, default), name)
+                if high is not None:
+                    self.assertEqual(info.max, high, name)
+                self.assertEqual(getattr(settings, name), default, name)
+                self.assertIsInstance(getattr(settings, name), float if is_float else int)
+        with raps.Settings(threads=2, atlas_resolution=512, atlas_padding=4,
+                           weld_tolerance=1e-6, hard_edge_angle=60.0, atlas_max_l2_stretch=1.5,
+                           atlas_max_linf_stretch=4.0) as settings:
+            copy = settings.clone()
+            self.assertEqual(
+                {name: getattr(copy, name) for name in expected},
+                {"threads": 2, "atlas_resolution": 512, "atlas_padding": 4,
+                 "weld_tolerance": 1e-6, "hard_edge_angle": 60.0, "atlas_max_l2_stretch": 1.5,
+                 "atlas_max_linf_stretch": 4.0})
+            copy.close()
+            for name, bad in (("threads", -1), ("atlas_resolution", 8), ("atlas_padding", 65),
+                              ("hard_edge_angle", 181.0), ("atlas_max_l2_stretch", 0.5)):
+                with self.assertRaises(raps.Error) as caught:
+                    setattr(settings, name, bad)
+                self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+            self.assertEqual(settings.atlas_resolution, 512)  # a failed setter changes nothing
+
+    def test_disk_results_have_one_chart(self):
+        with raps.Mesh(*read_off(os.path.join(DATA, "meshes", "camelhead.off"))) as mesh, \
+                raps.parameterize(mesh) as result:
+            stats = result.stats()
+            self.assertEqual(stats.chart_count, 1)
+            self.assertEqual((stats.atlas_width, stats.atlas_height), (0, 0))
+            self.assertEqual(set(result.chart_ids()), {0})
+            self.assertEqual(len(result.chart_ids()), result.triangle_count)
 
 
 class Errors(unittest.TestCase):
@@ -246,7 +384,8 @@ class Errors(unittest.TestCase):
 
     def test_empty_result_cannot_be_read(self):
         with raps.Result() as result:
-            for read in (result.uvs, result.indices, result.vertex_remap, result.stats):
+            for read in (result.uvs, result.indices, result.vertex_remap, result.chart_ids,
+                         result.stats):
                 with self.assertRaises(raps.Error) as caught:
                     read()
                 self.assertEqual(caught.exception.status, raps.Status.INVALID_OPERATION)
