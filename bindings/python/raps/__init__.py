@@ -23,6 +23,7 @@ import ctypes.util
 import enum
 import numbers
 import os
+import threading
 import weakref
 
 from . import _native
@@ -495,11 +496,17 @@ def parameterize(mesh, settings=None, progress=None, result=None):
 
     # The callback goes on a private copy of the settings, so that settings shared with other
     # threads never see it, and the ctypes function object lives until the run is over.
+    # The library's worker threads may report too (threads != 1); the lock keeps progress
+    # from ever running twice at once, whatever the library does, as the header promises.
     raised = []
+    serial = threading.Lock()
 
     def call(_user, phase, fraction):
         try:
-            keep_going = progress(_known(Phase, phase), fraction)
+            with serial:
+                if raised:  # already stopping: do not call progress again
+                    return 0
+                keep_going = progress(_known(Phase, phase), fraction)
         except BaseException as error:  # also KeyboardInterrupt: stop the run, raise below
             raised.append(error)
             return 0

@@ -11,6 +11,7 @@ import os
 import subprocess
 import sys
 import threading
+import time
 import unittest
 
 if os.environ.get("RAPS_TEST_WITHOUT_NUMPY") == "1":
@@ -262,14 +263,25 @@ class Atlas(unittest.TestCase):
 
     def test_progress_reports_the_atlas_phases(self):
         calls = []
-        with self.run_atlas(threads=2, progress=lambda phase, fraction: calls.append(
-                (phase, fraction))) as result:
+        inside = [0]
+        overlaps = [0]
+
+        def record(phase, fraction):
+            # Chart progress comes from the worker threads: calls must still never overlap.
+            inside[0] += 1
+            overlaps[0] += inside[0] > 1
+            calls.append((phase, fraction))
+            time.sleep(0.0005)  # lets another thread run, were it allowed in
+            inside[0] -= 1
+
+        with self.run_atlas(threads=2, progress=record) as result:
             self.assertGreater(result.phase_ms(raps.Phase.SEGMENT), 0.0)
             self.assertGreater(result.phase_ms(raps.Phase.PACK), 0.0)
         self.assertEqual(phase_sequence(calls), [
             raps.Phase.VALIDATE, raps.Phase.TOPOLOGY, raps.Phase.SEGMENT,
             raps.Phase.INITIAL_MAP, raps.Phase.PACK, raps.Phase.METRICS])
         self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
+        self.assertEqual(overlaps[0], 0)
 
     def test_exception_from_a_worker_thread_propagates(self):
         # With threads != 1 the atlas reports chart progress from its worker threads too; an
