@@ -48,12 +48,25 @@ namespace Raps
         Iterations = Native.RAPS_PARAM_ITERATIONS,
         IterationMode = Native.RAPS_PARAM_ITERATION_MODE,
         Boundary = Native.RAPS_PARAM_BOUNDARY,
-        MaxTriangles = Native.RAPS_PARAM_MAX_TRIANGLES
+        MaxTriangles = Native.RAPS_PARAM_MAX_TRIANGLES,
+        Threads = Native.RAPS_PARAM_THREADS,
+        AtlasResolution = Native.RAPS_PARAM_ATLAS_RESOLUTION,
+        AtlasPadding = Native.RAPS_PARAM_ATLAS_PADDING,
+        WeldTolerance = Native.RAPS_PARAM_WELD_TOLERANCE,
+        HardEdgeAngle = Native.RAPS_PARAM_HARD_EDGE_ANGLE,
+        AtlasMaxL2Stretch = Native.RAPS_PARAM_ATLAS_MAX_L2_STRETCH,
+        AtlasMaxLinfStretch = Native.RAPS_PARAM_ATLAS_MAX_LINF_STRETCH
     }
 
     public enum Domain
     {
-        Disk = Native.RAPS_DOMAIN_DISK
+        /// <summary>A topological disk mapped into [0,1]^2 with its boundary on a convex
+        /// shape; one output vertex per input vertex.</summary>
+        Disk = Native.RAPS_DOMAIN_DISK,
+        /// <summary>Any triangle mesh, cut into charts packed into one texture atlas; output
+        /// vertices are duplicated along seams (see Result.GetVertexRemap) and each output
+        /// triangle, the input one in input order, has a chart (Result.GetChartIds).</summary>
+        Atlas = Native.RAPS_DOMAIN_ATLAS
     }
 
     public enum Weights
@@ -91,7 +104,11 @@ namespace Raps
         Topology = Native.RAPS_PHASE_TOPOLOGY,
         InitialMap = Native.RAPS_PHASE_INITIAL_MAP,
         Adapt = Native.RAPS_PHASE_ADAPT,
-        Metrics = Native.RAPS_PHASE_METRICS
+        Metrics = Native.RAPS_PHASE_METRICS,
+        /// <summary>Atlas: growing charts.</summary>
+        Segment = Native.RAPS_PHASE_SEGMENT,
+        /// <summary>Atlas: packing charts.</summary>
+        Pack = Native.RAPS_PHASE_PACK
     }
 
     /// <summary>A failed raps call: the status, the library's name for it and its message
@@ -438,6 +455,58 @@ namespace Raps
             set { SetInt(Param.MaxTriangles, value); }
         }
 
+        /// <summary>Threads a run may use, 0 = every hardware thread (the default); the output
+        /// is the same whatever the value.</summary>
+        public int Threads
+        {
+            get { return (int)GetInt(Param.Threads); }
+            set { SetInt(Param.Threads, value); }
+        }
+
+        /// <summary>Atlas: texels on the atlas's longer side.</summary>
+        public int AtlasResolution
+        {
+            get { return (int)GetInt(Param.AtlasResolution); }
+            set { SetInt(Param.AtlasResolution, value); }
+        }
+
+        /// <summary>Atlas: texels kept free between charts.</summary>
+        public int AtlasPadding
+        {
+            get { return (int)GetInt(Param.AtlasPadding); }
+            set { SetInt(Param.AtlasPadding, value); }
+        }
+
+        /// <summary>Atlas: vertices closer than this (in position units) are welded first; 0
+        /// welds identical positions only.</summary>
+        public double WeldTolerance
+        {
+            get { return GetFloat(Param.WeldTolerance); }
+            set { SetFloat(Param.WeldTolerance, value); }
+        }
+
+        /// <summary>Atlas: edges whose triangles' normals differ by more degrees become
+        /// seams; 180 turns this off.</summary>
+        public double HardEdgeAngle
+        {
+            get { return GetFloat(Param.HardEdgeAngle); }
+            set { SetFloat(Param.HardEdgeAngle, value); }
+        }
+
+        /// <summary>Atlas: charts are split until the L2 stretch is at most this.</summary>
+        public double AtlasMaxL2Stretch
+        {
+            get { return GetFloat(Param.AtlasMaxL2Stretch); }
+            set { SetFloat(Param.AtlasMaxL2Stretch, value); }
+        }
+
+        /// <summary>Atlas: no chart keeps a triangle stretched more than this (Linf).</summary>
+        public double AtlasMaxLinfStretch
+        {
+            get { return GetFloat(Param.AtlasMaxLinfStretch); }
+            set { SetFloat(Param.AtlasMaxLinfStretch, value); }
+        }
+
         public void Dispose()
         {
             handle.Dispose();
@@ -445,8 +514,9 @@ namespace Raps
     }
 
     /// <summary>The map: per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes
-    /// from, the output triangles, the statistics and the time of each phase. Reading an empty
-    /// result (after a failure) throws with Status.InvalidOperation.</summary>
+    /// from, the output triangles and their charts, the statistics and the time of each
+    /// phase. Reading an empty result (after a failure) throws with
+    /// Status.InvalidOperation.</summary>
     public sealed class Result : IDisposable
     {
         private readonly ResultHandle handle;
@@ -537,6 +607,17 @@ namespace Raps
             return remap;
         }
 
+        /// <summary>Per output triangle, its chart (0 .. Stats.ChartCount - 1; all 0 for the
+        /// disk domain).</summary>
+        public uint[] GetChartIds()
+        {
+            RequireMap();
+            var charts = new uint[TriangleCount];
+            Interop.Check(Native.raps_result_copy_chart_ids(handle, charts,
+                                                             Interop.Size(charts.Length)));
+            return charts;
+        }
+
         /// <summary>The distortion statistics (see raps_stats in raps.h).</summary>
         public Stats GetStats()
         {
@@ -582,7 +663,8 @@ namespace Raps
         }
 
         /// <summary>Parameterizes mesh with settings (null: the defaults) into a new Result.
-        /// progress, if given, is called with the phase and the fraction done, on this thread;
+        /// progress, if given, is called with the phase and the fraction done, on this thread
+        /// or, unless Threads is 1, on the run's worker threads (never two calls at once);
         /// returning false cancels (RapsException with Status.Cancelled), and an exception it
         /// throws cancels the run and is rethrown here.</summary>
         public static Result Parameterize(Mesh mesh, Settings settings = null,
@@ -616,22 +698,29 @@ namespace Raps
                 return;
             }
             // The callback goes on a private copy, so settings shared with other threads never
-            // see it; the delegate stays reachable until the native call has returned.
+            // see it; the delegate stays reachable until the native call has returned. It may run
+            // on the library's worker threads (Threads != 1), whose calls the atlas does not
+            // serialise: the lock keeps progress from ever running twice at once, as raps.h
+            // promises, and publishes 'raised' to this thread.
             Exception raised = null;
+            var serial = new object();
             ProgressFn callback = null;
             if (progress != null)
             {
                 callback = (user, phase, fraction) =>
                 {
-                    if (raised != null) return 0;
-                    try
+                    lock (serial)
                     {
-                        return progress((Phase)phase, fraction) ? 1 : 0;
-                    }
-                    catch (Exception error)  // must not unwind through native frames
-                    {
-                        raised = error;
-                        return 0;
+                        if (raised != null) return 0;
+                        try
+                        {
+                            return progress((Phase)phase, fraction) ? 1 : 0;
+                        }
+                        catch (Exception error)  // must not unwind through native frames
+                        {
+                            raised = error;
+                            return 0;
+                        }
                     }
                 };
             }
@@ -642,7 +731,9 @@ namespace Raps
                                                                     IntPtr.Zero));
                 int status = Native.raps_parameterize(mesh.Handle, run.Handle, result.Handle);
                 GC.KeepAlive(callback);
-                if (raised != null) ExceptionDispatchInfo.Capture(raised).Throw();
+                Exception failure;
+                lock (serial) failure = raised;
+                if (failure != null) ExceptionDispatchInfo.Capture(failure).Throw();
                 Interop.Check(status, result.LastError);
             }
         }

@@ -88,6 +88,21 @@ static class RapsTests
                (uv[2 * b + 1] - uv[2 * a + 1]) * (uv[2 * c] - uv[2 * a]);
     }
 
+    // The phases of a run's progress calls in the order entered, each once: a phase entered
+    // twice, or two phases' calls interleaved, show up as a repeat.
+    static List<Phase> PhaseSequence(IEnumerable<Phase> calls)
+    {
+        var sequence = new List<Phase>();
+        foreach (Phase phase in calls)
+            if (sequence.Count == 0 || sequence[sequence.Count - 1] != phase) sequence.Add(phase);
+        return sequence;
+    }
+
+    static string Show(IEnumerable<Phase> phases)
+    {
+        return string.Join(", ", phases.Select(p => p.ToString()).ToArray());
+    }
+
     static void AreaMonitorIsValidAndLessDistorted()
     {
         Off camel = ReadOff("meshes/camelhead.off");
@@ -193,8 +208,11 @@ static class RapsTests
                    }))
             {
             }
-            Expect(phases.SequenceEqual(phases.OrderBy(p => p)), "phases in order");
-            Expect(phases.Distinct().Count() == Native.RAPS_PHASE_COUNT, "every phase reported");
+            // The disk domain's five phases, in order; Segment and Pack are the atlas's.
+            var disk = new[] { Phase.Validate, Phase.Topology, Phase.InitialMap, Phase.Adapt,
+                               Phase.Metrics };
+            Expect(PhaseSequence(phases).SequenceEqual(disk),
+                   "the disk phases in order, got " + Show(PhaseSequence(phases)));
             Expect(fractionsInRange, "fractions in [0, 1]");
 
             using (var result = new Result())
@@ -251,6 +269,7 @@ static class RapsTests
             ExpectFailure(Status.InvalidOperation, () => result.GetUvs());
             ExpectFailure(Status.InvalidOperation, () => result.GetStats());
             ExpectFailure(Status.InvalidOperation, () => result.GetIndices());
+            ExpectFailure(Status.InvalidOperation, () => result.GetChartIds());
         }
     }
 
@@ -304,6 +323,172 @@ static class RapsTests
         ExpectFailure(Status.InvalidArgument, () => Settings.GetParamInfo((Param)999));
     }
 
+    static Result RunAtlas(Mesh mesh, int threads, Func<Phase, double, bool> progress = null)
+    {
+        using (var settings = new Settings { Domain = Domain.Atlas, Threads = threads })
+        {
+            Expect(settings.Domain == Domain.Atlas && settings.Threads == threads,
+                   "the atlas settings");
+            return Library.Parameterize(mesh, settings, progress);
+        }
+    }
+
+    static void AtlasOfAClosedMeshIsValid()
+    {
+        Off bunny = ReadOff("meshes/bunny.off");
+        int n = bunny.Xyz.Length / 3, triangles = bunny.Indices.Length / 3;
+        using (var mesh = new Mesh(bunny.Xyz, bunny.Indices))
+        {
+            ExpectFailure(Status.NoBoundary, () => Library.Parameterize(mesh));
+            using (var one = RunAtlas(mesh, 1))
+            using (var two = RunAtlas(mesh, 2))
+            {
+                Stats stats = one.GetStats();
+                float[] uv = one.GetUvs();
+                uint[] indices = one.GetIndices();
+                uint[] remap = one.GetVertexRemap();
+                uint[] charts = one.GetChartIds();
+                // The input triangles, in input order, over vertices duplicated along seams.
+                Expect(indices.Length == bunny.Indices.Length, "the input's index count");
+                Expect(stats.TriangleCount == (ulong)triangles, "the input's triangle count");
+                Expect(remap.Length == one.VertexCount && uv.Length == 2 * remap.Length &&
+                           stats.VertexCount == (ulong)remap.Length && remap.Length >= n,
+                       "a remap and a uv per output vertex");
+                Expect(remap.All(r => r < n), "every remap a valid input vertex");
+                for (int i = 0; i < indices.Length; i++)
+                    Expect(indices[i] < remap.Length && remap[indices[i]] == bunny.Indices[i],
+                           "corner " + i + " remaps to the input triangle's vertex");
+                Expect(charts.Length == triangles, "a chart id per triangle");
+                Expect(stats.ChartCount >= 1 && charts.All(c => c < stats.ChartCount),
+                       "chart ids below the chart count " + stats.ChartCount);
+                Expect(uv.All(c => c >= 0 && c <= 1), "uvs in [0,1]^2");
+                Expect(stats.FlippedTriangles == 0, "no flipped triangle");
+                Expect(stats.AtlasWidth > 0 && stats.AtlasHeight > 0, "a non-empty atlas");
+                Expect(stats.Utilization > 0 && stats.Utilization <= 1, "utilization in (0, 1]");
+                // The output is the same whatever the thread count.
+                Expect(two.GetUvsDouble().SequenceEqual(one.GetUvsDouble()),
+                       "identical uvs with 1 and 2 threads");
+                Expect(two.GetChartIds().SequenceEqual(charts),
+                       "identical charts with 1 and 2 threads");
+            }
+        }
+    }
+
+    static void AtlasProgressReportsItsPhases()
+    {
+        Off bunny = ReadOff("meshes/bunny.off");
+        using (var mesh = new Mesh(bunny.Xyz, bunny.Indices))
+        {
+            // Chart progress comes from the worker threads: calls must still never overlap.
+            var phases = new List<Phase>();
+            int inside = 0, overlaps = 0;
+            bool fractionsInRange = true;
+            using (var result = RunAtlas(mesh, 2, (phase, fraction) =>
+                   {
+                       if (Interlocked.Increment(ref inside) > 1)
+                           Interlocked.Increment(ref overlaps);
+                       phases.Add(phase);
+                       fractionsInRange &= fraction >= 0 && fraction <= 1;
+                       Thread.Sleep(1);  // lets another thread in, were it allowed
+                       Interlocked.Decrement(ref inside);
+                       return true;
+                   }))
+            {
+                Expect(result.PhaseMilliseconds(Phase.Segment) > 0 &&
+                           result.PhaseMilliseconds(Phase.Pack) > 0,
+                       "timed segment and pack phases");
+            }
+            var atlas = new[] { Phase.Validate, Phase.Topology, Phase.Segment, Phase.InitialMap,
+                                Phase.Pack, Phase.Metrics };
+            Expect(PhaseSequence(phases).SequenceEqual(atlas),
+                   "the atlas phases in order, got " + Show(PhaseSequence(phases)));
+            Expect(overlaps == 0, "no overlapping progress calls, got " + overlaps);
+            Expect(fractionsInRange, "fractions in [0, 1]");
+
+            // An exception thrown on a worker thread cancels the run and reaches the caller.
+            using (var result = new Result())
+            using (var settings = new Settings { Domain = Domain.Atlas, Threads = 2 })
+            {
+                try
+                {
+                    Library.Parameterize(mesh, settings, result, (phase, fraction) =>
+                    {
+                        if (phase == Phase.InitialMap && fraction > 0)
+                            throw new TimeoutException("from a worker");
+                        return true;
+                    });
+                    throw new Exception("expected the callback's exception");
+                }
+                catch (TimeoutException error)
+                {
+                    Expect(error.Message == "from a worker", "the callback's own exception");
+                }
+                Expect(result.VertexCount == 0, "an empty result after the exception");
+            }
+        }
+    }
+
+    static void AtlasSettingsRoundTrip()
+    {
+        var expected = new[]
+        {
+            new { Param = Param.Threads, Name = "threads", IsFloat = false, Min = 0.0,
+                  Max = 1024.0, Default = 0.0 },
+            new { Param = Param.AtlasResolution, Name = "atlas_resolution", IsFloat = false,
+                  Min = 16.0, Max = 16384.0, Default = 1024.0 },
+            new { Param = Param.AtlasPadding, Name = "atlas_padding", IsFloat = false, Min = 0.0,
+                  Max = 64.0, Default = 1.0 },
+            new { Param = Param.WeldTolerance, Name = "weld_tolerance", IsFloat = true,
+                  Min = 0.0, Max = double.MaxValue, Default = 0.0 },
+            new { Param = Param.HardEdgeAngle, Name = "hard_edge_angle", IsFloat = true,
+                  Min = 0.0, Max = 180.0, Default = 180.0 },
+            new { Param = Param.AtlasMaxL2Stretch, Name = "atlas_max_l2_stretch", IsFloat = true,
+                  Min = 1.0, Max = 10.0, Default = 1.008 },
+            new { Param = Param.AtlasMaxLinfStretch, Name = "atlas_max_linf_stretch",
+                  IsFloat = true, Min = 1.0, Max = 1000.0, Default = 2.9 },
+        };
+        using (var defaults = new Settings())
+        {
+            foreach (var facts in expected)
+            {
+                ParamInfo info = Settings.GetParamInfo(facts.Param);
+                Expect(info.Name == facts.Name && info.IsFloat == facts.IsFloat &&
+                           info.Min == facts.Min && info.Max == facts.Max &&
+                           info.Default == facts.Default,
+                       facts.Name + "'s facts");
+                double value = facts.IsFloat ? defaults.GetFloat(facts.Param)
+                                             : defaults.GetInt(facts.Param);
+                Expect(value == facts.Default, facts.Name + " holds its default");
+            }
+            Expect(defaults.Threads == 0 && defaults.AtlasResolution == 1024 &&
+                       defaults.AtlasPadding == 1 && defaults.WeldTolerance == 0 &&
+                       defaults.HardEdgeAngle == 180 && defaults.AtlasMaxL2Stretch == 1.008 &&
+                       defaults.AtlasMaxLinfStretch == 2.9,
+                   "the properties read the defaults");
+        }
+        using (var settings = new Settings
+               {
+                   Domain = Domain.Atlas, Threads = 2, AtlasResolution = 512, AtlasPadding = 4,
+                   WeldTolerance = 1e-6, HardEdgeAngle = 60, AtlasMaxL2Stretch = 1.5,
+                   AtlasMaxLinfStretch = 4
+               })
+        using (var copy = settings.Clone())
+        {
+            Expect(copy.Domain == Domain.Atlas && copy.Threads == 2 &&
+                       copy.AtlasResolution == 512 && copy.AtlasPadding == 4 &&
+                       copy.WeldTolerance == 1e-6 && copy.HardEdgeAngle == 60 &&
+                       copy.AtlasMaxL2Stretch == 1.5 && copy.AtlasMaxLinfStretch == 4,
+                   "the atlas parameters set and cloned");
+            ExpectFailure(Status.InvalidArgument, () => settings.Threads = -1);
+            ExpectFailure(Status.InvalidArgument, () => settings.AtlasResolution = 8);
+            ExpectFailure(Status.InvalidArgument, () => settings.AtlasPadding = 65);
+            ExpectFailure(Status.InvalidArgument, () => settings.HardEdgeAngle = 181);
+            ExpectFailure(Status.InvalidArgument, () => settings.AtlasMaxL2Stretch = 0.5);
+            Expect(settings.AtlasResolution == 512 && settings.HardEdgeAngle == 60,
+                   "a failed setter changes nothing");
+        }
+    }
+
     static void DisposalIsSafe()
     {
         var mesh = new Mesh();
@@ -351,6 +536,14 @@ static class RapsTests
             Expect(stats.TriangleCount == (ulong)(camel.Indices.Length / 3) &&
                        stats.StretchLinf >= 1.0,
                    "fields read at the library's offsets");
+            // The fields appended for the atlas, as the disk domain fills them.
+            Expect(stats.ChartCount == 1 && stats.AtlasWidth == 0 && stats.AtlasHeight == 0 &&
+                       stats.RelaxationSweeps == 0 && stats.Utilization > 0 &&
+                       stats.Utilization <= 1,
+                   "the disk domain's chart and atlas fields");
+            uint[] charts = result.GetChartIds();
+            Expect(charts.Length == camel.Indices.Length / 3 && charts.All(c => c == 0),
+                   "every disk triangle in chart 0");
         }
         Expect(Library.VersionNumber / 10000 == Native.RAPS_VERSION_MAJOR, "the major version");
         uint v = Library.VersionNumber;
@@ -384,6 +577,12 @@ static class RapsTests
                                              SetterErrorsCarryMessagesAndChangeNothing),
             new KeyValuePair<string, Action>("settings round trip and clone",
                                              SettingsRoundTripAndClone),
+            new KeyValuePair<string, Action>("atlas of a closed mesh is valid",
+                                             AtlasOfAClosedMeshIsValid),
+            new KeyValuePair<string, Action>("atlas progress reports its phases",
+                                             AtlasProgressReportsItsPhases),
+            new KeyValuePair<string, Action>("atlas settings round trip",
+                                             AtlasSettingsRoundTrip),
             new KeyValuePair<string, Action>("disposal is safe", DisposalIsSafe),
             new KeyValuePair<string, Action>("layout and version match the library",
                                              LayoutAndVersionMatchTheLibrary),
