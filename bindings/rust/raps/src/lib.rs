@@ -22,6 +22,7 @@ use std::fmt;
 use std::os::raw::{c_char, c_void};
 use std::panic::{self, AssertUnwindSafe};
 use std::ptr::{self, NonNull};
+use std::sync::{Mutex, PoisonError};
 
 pub use raps_sys as sys;
 
@@ -107,6 +108,13 @@ int_values! {
         ITERATION_MODE = sys::RAPS_PARAM_ITERATION_MODE,
         BOUNDARY = sys::RAPS_PARAM_BOUNDARY,
         MAX_TRIANGLES = sys::RAPS_PARAM_MAX_TRIANGLES,
+        THREADS = sys::RAPS_PARAM_THREADS,
+        ATLAS_RESOLUTION = sys::RAPS_PARAM_ATLAS_RESOLUTION,
+        ATLAS_PADDING = sys::RAPS_PARAM_ATLAS_PADDING,
+        WELD_TOLERANCE = sys::RAPS_PARAM_WELD_TOLERANCE,
+        HARD_EDGE_ANGLE = sys::RAPS_PARAM_HARD_EDGE_ANGLE,
+        ATLAS_MAX_L2_STRETCH = sys::RAPS_PARAM_ATLAS_MAX_L2_STRETCH,
+        ATLAS_MAX_LINF_STRETCH = sys::RAPS_PARAM_ATLAS_MAX_LINF_STRETCH,
     }
 }
 
@@ -115,6 +123,11 @@ int_values! {
     Domain {
         /// A topological disk mapped into [0,1]^2 with its boundary on a convex shape.
         DISK = sys::RAPS_DOMAIN_DISK,
+        /// Any triangle mesh, cut into charts packed into one texture atlas: output vertices
+        /// are duplicated along seams ([`Parameterization::vertex_remap`]), and each output
+        /// triangle, the input one in input order, has a chart
+        /// ([`Parameterization::chart_ids`]).
+        ATLAS = sys::RAPS_DOMAIN_ATLAS,
     }
 }
 
@@ -172,11 +185,17 @@ int_values! {
         INITIAL_MAP = sys::RAPS_PHASE_INITIAL_MAP,
         ADAPT = sys::RAPS_PHASE_ADAPT,
         METRICS = sys::RAPS_PHASE_METRICS,
+        /// Atlas: growing charts.
+        SEGMENT = sys::RAPS_PHASE_SEGMENT,
+        /// Atlas: packing charts.
+        PACK = sys::RAPS_PHASE_PACK,
     }
 }
 
 impl Phase {
-    /// Every phase of this version, in the order a run goes through them.
+    /// Every phase of this version, in numeric order. A run enters only its domain's phases:
+    /// the disk domain VALIDATE, TOPOLOGY, INITIAL_MAP, ADAPT, METRICS; the atlas VALIDATE,
+    /// TOPOLOGY, SEGMENT, INITIAL_MAP, PACK, METRICS.
     pub fn all() -> impl Iterator<Item = Phase> {
         (0..sys::RAPS_PHASE_COUNT).map(Phase)
     }
@@ -585,6 +604,37 @@ impl Settings {
     pub fn set_max_triangles(&mut self, max_triangles: u32) -> Result<&mut Self> {
         self.set_int(Param::MAX_TRIANGLES, max_triangles.into())
     }
+    /// Threads a run may use, 0 = every hardware thread (the default); the output is the same
+    /// whatever the value.
+    pub fn set_threads(&mut self, threads: u32) -> Result<&mut Self> {
+        self.set_int(Param::THREADS, threads.into())
+    }
+    /// Atlas: texels on the atlas's longer side.
+    pub fn set_atlas_resolution(&mut self, texels: u32) -> Result<&mut Self> {
+        self.set_int(Param::ATLAS_RESOLUTION, texels.into())
+    }
+    /// Atlas: texels kept free between charts.
+    pub fn set_atlas_padding(&mut self, texels: u32) -> Result<&mut Self> {
+        self.set_int(Param::ATLAS_PADDING, texels.into())
+    }
+    /// Atlas: vertices closer than this (in position units) are welded first; 0 welds
+    /// identical positions only.
+    pub fn set_weld_tolerance(&mut self, distance: f64) -> Result<&mut Self> {
+        self.set_float(Param::WELD_TOLERANCE, distance)
+    }
+    /// Atlas: edges whose triangles' normals differ by more degrees become seams; 180 turns
+    /// this off.
+    pub fn set_hard_edge_angle(&mut self, degrees: f64) -> Result<&mut Self> {
+        self.set_float(Param::HARD_EDGE_ANGLE, degrees)
+    }
+    /// Atlas: charts are split until the L2 stretch is at most this.
+    pub fn set_atlas_max_l2_stretch(&mut self, stretch: f64) -> Result<&mut Self> {
+        self.set_float(Param::ATLAS_MAX_L2_STRETCH, stretch)
+    }
+    /// Atlas: no chart keeps a triangle stretched more than this (Linf stretch).
+    pub fn set_atlas_max_linf_stretch(&mut self, stretch: f64) -> Result<&mut Self> {
+        self.set_float(Param::ATLAS_MAX_LINF_STRETCH, stretch)
+    }
 
     pub fn domain(&self) -> Result<Domain> {
         self.int(Param::DOMAIN).map(|v| Domain(v as i32))
@@ -611,6 +661,27 @@ impl Settings {
     pub fn max_triangles(&self) -> Result<u32> {
         self.int(Param::MAX_TRIANGLES).map(|v| v as u32)
     }
+    pub fn threads(&self) -> Result<u32> {
+        self.int(Param::THREADS).map(|v| v as u32)
+    }
+    pub fn atlas_resolution(&self) -> Result<u32> {
+        self.int(Param::ATLAS_RESOLUTION).map(|v| v as u32)
+    }
+    pub fn atlas_padding(&self) -> Result<u32> {
+        self.int(Param::ATLAS_PADDING).map(|v| v as u32)
+    }
+    pub fn weld_tolerance(&self) -> Result<f64> {
+        self.float(Param::WELD_TOLERANCE)
+    }
+    pub fn hard_edge_angle(&self) -> Result<f64> {
+        self.float(Param::HARD_EDGE_ANGLE)
+    }
+    pub fn atlas_max_l2_stretch(&self) -> Result<f64> {
+        self.float(Param::ATLAS_MAX_L2_STRETCH)
+    }
+    pub fn atlas_max_linf_stretch(&self) -> Result<f64> {
+        self.float(Param::ATLAS_MAX_LINF_STRETCH)
+    }
 
     /// The raw handle, for calls into [`sys`]; it stays owned by these `Settings`.
     pub fn as_ptr(&self) -> *const sys::raps_settings {
@@ -625,14 +696,19 @@ impl Drop for Settings {
     }
 }
 
+/// Settings' Debug asks the library about every parameter number below this.
+const DEBUG_PARAM_LIMIT: i32 = 256;
+
 impl fmt::Debug for Settings {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut s = f.debug_struct("Settings");
-        // Parameters are numbered from 1 without gaps: every one the loaded library knows.
-        for param in (1..).map(Param) {
+        // Every parameter the loaded library knows, also ones newer than this crate. Numbers
+        // are only appended, in blocks with gaps between them (1.. general, 32.. atlas), so
+        // each number below DEBUG_PARAM_LIMIT is asked rather than stopping at the first gap.
+        for param in (1..DEBUG_PARAM_LIMIT).map(Param) {
             let info = match Settings::param_info(param) {
                 Ok(info) => info,
-                Err(_) => break,
+                Err(_) => continue,
             };
             if info.is_float {
                 s.field(info.name, &self.float(param).unwrap_or(f64::NAN));
@@ -650,7 +726,7 @@ impl fmt::Debug for Settings {
 
 /// The output of [`parameterize`] (a `raps_result`; named so as not to shadow [`Result`]):
 /// per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes from, the output
-/// triangles, the statistics and the time of each phase.
+/// triangles and their charts, the statistics and the time of each phase.
 pub struct Parameterization {
     raw: NonNull<sys::raps_result>,
 }
@@ -760,6 +836,18 @@ impl Parameterization {
         Ok(remap)
     }
 
+    /// Per output triangle, its chart (`0..stats.chart_count`; all 0 for the disk domain).
+    pub fn chart_ids(&self) -> Result<Vec<u32>> {
+        self.require_map()?;
+        let mut charts = vec![0u32; self.triangle_count()];
+        // SAFETY: the capacity is the vector's length.
+        let status = unsafe {
+            sys::raps_result_copy_chart_ids(self.raw.as_ptr(), charts.as_mut_ptr(), charts.len())
+        };
+        check(status, no_message)?;
+        Ok(charts)
+    }
+
     /// The distortion statistics.
     pub fn stats(&self) -> Result<Stats> {
         self.require_map()?;
@@ -813,7 +901,8 @@ impl fmt::Debug for Parameterization {
 // ------------------------------------------------------------------------------------------
 
 /// Parameterizes `mesh` with `settings` (`None`: the defaults) into a new [`Parameterization`].
-/// Runs on the calling thread; `mesh` and `settings` are only read.
+/// Runs on the calling thread (with the worker threads it starts unless `threads` is 1, all
+/// joined before it returns); `mesh` and `settings` are only read.
 pub fn parameterize(mesh: &Mesh, settings: Option<&Settings>) -> Result<Parameterization> {
     let mut out = Parameterization::new()?;
     parameterize_into(mesh, settings, &mut out)?;
@@ -837,21 +926,26 @@ struct Progress<F> {
     panic: Option<Box<dyn Any + Send + 'static>>,
 }
 
-unsafe extern "C" fn progress_trampoline<F: FnMut(Phase, f64) -> bool>(
+unsafe extern "C" fn progress_trampoline<F: FnMut(Phase, f64) -> bool + Send>(
     user: *mut c_void,
     phase: sys::raps_phase,
     fraction: f64,
 ) -> i32 {
-    // SAFETY: `user` is the Progress<F> of parameterize_with_progress, alive for the whole run;
-    // the library calls back on the running thread only and never overlaps calls of one run.
-    let state = &mut *(user as *mut Progress<F>);
+    // SAFETY: `user` is the Mutex<Progress<F>> of parameterize_with_progress, alive for the
+    // whole run (the library joins its worker threads before raps_parameterize returns).
+    let shared = &*(user as *const Mutex<Progress<F>>);
+    // The library calls back from its worker threads too, and the atlas does so concurrently
+    // although raps.h promises calls never overlap: the lock gives each call exclusive access
+    // (F: Send, as it runs on whichever thread holds the lock). Panics are caught below, so the
+    // lock is never poisoned; were it, the state is still whole.
+    let mut guard = shared.lock().unwrap_or_else(PoisonError::into_inner);
+    let state = &mut *guard;
     if state.panic.is_some() {
         return 0;
     }
     // A panic must not unwind into C: keep it, cancel the run, and resume it afterwards.
-    match panic::catch_unwind(AssertUnwindSafe(|| {
-        (state.callback)(Phase(phase), fraction)
-    })) {
+    let callback = &mut state.callback;
+    match panic::catch_unwind(AssertUnwindSafe(|| callback(Phase(phase), fraction))) {
         Ok(true) => 1,
         Ok(false) => 0,
         Err(payload) => {
@@ -861,40 +955,46 @@ unsafe extern "C" fn progress_trampoline<F: FnMut(Phase, f64) -> bool>(
     }
 }
 
-/// Like [`parameterize`], calling `progress(phase, fraction)` on this thread at the start and
-/// end of every phase and about every 1% of the long ones; returning `false` cancels the run,
-/// which then fails with [`Status::CANCELLED`]. A panic in `progress` cancels the run and is
-/// resumed here. The callback is set on a private copy of `settings`, so settings shared with
-/// other threads never see it.
+/// Like [`parameterize`], calling `progress(phase, fraction)` at the start and end of every
+/// phase and about every 1% of the long ones, on this thread or, unless `threads` is 1, on the
+/// run's worker threads (hence `Send`), never two calls at once; returning `false` cancels the
+/// run, which then fails with [`Status::CANCELLED`]. A panic in `progress` cancels the run and
+/// is resumed here. The callback is set on a private copy of `settings`, so settings shared
+/// with other threads never see it.
 pub fn parameterize_with_progress<F>(
     mesh: &Mesh,
     settings: Option<&Settings>,
     progress: F,
 ) -> Result<Parameterization>
 where
-    F: FnMut(Phase, f64) -> bool,
+    F: FnMut(Phase, f64) -> bool + Send,
 {
     let private = match settings {
         Some(settings) => settings.try_clone()?,
         None => Settings::new()?,
     };
-    let mut state = Progress {
+    let state = Mutex::new(Progress {
         callback: progress,
         panic: None,
-    };
+    });
     // SAFETY: `state` outlives the run below, and `private` (which holds the pointer) is
-    // dropped at the end of this function, after the run.
+    // dropped at the end of this function, after the run; the trampoline only takes `&state`.
     let status = unsafe {
         sys::raps_settings_set_progress(
             private.raw.as_ptr(),
             Some(progress_trampoline::<F>),
-            &mut state as *mut Progress<F> as *mut c_void,
+            &state as *const Mutex<Progress<F>> as *mut c_void,
         )
     };
     check(status, || private.last_error())?;
     let mut out = Parameterization::new()?;
     let result = parameterize_into(mesh, Some(&private), &mut out);
-    if let Some(payload) = state.panic.take() {
+    let panicked = state
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .panic
+        .take();
+    if let Some(payload) = panicked {
         panic::resume_unwind(payload);
     }
     result.map(|()| out)

@@ -36,6 +36,10 @@ fn an_index_out_of_range_names_the_index() {
         out.indices().unwrap_err().status(),
         Status::INVALID_OPERATION
     );
+    assert_eq!(
+        out.chart_ids().unwrap_err().status(),
+        Status::INVALID_OPERATION
+    );
 }
 
 #[test]
