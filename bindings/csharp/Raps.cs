@@ -1,0 +1,741 @@
+// The idiomatic C# API of raps over the generated P/Invoke layer (Native.g.cs).
+//
+// Mesh, Settings and Result own their native object through a SafeHandle: Dispose frees it at
+// once, the finalizer frees it if Dispose is forgotten, and never twice; a call on a disposed
+// object throws ObjectDisposedException (the marshaller refuses a closed SafeHandle). Failures
+// throw RapsException with the status, its name and the library's message. Buffers are arrays:
+// Span<T> cannot be pinned by Mono's mcs (no C# 7.3 'fixed' on spans), and this file must build
+// unchanged with Mono's mcs and the .NET SDK.
+using System;
+using System.Runtime.ExceptionServices;
+using System.Runtime.InteropServices;
+using System.Text;
+
+namespace Raps
+{
+    public enum Status
+    {
+        Ok = Native.RAPS_OK,
+        InvalidArgument = Native.RAPS_ERROR_INVALID_ARGUMENT,
+        OutOfMemory = Native.RAPS_ERROR_OUT_OF_MEMORY,
+        EmptyMesh = Native.RAPS_ERROR_EMPTY_MESH,
+        IndexCount = Native.RAPS_ERROR_INDEX_COUNT,
+        IndexOutOfRange = Native.RAPS_ERROR_INDEX_OUT_OF_RANGE,
+        NonFinitePosition = Native.RAPS_ERROR_NON_FINITE_POSITION,
+        RepeatedVertex = Native.RAPS_ERROR_REPEATED_VERTEX,
+        ZeroAreaTriangle = Native.RAPS_ERROR_ZERO_AREA_TRIANGLE,
+        NonManifoldEdge = Native.RAPS_ERROR_NON_MANIFOLD_EDGE,
+        NonManifoldVertex = Native.RAPS_ERROR_NON_MANIFOLD_VERTEX,
+        InconsistentOrientation = Native.RAPS_ERROR_INCONSISTENT_ORIENTATION,
+        IsolatedVertex = Native.RAPS_ERROR_ISOLATED_VERTEX,
+        MultipleComponents = Native.RAPS_ERROR_MULTIPLE_COMPONENTS,
+        NoBoundary = Native.RAPS_ERROR_NO_BOUNDARY,
+        MultipleBoundaries = Native.RAPS_ERROR_MULTIPLE_BOUNDARIES,
+        NonzeroGenus = Native.RAPS_ERROR_NONZERO_GENUS,
+        TooLarge = Native.RAPS_ERROR_TOO_LARGE,
+        Cancelled = Native.RAPS_ERROR_CANCELLED,
+        SolverFailed = Native.RAPS_ERROR_SOLVER_FAILED,
+        InvalidOperation = Native.RAPS_ERROR_INVALID_OPERATION,
+        Internal = Native.RAPS_ERROR_INTERNAL
+    }
+
+    public enum Param
+    {
+        Domain = Native.RAPS_PARAM_DOMAIN,
+        Weights = Native.RAPS_PARAM_WEIGHTS,
+        Monitor = Native.RAPS_PARAM_MONITOR,
+        Alpha = Native.RAPS_PARAM_ALPHA,
+        Iterations = Native.RAPS_PARAM_ITERATIONS,
+        IterationMode = Native.RAPS_PARAM_ITERATION_MODE,
+        Boundary = Native.RAPS_PARAM_BOUNDARY,
+        MaxTriangles = Native.RAPS_PARAM_MAX_TRIANGLES,
+        Threads = Native.RAPS_PARAM_THREADS,
+        AtlasResolution = Native.RAPS_PARAM_ATLAS_RESOLUTION,
+        AtlasPadding = Native.RAPS_PARAM_ATLAS_PADDING,
+        WeldTolerance = Native.RAPS_PARAM_WELD_TOLERANCE,
+        HardEdgeAngle = Native.RAPS_PARAM_HARD_EDGE_ANGLE,
+        AtlasMaxL2Stretch = Native.RAPS_PARAM_ATLAS_MAX_L2_STRETCH,
+        AtlasMaxLinfStretch = Native.RAPS_PARAM_ATLAS_MAX_LINF_STRETCH
+    }
+
+    public enum Domain
+    {
+        /// <summary>A topological disk mapped into [0,1]^2 with its boundary on a convex
+        /// shape; one output vertex per input vertex.</summary>
+        Disk = Native.RAPS_DOMAIN_DISK,
+        /// <summary>Any triangle mesh, cut into charts packed into one texture atlas; output
+        /// vertices are duplicated along seams (see Result.GetVertexRemap) and each output
+        /// triangle, the input one in input order, has a chart (Result.GetChartIds).</summary>
+        Atlas = Native.RAPS_DOMAIN_ATLAS
+    }
+
+    public enum Weights
+    {
+        MeanValue = Native.RAPS_WEIGHTS_MEAN_VALUE,
+        Cotangent = Native.RAPS_WEIGHTS_COTANGENT,
+        Uniform = Native.RAPS_WEIGHTS_UNIFORM
+    }
+
+    // Not "Monitor": that would clash with System.Threading.Monitor wherever both namespaces
+    // are imported.
+    public enum ErrorMonitor
+    {
+        None = Native.RAPS_MONITOR_NONE,
+        Area = Native.RAPS_MONITOR_AREA,
+        EdgeLength = Native.RAPS_MONITOR_EDGE_LENGTH,
+        Angle = Native.RAPS_MONITOR_ANGLE
+    }
+
+    public enum IterationMode
+    {
+        Accumulate = Native.RAPS_ITERATION_ACCUMULATE,
+        Reapply = Native.RAPS_ITERATION_REAPPLY
+    }
+
+    public enum Boundary
+    {
+        Circle = Native.RAPS_BOUNDARY_CIRCLE,
+        Square = Native.RAPS_BOUNDARY_SQUARE
+    }
+
+    public enum Phase
+    {
+        Validate = Native.RAPS_PHASE_VALIDATE,
+        Topology = Native.RAPS_PHASE_TOPOLOGY,
+        InitialMap = Native.RAPS_PHASE_INITIAL_MAP,
+        Adapt = Native.RAPS_PHASE_ADAPT,
+        Metrics = Native.RAPS_PHASE_METRICS,
+        /// <summary>Atlas: growing charts.</summary>
+        Segment = Native.RAPS_PHASE_SEGMENT,
+        /// <summary>Atlas: packing charts.</summary>
+        Pack = Native.RAPS_PHASE_PACK
+    }
+
+    /// <summary>A failed raps call: the status, the library's name for it and its message
+    /// (the offending triangle, vertex, edge or value; empty when the call stores none).</summary>
+    public class RapsException : Exception
+    {
+        private readonly Status status;
+        private readonly string statusName;
+        private readonly string detail;
+
+        public RapsException(Status status, string detail)
+            : base(Describe(status, detail))
+        {
+            this.status = status;
+            this.statusName = Library.StatusString(status);
+            this.detail = detail ?? "";
+        }
+
+        public Status Status { get { return status; } }
+        public string StatusName { get { return statusName; } }
+        public string Detail { get { return detail; } }
+
+        private static string Describe(Status status, string detail)
+        {
+            string text = Library.StatusString(status) + " (status " + (int)status + ")";
+            return string.IsNullOrEmpty(detail) ? text : text + ": " + detail;
+        }
+    }
+
+    internal static class Interop
+    {
+        // The library's strings are UTF-8 and owned by it: copy, never free.
+        internal static string Utf8(IntPtr text)
+        {
+            if (text == IntPtr.Zero) return "";
+            int length = 0;
+            while (Marshal.ReadByte(text, length) != 0) length++;
+            byte[] bytes = new byte[length];
+            Marshal.Copy(text, bytes, 0, length);
+            return Encoding.UTF8.GetString(bytes);
+        }
+
+        internal static void Check(int status)
+        {
+            if (status != Native.RAPS_OK) throw new RapsException((Status)status, "");
+        }
+
+        internal static void Check(int status, Func<string> message)
+        {
+            if (status != Native.RAPS_OK) throw new RapsException((Status)status, message());
+        }
+
+        internal static UIntPtr Size(long count)
+        {
+            return new UIntPtr((ulong)count);
+        }
+
+        internal static RapsException NoMap()
+        {
+            return new RapsException(
+                Status.InvalidOperation,
+                "the result holds no map (Parameterize failed or has not run)");
+        }
+
+        internal static RapsException BadInput(string detail)
+        {
+            return new RapsException(Status.InvalidArgument, detail);
+        }
+    }
+
+    /// <summary>The input: vertex positions and triangles, copied into the library. Only read
+    /// by Parameterize, so one mesh may serve concurrent runs on several threads.</summary>
+    public sealed class Mesh : IDisposable
+    {
+        private readonly MeshHandle handle;
+
+        public Mesh()
+        {
+            MeshHandle created;
+            Interop.Check(Native.raps_mesh_create(out created));
+            handle = created;
+        }
+
+        /// <summary>A mesh of packed x, y, z per vertex and three indices per triangle
+        /// (counter-clockwise seen from the front).</summary>
+        public Mesh(float[] xyz, uint[] indices) : this()
+        {
+            try
+            {
+                SetPositions(xyz);
+                SetIndices(indices);
+            }
+            catch
+            {
+                Dispose();
+                throw;
+            }
+        }
+
+        public Mesh(double[] xyz, uint[] indices) : this()
+        {
+            try
+            {
+                SetPositions(xyz);
+                SetIndices(indices);
+            }
+            catch
+            {
+                Dispose();
+                throw;
+            }
+        }
+
+        /// <summary>The owned handle, for calls into Native.</summary>
+        public MeshHandle Handle { get { return handle; } }
+
+        private string LastError()
+        {
+            return Interop.Utf8(Native.raps_mesh_last_error(handle));
+        }
+
+        /// <summary>Replaces the positions: packed x, y, z per vertex.</summary>
+        public void SetPositions(float[] xyz)
+        {
+            SetPositions(xyz, 3);
+        }
+
+        /// <summary>Replaces the positions from an interleaved buffer: vertex i starts at
+        /// data[i * stride], stride &gt;= 3 floats apart; as many vertices as data holds
+        /// whole.</summary>
+        public void SetPositions(float[] data, int stride)
+        {
+            if (data == null) throw new ArgumentNullException("data");
+            long count = PointCount(data.Length, stride);
+            Interop.Check(Native.raps_mesh_set_positions_f32(handle, data, Interop.Size(count),
+                                                              Interop.Size(stride * 4L)),
+                          LastError);
+        }
+
+        /// <summary>Replaces the positions: packed x, y, z per vertex, double precision.</summary>
+        public void SetPositions(double[] xyz)
+        {
+            if (xyz == null) throw new ArgumentNullException("xyz");
+            long count = PointCount(xyz.Length, 3);
+            Interop.Check(Native.raps_mesh_set_positions_f64(handle, xyz, Interop.Size(count),
+                                                              UIntPtr.Zero),
+                          LastError);
+        }
+
+        private static long PointCount(int length, int stride)
+        {
+            if (stride < 3)
+                throw Interop.BadInput("a stride of " + stride + " values is smaller than a point");
+            if (stride == 3 && length % 3 != 0)
+                throw Interop.BadInput(length + " coordinates are not a multiple of 3");
+            return length < 3 ? 0 : (length - 3) / stride + 1;
+        }
+
+        /// <summary>Replaces the triangles: three indices each.</summary>
+        public void SetIndices(uint[] indices)
+        {
+            if (indices == null) throw new ArgumentNullException("indices");
+            Interop.Check(Native.raps_mesh_set_indices_u32(handle, indices,
+                                                            Interop.Size(indices.Length)),
+                          LastError);
+        }
+
+        /// <summary>Replaces the triangles with 16-bit indices.</summary>
+        public void SetIndices(ushort[] indices)
+        {
+            if (indices == null) throw new ArgumentNullException("indices");
+            Interop.Check(Native.raps_mesh_set_indices_u16(handle, indices,
+                                                            Interop.Size(indices.Length)),
+                          LastError);
+        }
+
+        /// <summary>Replaces the triangles from int indices (as Unity and most C# mesh code
+        /// keep them); a negative index is refused like one past the vertex count.</summary>
+        public void SetIndices(int[] indices)
+        {
+            if (indices == null) throw new ArgumentNullException("indices");
+            var converted = new uint[indices.Length];
+            for (int i = 0; i < indices.Length; i++)
+            {
+                if (indices[i] < 0)
+                    throw new RapsException(Status.IndexOutOfRange,
+                                            "index " + i + " is negative (" + indices[i] + ")");
+                converted[i] = (uint)indices[i];
+            }
+            SetIndices(converted);
+        }
+
+        public long VertexCount
+        {
+            get { return (long)Native.raps_mesh_vertex_count(handle).ToUInt64(); }
+        }
+
+        public long TriangleCount
+        {
+            get { return (long)Native.raps_mesh_triangle_count(handle).ToUInt64(); }
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+    }
+
+    /// <summary>Facts about a parameter: name, type, inclusive bounds and default.</summary>
+    public struct ParamInfo
+    {
+        public string Name;
+        public bool IsFloat;
+        public double Min;
+        public double Max;
+        public double Default;
+    }
+
+    /// <summary>Parameters, holding the library's defaults until set:
+    /// <c>new Settings { Monitor = ErrorMonitor.Angle, Alpha = 2.0 }</c>. A bad value throws and
+    /// leaves the settings unchanged.</summary>
+    public sealed class Settings : IDisposable
+    {
+        private readonly SettingsHandle handle;
+
+        public Settings()
+        {
+            SettingsHandle created;
+            Interop.Check(Native.raps_settings_create(out created));
+            handle = created;
+        }
+
+        private Settings(SettingsHandle handle)
+        {
+            this.handle = handle;
+        }
+
+        /// <summary>The owned handle, for calls into Native.</summary>
+        public SettingsHandle Handle { get { return handle; } }
+
+        /// <summary>An independent copy.</summary>
+        public Settings Clone()
+        {
+            SettingsHandle copy;
+            Interop.Check(Native.raps_settings_clone(handle, out copy));
+            return new Settings(copy);
+        }
+
+        public static ParamInfo GetParamInfo(Param param)
+        {
+            IntPtr name;
+            int isFloat;
+            double min, max, fallback;
+            Interop.Check(Native.raps_param_info((int)param, out name, out isFloat, out min,
+                                                 out max, out fallback),
+                          () => "unknown parameter " + (int)param);
+            return new ParamInfo
+            {
+                Name = Interop.Utf8(name), IsFloat = isFloat != 0, Min = min, Max = max,
+                Default = fallback
+            };
+        }
+
+        private string LastError()
+        {
+            return Interop.Utf8(Native.raps_settings_last_error(handle));
+        }
+
+        public void SetInt(Param param, long value)
+        {
+            Interop.Check(Native.raps_settings_set_int(handle, (int)param, value), LastError);
+        }
+
+        public void SetFloat(Param param, double value)
+        {
+            Interop.Check(Native.raps_settings_set_float(handle, (int)param, value), LastError);
+        }
+
+        public long GetInt(Param param)
+        {
+            long value;
+            Interop.Check(Native.raps_settings_get_int(handle, (int)param, out value),
+                          () => param + " is not an integer parameter");
+            return value;
+        }
+
+        public double GetFloat(Param param)
+        {
+            double value;
+            Interop.Check(Native.raps_settings_get_float(handle, (int)param, out value),
+                          () => param + " is not a float parameter");
+            return value;
+        }
+
+        public Domain Domain
+        {
+            get { return (Domain)GetInt(Param.Domain); }
+            set { SetInt(Param.Domain, (long)value); }
+        }
+
+        public Weights Weights
+        {
+            get { return (Weights)GetInt(Param.Weights); }
+            set { SetInt(Param.Weights, (long)value); }
+        }
+
+        public ErrorMonitor Monitor
+        {
+            get { return (ErrorMonitor)GetInt(Param.Monitor); }
+            set { SetInt(Param.Monitor, (long)value); }
+        }
+
+        /// <summary>The exponent of W_ij = w_ij * e_ij^alpha.</summary>
+        public double Alpha
+        {
+            get { return GetFloat(Param.Alpha); }
+            set { SetFloat(Param.Alpha, value); }
+        }
+
+        /// <summary>The number of adaptive solves.</summary>
+        public int Iterations
+        {
+            get { return (int)GetInt(Param.Iterations); }
+            set { SetInt(Param.Iterations, value); }
+        }
+
+        public IterationMode IterationMode
+        {
+            get { return (IterationMode)GetInt(Param.IterationMode); }
+            set { SetInt(Param.IterationMode, (long)value); }
+        }
+
+        public Boundary Boundary
+        {
+            get { return (Boundary)GetInt(Param.Boundary); }
+            set { SetInt(Param.Boundary, (long)value); }
+        }
+
+        /// <summary>The largest triangle count accepted; larger meshes fail before any
+        /// work.</summary>
+        public long MaxTriangles
+        {
+            get { return GetInt(Param.MaxTriangles); }
+            set { SetInt(Param.MaxTriangles, value); }
+        }
+
+        /// <summary>Threads a run may use, 0 = every hardware thread (the default); the output
+        /// is the same whatever the value.</summary>
+        public int Threads
+        {
+            get { return (int)GetInt(Param.Threads); }
+            set { SetInt(Param.Threads, value); }
+        }
+
+        /// <summary>Atlas: texels on the atlas's longer side.</summary>
+        public int AtlasResolution
+        {
+            get { return (int)GetInt(Param.AtlasResolution); }
+            set { SetInt(Param.AtlasResolution, value); }
+        }
+
+        /// <summary>Atlas: texels kept free between charts.</summary>
+        public int AtlasPadding
+        {
+            get { return (int)GetInt(Param.AtlasPadding); }
+            set { SetInt(Param.AtlasPadding, value); }
+        }
+
+        /// <summary>Atlas: vertices closer than this (in position units) are welded first; 0
+        /// welds identical positions only.</summary>
+        public double WeldTolerance
+        {
+            get { return GetFloat(Param.WeldTolerance); }
+            set { SetFloat(Param.WeldTolerance, value); }
+        }
+
+        /// <summary>Atlas: edges whose triangles' normals differ by more degrees become
+        /// seams; 180 turns this off.</summary>
+        public double HardEdgeAngle
+        {
+            get { return GetFloat(Param.HardEdgeAngle); }
+            set { SetFloat(Param.HardEdgeAngle, value); }
+        }
+
+        /// <summary>Atlas: charts are split until the L2 stretch is at most this.</summary>
+        public double AtlasMaxL2Stretch
+        {
+            get { return GetFloat(Param.AtlasMaxL2Stretch); }
+            set { SetFloat(Param.AtlasMaxL2Stretch, value); }
+        }
+
+        /// <summary>Atlas: no chart keeps a triangle stretched more than this (Linf).</summary>
+        public double AtlasMaxLinfStretch
+        {
+            get { return GetFloat(Param.AtlasMaxLinfStretch); }
+            set { SetFloat(Param.AtlasMaxLinfStretch, value); }
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+    }
+
+    /// <summary>The map: per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes
+    /// from, the output triangles and their charts, the statistics and the time of each
+    /// phase. Reading an empty result (after a failure) throws with
+    /// Status.InvalidOperation.</summary>
+    public sealed class Result : IDisposable
+    {
+        private readonly ResultHandle handle;
+
+        public Result()
+        {
+            ResultHandle created;
+            Interop.Check(Native.raps_result_create(out created));
+            handle = created;
+        }
+
+        /// <summary>The owned handle, for calls into Native.</summary>
+        public ResultHandle Handle { get { return handle; } }
+
+        internal string LastError()
+        {
+            return Interop.Utf8(Native.raps_result_last_error(handle));
+        }
+
+        public long VertexCount
+        {
+            get { return (long)Native.raps_result_vertex_count(handle).ToUInt64(); }
+        }
+
+        public long IndexCount
+        {
+            get { return (long)Native.raps_result_index_count(handle).ToUInt64(); }
+        }
+
+        public long TriangleCount
+        {
+            get { return IndexCount / 3; }
+        }
+
+        private long RequireMap()
+        {
+            long count = VertexCount;
+            if (count == 0) throw Interop.NoMap();
+            return count;
+        }
+
+        /// <summary>The uvs: u and v of each output vertex, 2 * VertexCount floats.</summary>
+        public float[] GetUvs()
+        {
+            var uvs = new float[2 * RequireMap()];
+            CopyUvs(uvs);
+            return uvs;
+        }
+
+        /// <summary>Copies the uvs into destination (at least 2 * VertexCount long).</summary>
+        public void CopyUvs(float[] destination)
+        {
+            if (destination == null) throw new ArgumentNullException("destination");
+            long count = RequireMap();
+            Interop.Check(Native.raps_result_copy_uvs_f32(handle, destination,
+                                                           Interop.Size(destination.Length / 2),
+                                                           UIntPtr.Zero),
+                          () => count + " uvs do not fit in " + destination.Length + " floats");
+        }
+
+        /// <summary>The uvs in double precision.</summary>
+        public double[] GetUvsDouble()
+        {
+            long count = RequireMap();
+            var uvs = new double[2 * count];
+            Interop.Check(Native.raps_result_copy_uvs_f64(handle, uvs, Interop.Size(count),
+                                                           UIntPtr.Zero));
+            return uvs;
+        }
+
+        /// <summary>The output triangles: three indices into the output vertices each.</summary>
+        public uint[] GetIndices()
+        {
+            RequireMap();
+            var indices = new uint[IndexCount];
+            Interop.Check(Native.raps_result_copy_indices_u32(handle, indices,
+                                                               Interop.Size(indices.Length)));
+            return indices;
+        }
+
+        /// <summary>Per output vertex, the input vertex it comes from.</summary>
+        public uint[] GetVertexRemap()
+        {
+            long count = RequireMap();
+            var remap = new uint[count];
+            Interop.Check(Native.raps_result_copy_vertex_remap(handle, remap,
+                                                                Interop.Size(count)));
+            return remap;
+        }
+
+        /// <summary>Per output triangle, its chart (0 .. Stats.ChartCount - 1; all 0 for the
+        /// disk domain).</summary>
+        public uint[] GetChartIds()
+        {
+            RequireMap();
+            var charts = new uint[TriangleCount];
+            Interop.Check(Native.raps_result_copy_chart_ids(handle, charts,
+                                                             Interop.Size(charts.Length)));
+            return charts;
+        }
+
+        /// <summary>The distortion statistics (see raps_stats in raps.h).</summary>
+        public Stats GetStats()
+        {
+            RequireMap();
+            var stats = new Stats();
+            stats.StructSize = (uint)Marshal.SizeOf(typeof(Stats));
+            Interop.Check(Native.raps_result_get_stats(handle, ref stats));
+            return stats;
+        }
+
+        /// <summary>Wall-clock milliseconds the run that filled this result spent in a
+        /// phase.</summary>
+        public double PhaseMilliseconds(Phase phase)
+        {
+            return Native.raps_result_phase_ms(handle, (int)phase);
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+    }
+
+    public static class Library
+    {
+        /// <summary>The loaded library's "MAJOR.MINOR.PATCH".</summary>
+        public static string Version
+        {
+            get { return Interop.Utf8(Native.raps_version_string()); }
+        }
+
+        /// <summary>The loaded library's version number, MAJOR*10000 + MINOR*100 +
+        /// PATCH.</summary>
+        public static uint VersionNumber
+        {
+            get { return Native.raps_version(); }
+        }
+
+        /// <summary>The library's short description of a status.</summary>
+        public static string StatusString(Status status)
+        {
+            return Interop.Utf8(Native.raps_status_string((int)status));
+        }
+
+        /// <summary>Parameterizes mesh with settings (null: the defaults) into a new Result.
+        /// progress, if given, is called with the phase and the fraction done, on this thread
+        /// or, unless Threads is 1, on the run's worker threads (never two calls at once);
+        /// returning false cancels (RapsException with Status.Cancelled), and an exception it
+        /// throws cancels the run and is rethrown here.</summary>
+        public static Result Parameterize(Mesh mesh, Settings settings = null,
+                                          Func<Phase, double, bool> progress = null)
+        {
+            var result = new Result();
+            try
+            {
+                Parameterize(mesh, settings, result, progress);
+            }
+            catch
+            {
+                result.Dispose();
+                throw;
+            }
+            return result;
+        }
+
+        /// <summary>Like Parameterize, refilling result (which is empty after a
+        /// failure).</summary>
+        public static void Parameterize(Mesh mesh, Settings settings, Result result,
+                                        Func<Phase, double, bool> progress = null)
+        {
+            if (mesh == null) throw new ArgumentNullException("mesh");
+            if (result == null) throw new ArgumentNullException("result");
+            if (progress == null && settings != null)
+            {
+                Interop.Check(Native.raps_parameterize(mesh.Handle, settings.Handle,
+                                                       result.Handle),
+                              result.LastError);
+                return;
+            }
+            // The callback goes on a private copy, so settings shared with other threads never
+            // see it; the delegate stays reachable until the native call has returned. It may run
+            // on the library's worker threads (Threads != 1), whose calls the atlas does not
+            // serialise: the lock keeps progress from ever running twice at once, as raps.h
+            // promises, and publishes 'raised' to this thread.
+            Exception raised = null;
+            var serial = new object();
+            ProgressFn callback = null;
+            if (progress != null)
+            {
+                callback = (user, phase, fraction) =>
+                {
+                    lock (serial)
+                    {
+                        if (raised != null) return 0;
+                        try
+                        {
+                            return progress((Phase)phase, fraction) ? 1 : 0;
+                        }
+                        catch (Exception error)  // must not unwind through native frames
+                        {
+                            raised = error;
+                            return 0;
+                        }
+                    }
+                };
+            }
+            using (Settings run = settings != null ? settings.Clone() : new Settings())
+            {
+                if (callback != null)
+                    Interop.Check(Native.raps_settings_set_progress(run.Handle, callback,
+                                                                    IntPtr.Zero));
+                int status = Native.raps_parameterize(mesh.Handle, run.Handle, result.Handle);
+                GC.KeepAlive(callback);
+                Exception failure;
+                lock (serial) failure = raised;
+                if (failure != null) ExceptionDispatchInfo.Capture(failure).Throw();
+                Interop.Check(status, result.LastError);
+            }
+        }
+    }
+}

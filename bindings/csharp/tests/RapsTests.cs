@@ -1,0 +1,608 @@
+// Tests of the C# binding against the real libraps. A self-contained runner, so that the same
+// file runs under Mono and .NET without a test framework (Debian's NUnit is 2.6, and NuGet is out
+// of reach here). Usage: RapsTests.exe SHARED_DATA_DIR. It prints one line per test and
+// "N passed, N failed"; the exit code is the number of failures. Missing shared data fails.
+using System;
+using System.Collections.Generic;
+using System.Globalization;
+using System.IO;
+using System.Linq;
+using System.Runtime.InteropServices;
+using System.Threading;
+using Raps;
+
+static class RapsTests
+{
+    static string dataDir;
+
+    class Off
+    {
+        public double[] Xyz;
+        public uint[] Indices;
+    }
+
+    // positions and triangles of an OFF file, polygons fanned.
+    static Off ReadOff(string relative)
+    {
+        string path = Path.Combine(dataDir, relative);
+        if (!File.Exists(path)) throw new Exception("shared test data missing: " + path);
+        var words = File.ReadAllLines(path)
+                        .SelectMany(line => line.Split('#')[0].Split((char[])null,
+                                                StringSplitOptions.RemoveEmptyEntries))
+                        .ToArray();
+        Expect(words[0] == "OFF", "an OFF file");
+        int nv = int.Parse(words[1]), nf = int.Parse(words[2]);
+        int at = 4;
+        var xyz = new double[3 * nv];
+        for (int i = 0; i < 3 * nv; i++)
+            xyz[i] = double.Parse(words[at++], CultureInfo.InvariantCulture);
+        var indices = new List<uint>();
+        for (int f = 0; f < nf; f++)
+        {
+            int n = int.Parse(words[at++]);
+            var face = new uint[n];
+            for (int k = 0; k < n; k++) face[k] = uint.Parse(words[at++]);
+            for (int k = 1; k + 1 < n; k++)
+                indices.AddRange(new[] { face[0], face[k], face[k + 1] });
+        }
+        return new Off { Xyz = xyz, Indices = indices.ToArray() };
+    }
+
+    // A closed mesh: no boundary loop, which the disk domain refuses.
+    static Off Icosahedron()
+    {
+        double t = (1 + Math.Sqrt(5)) / 2;
+        return new Off
+        {
+            Xyz = new[] { -1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t, 0, -1, -t,
+                          0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1 },
+            Indices = new uint[] { 0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5,
+                                   11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2,
+                                   6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7,
+                                   9, 8, 1 }
+        };
+    }
+
+    static void Expect(bool condition, string what)
+    {
+        if (!condition) throw new Exception("expected " + what);
+    }
+
+    static RapsException ExpectFailure(Status status, Action action)
+    {
+        try
+        {
+            action();
+        }
+        catch (RapsException error)
+        {
+            Expect(error.Status == status, status + ", got " + error.Status + ": " + error.Message);
+            return error;
+        }
+        throw new Exception("expected RapsException " + status);
+    }
+
+    static double SignedArea(float[] uv, uint a, uint b, uint c)
+    {
+        return (uv[2 * b] - uv[2 * a]) * (uv[2 * c + 1] - uv[2 * a + 1]) -
+               (uv[2 * b + 1] - uv[2 * a + 1]) * (uv[2 * c] - uv[2 * a]);
+    }
+
+    // The phases of a run's progress calls in the order entered, each once: a phase entered
+    // twice, or two phases' calls interleaved, show up as a repeat.
+    static List<Phase> PhaseSequence(IEnumerable<Phase> calls)
+    {
+        var sequence = new List<Phase>();
+        foreach (Phase phase in calls)
+            if (sequence.Count == 0 || sequence[sequence.Count - 1] != phase) sequence.Add(phase);
+        return sequence;
+    }
+
+    static string Show(IEnumerable<Phase> phases)
+    {
+        return string.Join(", ", phases.Select(p => p.ToString()).ToArray());
+    }
+
+    static void AreaMonitorIsValidAndLessDistorted()
+    {
+        Off camel = ReadOff("meshes/camelhead.off");
+        int n = camel.Xyz.Length / 3;
+        using (var mesh = new Mesh(camel.Xyz, camel.Indices))
+        using (var plain = new Settings { Monitor = ErrorMonitor.None })
+        using (var adaptive = new Settings())
+        using (var first = Library.Parameterize(mesh, plain))
+        using (var second = Library.Parameterize(mesh, adaptive))
+        {
+            Expect(mesh.VertexCount == n && mesh.TriangleCount == camel.Indices.Length / 3,
+                   "the mesh's counts");
+            Expect(adaptive.Monitor == ErrorMonitor.Area, "the area monitor by default");
+            foreach (var result in new[] { first, second })
+            {
+                Stats stats = result.GetStats();
+                Expect(stats.FlippedTriangles == 0, "no flipped triangle");
+                Expect(stats.VertexCount == (ulong)n, "one output vertex per input vertex");
+                float[] uv = result.GetUvs();
+                Expect(uv.Length == 2 * n, "2n uv values");
+                Expect(uv.All(c => c >= 0 && c <= 1), "uvs in [0,1]^2");
+                for (int t = 0; t < camel.Indices.Length; t += 3 * 97)
+                    Expect(SignedArea(uv, camel.Indices[t], camel.Indices[t + 1],
+                                      camel.Indices[t + 2]) > 0,
+                           "counter-clockwise triangles stay counter-clockwise");
+                Expect(result.GetIndices().SequenceEqual(camel.Indices), "the input triangles");
+                Expect(result.GetVertexRemap().SequenceEqual(
+                           Enumerable.Range(0, n).Select(i => (uint)i)),
+                       "the identity remap");
+            }
+            Expect(first.GetStats().AdaptiveSolves == 0 && second.GetStats().AdaptiveSolves == 1,
+                   "0 and 1 adaptive solves");
+            double before = first.GetStats().AreaLogMean, after = second.GetStats().AreaLogMean;
+            // The adaptive step equidistributes area: README measures 2.509 -> 0.721.
+            Expect(after < 0.5 * before, "area distortion " + before + " -> " + after);
+            Expect(second.PhaseMilliseconds(Phase.Adapt) > 0, "a timed adaptive phase");
+        }
+    }
+
+    static void PrecisionsStridesAndIndexTypesAgree()
+    {
+        Off camel = ReadOff("meshes/camelhead.off");
+        int n = camel.Xyz.Length / 3;
+        var interleaved = new float[6 * n];
+        var packed = new float[3 * n];
+        for (int i = 0; i < n; i++)
+            for (int c = 0; c < 3; c++)
+                interleaved[6 * i + c] = packed[3 * i + c] = (float)camel.Xyz[3 * i + c];
+        using (var strided = new Mesh())
+        using (var plain = new Mesh(packed, camel.Indices))
+        {
+            strided.SetPositions(interleaved, 6);
+            strided.SetIndices(camel.Indices.Select(i => (ushort)i).ToArray());
+            Expect(strided.VertexCount == n, "n vertices read from the interleaved buffer");
+            using (var a = Library.Parameterize(strided))
+            using (var b = Library.Parameterize(plain))
+            {
+                Expect(a.GetUvsDouble().SequenceEqual(b.GetUvsDouble()), "identical maps");
+                float[] single = b.GetUvs();
+                double[] twice = b.GetUvsDouble();
+                for (int i = 0; i < single.Length; i++)
+                    Expect(Math.Abs(single[i] - twice[i]) < 1e-6, "float and double uvs agree");
+            }
+            plain.SetIndices(camel.Indices.Select(i => (int)i).ToArray());
+            Expect(plain.TriangleCount == camel.Indices.Length / 3, "int indices");
+        }
+    }
+
+    static void ConcurrentRunsShareMeshAndSettings()
+    {
+        Off camel = ReadOff("meshes/camelhead.off");
+        using (var mesh = new Mesh(camel.Xyz, camel.Indices))
+        using (var settings = new Settings { Iterations = 2 })
+        using (var reference = Library.Parameterize(mesh, settings))
+        {
+            double[] expected = reference.GetUvsDouble();
+            var outputs = new double[4][];
+            var threads = Enumerable.Range(0, 4).Select(k => new Thread(() =>
+            {
+                using (var result = Library.Parameterize(mesh, settings))
+                    outputs[k] = result.GetUvsDouble();
+            })).ToList();
+            threads.ForEach(t => t.Start());
+            threads.ForEach(t => t.Join());
+            Expect(outputs.All(o => o != null && o.SequenceEqual(expected)),
+                   "concurrent runs equal the serial one");
+        }
+    }
+
+    static void ProgressReportsPhasesAndCancels()
+    {
+        Off camel = ReadOff("meshes/camelhead.off");
+        using (var mesh = new Mesh(camel.Xyz, camel.Indices))
+        using (var settings = new Settings())
+        {
+            var phases = new List<Phase>();
+            bool fractionsInRange = true;
+            using (Library.Parameterize(mesh, settings, (phase, fraction) =>
+                   {
+                       phases.Add(phase);
+                       fractionsInRange &= fraction >= 0 && fraction <= 1;
+                       return true;
+                   }))
+            {
+            }
+            // The disk domain's five phases, in order; Segment and Pack are the atlas's.
+            var disk = new[] { Phase.Validate, Phase.Topology, Phase.InitialMap, Phase.Adapt,
+                               Phase.Metrics };
+            Expect(PhaseSequence(phases).SequenceEqual(disk),
+                   "the disk phases in order, got " + Show(PhaseSequence(phases)));
+            Expect(fractionsInRange, "fractions in [0, 1]");
+
+            using (var result = new Result())
+            {
+                ExpectFailure(Status.Cancelled, () => Library.Parameterize(
+                    mesh, settings, result, (phase, fraction) => phase < Phase.Adapt));
+                Expect(result.VertexCount == 0, "an empty result after cancelling");
+                // The callback was on a private copy: the shared settings run without it.
+                Library.Parameterize(mesh, settings, result);
+                Expect(result.VertexCount == camel.Xyz.Length / 3, "the handles still usable");
+            }
+
+            try
+            {
+                Library.Parameterize(mesh, settings, (phase, fraction) =>
+                {
+                    throw new TimeoutException("from the callback");
+                });
+                throw new Exception("expected the callback's exception");
+            }
+            catch (TimeoutException error)
+            {
+                Expect(error.Message == "from the callback", "the callback's own exception");
+            }
+        }
+    }
+
+    static void ClosedMeshHasNoBoundary()
+    {
+        Off ico = Icosahedron();
+        using (var mesh = new Mesh(ico.Xyz, ico.Indices))
+        {
+            RapsException error =
+                ExpectFailure(Status.NoBoundary, () => Library.Parameterize(mesh));
+            Expect(error.Detail.Length > 0, "a message from the library");
+            Expect(error.StatusName.Length > 0 && error.StatusName != "unknown status",
+                   "the status's name");
+            Expect(error.Message.Contains(error.StatusName) && error.Message.Contains(error.Detail),
+                   "Message carries name and detail");
+        }
+    }
+
+    static void IndexOutOfRangeNamesTheIndex()
+    {
+        Off ico = Icosahedron();
+        ico.Indices[11] = 12;
+        using (var mesh = new Mesh(ico.Xyz, ico.Indices))
+        using (var result = new Result())
+        {
+            RapsException error = ExpectFailure(Status.IndexOutOfRange,
+                                                () => Library.Parameterize(mesh, null, result));
+            Expect(error.Detail.Contains("12"), "the index in the message: " + error.Detail);
+            Expect(result.VertexCount == 0, "an empty result");
+            ExpectFailure(Status.InvalidOperation, () => result.GetUvs());
+            ExpectFailure(Status.InvalidOperation, () => result.GetStats());
+            ExpectFailure(Status.InvalidOperation, () => result.GetIndices());
+            ExpectFailure(Status.InvalidOperation, () => result.GetChartIds());
+        }
+    }
+
+    static void SetterErrorsCarryMessagesAndChangeNothing()
+    {
+        using (var mesh = new Mesh())
+        {
+            RapsException error =
+                ExpectFailure(Status.IndexCount, () => mesh.SetIndices(new uint[] { 0, 1, 2, 3 }));
+            Expect(error.Detail.Length > 0, "a message");
+            ExpectFailure(Status.NonFinitePosition,
+                          () => mesh.SetPositions(new float[] { 0, float.NaN, 0 }));
+            Expect(mesh.VertexCount == 0, "a failed setter changes nothing");
+            ExpectFailure(Status.InvalidArgument, () => mesh.SetPositions(new float[] { 0, 1 }));
+            ExpectFailure(Status.InvalidArgument, () => mesh.SetPositions(new float[6], 2));
+            ExpectFailure(Status.IndexOutOfRange, () => mesh.SetIndices(new[] { 0, -1, 2 }));
+            ExpectFailure(Status.EmptyMesh, () => Library.Parameterize(mesh));
+        }
+        using (var settings = new Settings { Alpha = 2.0 })
+        {
+            RapsException error = ExpectFailure(Status.InvalidArgument, () => settings.Alpha = -1);
+            Expect(error.Detail.Contains("alpha"), "the parameter in the message");
+            Expect(settings.Alpha == 2.0, "alpha unchanged");
+            ExpectFailure(Status.InvalidArgument, () => settings.Iterations = 0);
+            Expect(settings.Iterations == 1, "iterations unchanged");
+            ExpectFailure(Status.InvalidArgument, () => settings.SetInt((Param)999, 1));
+            ExpectFailure(Status.InvalidArgument, () => settings.GetInt(Param.Alpha));
+        }
+    }
+
+    static void SettingsRoundTripAndClone()
+    {
+        using (var settings = new Settings
+               {
+                   Weights = Weights.Uniform, Monitor = ErrorMonitor.Angle, Iterations = 3,
+                   IterationMode = IterationMode.Reapply, Boundary = Boundary.Square,
+                   MaxTriangles = 1000, Domain = Domain.Disk
+               })
+        using (var copy = settings.Clone())
+        {
+            settings.Iterations = 7;
+            Expect(copy.Iterations == 3 && copy.Weights == Weights.Uniform &&
+                       copy.Monitor == ErrorMonitor.Angle &&
+                       copy.IterationMode == IterationMode.Reapply &&
+                       copy.Boundary == Boundary.Square && copy.MaxTriangles == 1000 &&
+                       copy.Domain == Domain.Disk,
+                   "an independent copy");
+        }
+        ParamInfo info = Settings.GetParamInfo(Param.Alpha);
+        Expect(info.Name == "alpha" && info.IsFloat && info.Default == 1.0, "alpha's facts");
+        ExpectFailure(Status.InvalidArgument, () => Settings.GetParamInfo((Param)999));
+    }
+
+    static Result RunAtlas(Mesh mesh, int threads, Func<Phase, double, bool> progress = null)
+    {
+        using (var settings = new Settings { Domain = Domain.Atlas, Threads = threads })
+        {
+            Expect(settings.Domain == Domain.Atlas && settings.Threads == threads,
+                   "the atlas settings");
+            return Library.Parameterize(mesh, settings, progress);
+        }
+    }
+
+    static void AtlasOfAClosedMeshIsValid()
+    {
+        Off bunny = ReadOff("meshes/bunny.off");
+        int n = bunny.Xyz.Length / 3, triangles = bunny.Indices.Length / 3;
+        using (var mesh = new Mesh(bunny.Xyz, bunny.Indices))
+        {
+            ExpectFailure(Status.NoBoundary, () => Library.Parameterize(mesh));
+            using (var one = RunAtlas(mesh, 1))
+            using (var two = RunAtlas(mesh, 2))
+            {
+                Stats stats = one.GetStats();
+                float[] uv = one.GetUvs();
+                uint[] indices = one.GetIndices();
+                uint[] remap = one.GetVertexRemap();
+                uint[] charts = one.GetChartIds();
+                // The input triangles, in input order, over vertices duplicated along seams.
+                Expect(indices.Length == bunny.Indices.Length, "the input's index count");
+                Expect(stats.TriangleCount == (ulong)triangles, "the input's triangle count");
+                Expect(remap.Length == one.VertexCount && uv.Length == 2 * remap.Length &&
+                           stats.VertexCount == (ulong)remap.Length && remap.Length >= n,
+                       "a remap and a uv per output vertex");
+                Expect(remap.All(r => r < n), "every remap a valid input vertex");
+                for (int i = 0; i < indices.Length; i++)
+                    Expect(indices[i] < remap.Length && remap[indices[i]] == bunny.Indices[i],
+                           "corner " + i + " remaps to the input triangle's vertex");
+                Expect(charts.Length == triangles, "a chart id per triangle");
+                Expect(stats.ChartCount >= 1 && charts.All(c => c < stats.ChartCount),
+                       "chart ids below the chart count " + stats.ChartCount);
+                Expect(uv.All(c => c >= 0 && c <= 1), "uvs in [0,1]^2");
+                Expect(stats.FlippedTriangles == 0, "no flipped triangle");
+                Expect(stats.AtlasWidth > 0 && stats.AtlasHeight > 0, "a non-empty atlas");
+                Expect(stats.Utilization > 0 && stats.Utilization <= 1, "utilization in (0, 1]");
+                // The output is the same whatever the thread count.
+                Expect(two.GetUvsDouble().SequenceEqual(one.GetUvsDouble()),
+                       "identical uvs with 1 and 2 threads");
+                Expect(two.GetChartIds().SequenceEqual(charts),
+                       "identical charts with 1 and 2 threads");
+            }
+        }
+    }
+
+    static void AtlasProgressReportsItsPhases()
+    {
+        Off bunny = ReadOff("meshes/bunny.off");
+        using (var mesh = new Mesh(bunny.Xyz, bunny.Indices))
+        {
+            // Chart progress comes from the worker threads: calls must still never overlap.
+            var phases = new List<Phase>();
+            int inside = 0, overlaps = 0;
+            bool fractionsInRange = true;
+            using (var result = RunAtlas(mesh, 2, (phase, fraction) =>
+                   {
+                       if (Interlocked.Increment(ref inside) > 1)
+                           Interlocked.Increment(ref overlaps);
+                       phases.Add(phase);
+                       fractionsInRange &= fraction >= 0 && fraction <= 1;
+                       Thread.Sleep(1);  // lets another thread in, were it allowed
+                       Interlocked.Decrement(ref inside);
+                       return true;
+                   }))
+            {
+                Expect(result.PhaseMilliseconds(Phase.Segment) > 0 &&
+                           result.PhaseMilliseconds(Phase.Pack) > 0,
+                       "timed segment and pack phases");
+            }
+            var atlas = new[] { Phase.Validate, Phase.Topology, Phase.Segment, Phase.InitialMap,
+                                Phase.Pack, Phase.Metrics };
+            Expect(PhaseSequence(phases).SequenceEqual(atlas),
+                   "the atlas phases in order, got " + Show(PhaseSequence(phases)));
+            Expect(overlaps == 0, "no overlapping progress calls, got " + overlaps);
+            Expect(fractionsInRange, "fractions in [0, 1]");
+
+            // An exception thrown on a worker thread cancels the run and reaches the caller.
+            using (var result = new Result())
+            using (var settings = new Settings { Domain = Domain.Atlas, Threads = 2 })
+            {
+                try
+                {
+                    Library.Parameterize(mesh, settings, result, (phase, fraction) =>
+                    {
+                        if (phase == Phase.InitialMap && fraction > 0)
+                            throw new TimeoutException("from a worker");
+                        return true;
+                    });
+                    throw new Exception("expected the callback's exception");
+                }
+                catch (TimeoutException error)
+                {
+                    Expect(error.Message == "from a worker", "the callback's own exception");
+                }
+                Expect(result.VertexCount == 0, "an empty result after the exception");
+            }
+        }
+    }
+
+    static void AtlasSettingsRoundTrip()
+    {
+        var expected = new[]
+        {
+            new { Param = Param.Threads, Name = "threads", IsFloat = false, Min = 0.0,
+                  Max = 1024.0, Default = 0.0 },
+            new { Param = Param.AtlasResolution, Name = "atlas_resolution", IsFloat = false,
+                  Min = 16.0, Max = 16384.0, Default = 1024.0 },
+            new { Param = Param.AtlasPadding, Name = "atlas_padding", IsFloat = false, Min = 0.0,
+                  Max = 64.0, Default = 1.0 },
+            new { Param = Param.WeldTolerance, Name = "weld_tolerance", IsFloat = true,
+                  Min = 0.0, Max = double.MaxValue, Default = 0.0 },
+            new { Param = Param.HardEdgeAngle, Name = "hard_edge_angle", IsFloat = true,
+                  Min = 0.0, Max = 180.0, Default = 180.0 },
+            new { Param = Param.AtlasMaxL2Stretch, Name = "atlas_max_l2_stretch", IsFloat = true,
+                  Min = 1.0, Max = 10.0, Default = 1.01 },
+            new { Param = Param.AtlasMaxLinfStretch, Name = "atlas_max_linf_stretch",
+                  IsFloat = true, Min = 1.0, Max = 1000.0, Default = 2.9 },
+        };
+        using (var defaults = new Settings())
+        {
+            foreach (var facts in expected)
+            {
+                ParamInfo info = Settings.GetParamInfo(facts.Param);
+                Expect(info.Name == facts.Name && info.IsFloat == facts.IsFloat &&
+                           info.Min == facts.Min && info.Max == facts.Max &&
+                           info.Default == facts.Default,
+                       facts.Name + "'s facts");
+                double value = facts.IsFloat ? defaults.GetFloat(facts.Param)
+                                             : defaults.GetInt(facts.Param);
+                Expect(value == facts.Default, facts.Name + " holds its default");
+            }
+            Expect(defaults.Threads == 0 && defaults.AtlasResolution == 1024 &&
+                       defaults.AtlasPadding == 1 && defaults.WeldTolerance == 0 &&
+                       defaults.HardEdgeAngle == 180 && defaults.AtlasMaxL2Stretch == 1.01 &&
+                       defaults.AtlasMaxLinfStretch == 2.9,
+                   "the properties read the defaults");
+        }
+        using (var settings = new Settings
+               {
+                   Domain = Domain.Atlas, Threads = 2, AtlasResolution = 512, AtlasPadding = 4,
+                   WeldTolerance = 1e-6, HardEdgeAngle = 60, AtlasMaxL2Stretch = 1.5,
+                   AtlasMaxLinfStretch = 4
+               })
+        using (var copy = settings.Clone())
+        {
+            Expect(copy.Domain == Domain.Atlas && copy.Threads == 2 &&
+                       copy.AtlasResolution == 512 && copy.AtlasPadding == 4 &&
+                       copy.WeldTolerance == 1e-6 && copy.HardEdgeAngle == 60 &&
+                       copy.AtlasMaxL2Stretch == 1.5 && copy.AtlasMaxLinfStretch == 4,
+                   "the atlas parameters set and cloned");
+            ExpectFailure(Status.InvalidArgument, () => settings.Threads = -1);
+            ExpectFailure(Status.InvalidArgument, () => settings.AtlasResolution = 8);
+            ExpectFailure(Status.InvalidArgument, () => settings.AtlasPadding = 65);
+            ExpectFailure(Status.InvalidArgument, () => settings.HardEdgeAngle = 181);
+            ExpectFailure(Status.InvalidArgument, () => settings.AtlasMaxL2Stretch = 0.5);
+            Expect(settings.AtlasResolution == 512 && settings.HardEdgeAngle == 60,
+                   "a failed setter changes nothing");
+        }
+    }
+
+    static void DisposalIsSafe()
+    {
+        var mesh = new Mesh();
+        var settings = new Settings();
+        var result = new Result();
+        foreach (IDisposable handle in new IDisposable[] { mesh, settings, result })
+        {
+            handle.Dispose();
+            handle.Dispose();  // no double free
+        }
+        foreach (Action use in new Action[] { () => { var n = mesh.VertexCount; },
+                                              () => settings.Alpha = 2,
+                                              () => { var n = result.VertexCount; } })
+        {
+            try
+            {
+                use();
+                throw new Exception("expected ObjectDisposedException");
+            }
+            catch (ObjectDisposedException)
+            {
+            }
+        }
+        // Forgotten Dispose: the finalizers free each handle once.
+        for (int i = 0; i < 2000; i++)
+        {
+            new Mesh(new float[] { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, new uint[] { 0, 1, 2 });
+            new Settings { Alpha = 3 }.Clone();
+            new Result();
+        }
+        GC.Collect();
+        GC.WaitForPendingFinalizers();
+        GC.Collect();
+    }
+
+    static void LayoutAndVersionMatchTheLibrary()
+    {
+        Off camel = ReadOff("meshes/camelhead.off");
+        using (var mesh = new Mesh(camel.Xyz, camel.Indices))
+        using (var result = Library.Parameterize(mesh))
+        {
+            // The library writes back the size it filled: all of ours, if the layouts agree.
+            Stats stats = result.GetStats();
+            Expect(stats.StructSize == (uint)Marshal.SizeOf(typeof(Stats)), "the struct size");
+            Expect(stats.TriangleCount == (ulong)(camel.Indices.Length / 3) &&
+                       stats.StretchLinf >= 1.0,
+                   "fields read at the library's offsets");
+            // The fields appended for the atlas, as the disk domain fills them.
+            Expect(stats.ChartCount == 1 && stats.AtlasWidth == 0 && stats.AtlasHeight == 0 &&
+                       stats.RelaxationSweeps == 0 && stats.Utilization > 0 &&
+                       stats.Utilization <= 1,
+                   "the disk domain's chart and atlas fields");
+            uint[] charts = result.GetChartIds();
+            Expect(charts.Length == camel.Indices.Length / 3 && charts.All(c => c == 0),
+                   "every disk triangle in chart 0");
+        }
+        Expect(Library.VersionNumber / 10000 == Native.RAPS_VERSION_MAJOR, "the major version");
+        uint v = Library.VersionNumber;
+        Expect(Library.Version == (v / 10000) + "." + (v / 100 % 100) + "." + (v % 100),
+               "the version string");
+    }
+
+    static int Main(string[] args)
+    {
+        if (args.Length != 1)
+        {
+            Console.Error.WriteLine("usage: RapsTests.exe SHARED_DATA_DIR");
+            return 2;
+        }
+        dataDir = args[0];
+        var tests = new List<KeyValuePair<string, Action>>
+        {
+            new KeyValuePair<string, Action>("area monitor is valid and less distorted",
+                                             AreaMonitorIsValidAndLessDistorted),
+            new KeyValuePair<string, Action>("precisions, strides and index types agree",
+                                             PrecisionsStridesAndIndexTypesAgree),
+            new KeyValuePair<string, Action>("concurrent runs share mesh and settings",
+                                             ConcurrentRunsShareMeshAndSettings),
+            new KeyValuePair<string, Action>("progress reports phases and cancels",
+                                             ProgressReportsPhasesAndCancels),
+            new KeyValuePair<string, Action>("closed mesh has no boundary",
+                                             ClosedMeshHasNoBoundary),
+            new KeyValuePair<string, Action>("index out of range names the index",
+                                             IndexOutOfRangeNamesTheIndex),
+            new KeyValuePair<string, Action>("setter errors carry messages, change nothing",
+                                             SetterErrorsCarryMessagesAndChangeNothing),
+            new KeyValuePair<string, Action>("settings round trip and clone",
+                                             SettingsRoundTripAndClone),
+            new KeyValuePair<string, Action>("atlas of a closed mesh is valid",
+                                             AtlasOfAClosedMeshIsValid),
+            new KeyValuePair<string, Action>("atlas progress reports its phases",
+                                             AtlasProgressReportsItsPhases),
+            new KeyValuePair<string, Action>("atlas settings round trip",
+                                             AtlasSettingsRoundTrip),
+            new KeyValuePair<string, Action>("disposal is safe", DisposalIsSafe),
+            new KeyValuePair<string, Action>("layout and version match the library",
+                                             LayoutAndVersionMatchTheLibrary),
+        };
+        int passed = 0, failed = 0;
+        foreach (var test in tests)
+        {
+            try
+            {
+                test.Value();
+                passed++;
+                Console.WriteLine("ok   " + test.Key);
+            }
+            catch (Exception error)
+            {
+                failed++;
+                Console.WriteLine("FAIL " + test.Key + ": " + error);
+            }
+        }
+        Console.WriteLine("{0} passed, {1} failed", passed, failed);
+        return failed;
+    }
+}

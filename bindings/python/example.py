@@ -1,0 +1,11 @@
+import math
+import raps
+
+# A hexagonal cap: one vertex raised above the middle of six on a circle.
+ring = [(math.cos(k * math.pi / 3), math.sin(k * math.pi / 3), 0.0) for k in range(6)]
+mesh = raps.Mesh(positions=[(0.0, 0.0, 0.5)] + ring,
+                 indices=[(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)])
+settings = raps.Settings(monitor=raps.Monitor.AREA, alpha=1.0)
+result = raps.parameterize(mesh, settings)
+print("uv of the top:", result.uvs()[0])
+print("flipped triangles:", result.stats().flipped_triangles)

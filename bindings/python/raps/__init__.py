@@ -1,0 +1,523 @@
+"""raps: r-adaptive surface parameterization (texture coordinates) from Python.
+
+A thin, safe layer over libraps's C ABI (include/raps.h is the reference):
+
+    import raps
+    mesh = raps.Mesh(positions, indices)             # numpy arrays or plain sequences
+    settings = raps.Settings(monitor=raps.Monitor.AREA, alpha=1.0)
+    result = raps.parameterize(mesh, settings)       # raises raps.Error on failure
+    uv = result.uvs()                                # (n, 2) numpy array, or [(u, v), ...]
+
+Handles (Mesh, Settings, Result) own their native object: close() or a `with` block frees it at
+once, and garbage collection frees it otherwise; either way exactly once. Errors raise
+raps.Error with the status, its name and the library's message.
+
+The library is found through the environment variable RAPS_LIBRARY (a path to libraps.so),
+else by name through the dynamic loader (LD_LIBRARY_PATH, the system's library folders).
+numpy is optional: without it, inputs are sequences and outputs are lists.
+"""
+
+import collections
+import ctypes
+import ctypes.util
+import enum
+import numbers
+import os
+import threading
+import weakref
+
+from . import _native
+
+try:
+    import numpy
+except ImportError:  # plain sequences in, lists out
+    numpy = None
+
+__all__ = [
+    "Boundary", "Domain", "Error", "IterationMode", "Mesh", "Monitor", "Param", "ParamInfo",
+    "Phase", "Result", "Settings", "Stats", "Status", "Weights", "parameterize", "version",
+    "version_string", "library_path",
+]
+
+
+# ------------------------------------------------------------------------------------------------
+# Loading the library
+# ------------------------------------------------------------------------------------------------
+
+
+def _load():
+    """Loads libraps and binds every declaration of the header the bindings were generated from.
+
+    An explicit RAPS_LIBRARY that fails is an error (no silent fallback to another copy)."""
+    explicit = os.environ.get("RAPS_LIBRARY")
+    if explicit:
+        candidates = [explicit]
+    else:
+        major = _native.RAPS_VERSION_MAJOR
+        candidates = ["libraps.so.%d" % major, "libraps.so", "libraps.%d.dylib" % major,
+                      "libraps.dylib", "raps.dll"]
+        found = ctypes.util.find_library("raps")
+        if found:
+            candidates.append(found)
+    failures = []
+    for candidate in candidates:
+        try:
+            lib = ctypes.CDLL(candidate)
+        except OSError as error:
+            failures.append("%s: %s" % (candidate, error))
+            continue
+        try:
+            _native.bind(lib)
+        except AttributeError as error:
+            raise OSError("raps: %s is older than these bindings (made for raps.h %d.%d.%d): %s"
+                          % (candidate, _native.RAPS_VERSION_MAJOR, _native.RAPS_VERSION_MINOR,
+                             _native.RAPS_VERSION_PATCH, error))
+        loaded_major = lib.raps_version() // 10000
+        if loaded_major != _native.RAPS_VERSION_MAJOR:
+            raise OSError("raps: %s is version %s, these bindings need major version %d"
+                          % (candidate, lib.raps_version_string().decode(),
+                             _native.RAPS_VERSION_MAJOR))
+        return lib, candidate
+    raise OSError("raps: cannot load libraps (set RAPS_LIBRARY to its path, or add its folder "
+                  "to LD_LIBRARY_PATH); tried:\n  " + "\n  ".join(failures))
+
+
+_lib, library_path = _load()
+
+
+# ------------------------------------------------------------------------------------------------
+# Constants as enums, built from the generated declarations so that values appended to the
+# header appear here without an edit.
+# ------------------------------------------------------------------------------------------------
+
+
+def _enum(name, prefix, skip=(), extra=None):
+    members = dict(extra or {})
+    for constant, value in vars(_native).items():
+        if constant.startswith(prefix) and constant not in skip:
+            members[constant[len(prefix):]] = value
+    return enum.IntEnum(name, members, module=__name__)
+
+
+Status = _enum("Status", "RAPS_ERROR_", extra={"OK": _native.RAPS_OK})
+Param = _enum("Param", "RAPS_PARAM_")
+Domain = _enum("Domain", "RAPS_DOMAIN_")
+Weights = _enum("Weights", "RAPS_WEIGHTS_")
+Monitor = _enum("Monitor", "RAPS_MONITOR_")
+IterationMode = _enum("IterationMode", "RAPS_ITERATION_")
+Boundary = _enum("Boundary", "RAPS_BOUNDARY_")
+# RAPS_PHASE_COUNT is the number of phases, not a phase.
+Phase = _enum("Phase", "RAPS_PHASE_", skip=("RAPS_PHASE_COUNT",))
+
+# The enum each enumerated parameter takes; other parameters take plain numbers.
+_PARAM_VALUES = {
+    Param.DOMAIN: Domain,
+    Param.WEIGHTS: Weights,
+    Param.MONITOR: Monitor,
+    Param.ITERATION_MODE: IterationMode,
+    Param.BOUNDARY: Boundary,
+}
+
+
+def _known(enum_type, value):
+    """value as a member of enum_type, or the plain int for a value a newer library added."""
+    try:
+        return enum_type(value)
+    except ValueError:
+        return int(value)
+
+
+def version():
+    """The loaded library's version as (major, minor, patch)."""
+    number = _lib.raps_version()
+    return (number // 10000, number // 100 % 100, number % 100)
+
+
+def version_string():
+    """The loaded library's "MAJOR.MINOR.PATCH"."""
+    return _lib.raps_version_string().decode("utf-8")
+
+
+# ------------------------------------------------------------------------------------------------
+# Errors
+# ------------------------------------------------------------------------------------------------
+
+
+class Error(Exception):
+    """A raps call failed.
+
+    status: a Status (or the int of a status this version does not know), name: the library's
+    short description of it (raps_status_string), message: what the library said about this
+    failure (names the offending triangle, vertex, edge or value; may be empty)."""
+
+    def __init__(self, status, message=""):
+        self.status = _known(Status, status)
+        self.name = _lib.raps_status_string(int(status)).decode("utf-8")
+        self.message = message
+        text = "%s (status %d)" % (self.name, int(status))
+        super().__init__(text + (": " + message if message else ""))
+
+
+def _check(status, last_error=None, handle=None):
+    """Raises Error for a failed status, with the handle's message when the call stores one."""
+    if status != _native.RAPS_OK:
+        message = last_error(handle).decode("utf-8", "replace") if last_error else ""
+        raise Error(status, message)
+
+
+# ------------------------------------------------------------------------------------------------
+# Handles
+# ------------------------------------------------------------------------------------------------
+
+
+class _Handle:
+    """Owns one native handle: destroyed exactly once, by close(), `with` or the collector."""
+
+    def __init__(self, create, native_type, destroy):
+        pointer = ctypes.POINTER(native_type)()
+        _check(create(ctypes.byref(pointer)))
+        self._pointer = pointer
+        # finalize runs at most once, whether called by close() or at collection/exit.
+        self._finalizer = weakref.finalize(self, destroy, pointer)
+
+    def close(self):
+        """Frees the native object now; further use raises ValueError. Safe to call twice."""
+        self._pointer = None
+        self._finalizer()
+
+    @property
+    def closed(self):
+        return self._pointer is None
+
+    def _ptr(self):
+        if self._pointer is None:
+            raise ValueError("raps: %s used after close()" % type(self).__name__)
+        return self._pointer
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def _is_ndarray(value):
+    return numpy is not None and isinstance(value, numpy.ndarray)
+
+
+def _flatten(values, width, what, check_count=True):
+    """[a, b, c, ...] or [(a, b, c), ...] -> a flat list; checks the count is a multiple."""
+    values = list(values)
+    if values and not isinstance(values[0], numbers.Number):
+        flat = []
+        for row in values:
+            row = list(row)
+            if len(row) != width:
+                raise ValueError("raps: each of the %s must have %d values, got %r"
+                                 % (what, width, row))
+            flat.extend(row)
+        return flat
+    if check_count and len(values) % width:
+        raise ValueError("raps: %d %s values are not a multiple of %d"
+                         % (len(values), what, width))
+    return values
+
+
+class Mesh(_Handle):
+    """The input: vertex positions and triangles, copied into the library.
+
+    Mesh(positions, indices) sets both; either may also be set later. A mesh is only read by
+    parameterize, so one mesh may serve concurrent runs from several threads."""
+
+    def __init__(self, positions=None, indices=None):
+        super().__init__(_lib.raps_mesh_create, _native.raps_mesh, _lib.raps_mesh_destroy)
+        if positions is not None:
+            self.set_positions(positions)
+        if indices is not None:
+            self.set_indices(indices)
+
+    def set_positions(self, positions):
+        """Replaces the positions: an (n, 3) float32 or float64 numpy array (rows may be
+        strided, e.g. a view into an interleaved vertex buffer; other dtypes are converted to
+        float64), or n (x, y, z) sequences, or 3n numbers."""
+        if _is_ndarray(positions):
+            array = positions
+            if array.dtype not in (numpy.float32, numpy.float64):
+                array = array.astype(numpy.float64)
+            if array.ndim == 1:
+                if array.size % 3:
+                    raise ValueError("raps: %d coordinates are not a multiple of 3" % array.size)
+                array = array.reshape(-1, 3)
+            if array.ndim != 2 or array.shape[1] != 3:
+                raise ValueError("raps: positions must have shape (n, 3), not %s"
+                                 % (array.shape,))
+            # The library reads rows stride_bytes apart, each row three packed values; 0 means
+            # packed, so a broadcast (stride 0) or reversed view must be copied first.
+            if array.strides[1] != array.itemsize or array.strides[0] < 3 * array.itemsize:
+                array = numpy.ascontiguousarray(array)
+            if array.dtype == numpy.float32:
+                setter, ctype = _lib.raps_mesh_set_positions_f32, ctypes.c_float
+            else:
+                setter, ctype = _lib.raps_mesh_set_positions_f64, ctypes.c_double
+            status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)),
+                            array.shape[0], array.strides[0])
+        else:
+            flat = _flatten(positions, 3, "positions")
+            buffer = (ctypes.c_double * len(flat))(*flat)
+            status = _lib.raps_mesh_set_positions_f64(self._ptr(), buffer, len(flat) // 3, 0)
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
+    def set_indices(self, indices):
+        """Replaces the triangles (counter-clockwise seen from the front): a numpy array of
+        shape (t, 3) or (3t,) (uint16 and uint32 are passed as they are, other integer types
+        are converted), or t (a, b, c) sequences, or 3t integers."""
+        if _is_ndarray(indices):
+            array = indices.reshape(-1)
+            if array.dtype.kind not in "iu":
+                raise TypeError("raps: indices must be integers, not %s" % array.dtype)
+            if array.dtype not in (numpy.uint16, numpy.uint32):
+                if array.size and (array.min() < 0 or array.max() > 0xFFFFFFFF):
+                    raise ValueError("raps: an index is outside [0, 2^32)")
+                array = array.astype(numpy.uint32)
+            array = numpy.ascontiguousarray(array)
+            if array.dtype == numpy.uint16:
+                setter, ctype = _lib.raps_mesh_set_indices_u16, ctypes.c_uint16
+            else:
+                setter, ctype = _lib.raps_mesh_set_indices_u32, ctypes.c_uint32
+            status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)), array.size)
+        else:
+            # A count that is not a multiple of 3 is the library's to report (INDEX_COUNT).
+            flat = [int(i) for i in _flatten(indices, 3, "triangles", check_count=False)]
+            if any(i < 0 or i > 0xFFFFFFFF for i in flat):
+                raise ValueError("raps: an index is outside [0, 2^32)")
+            buffer = (ctypes.c_uint32 * len(flat))(*flat)
+            status = _lib.raps_mesh_set_indices_u32(self._ptr(), buffer, len(flat))
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
+    @property
+    def vertex_count(self):
+        return _lib.raps_mesh_vertex_count(self._ptr())
+
+    @property
+    def triangle_count(self):
+        return _lib.raps_mesh_triangle_count(self._ptr())
+
+
+ParamInfo = collections.namedtuple("ParamInfo", "name is_float min max default")
+
+
+def _param_property(param):
+    value_enum = _PARAM_VALUES.get(param)
+
+    def getter(self):
+        value = self.get(param)
+        return _known(value_enum, value) if value_enum else value
+
+    def setter(self, value):
+        if value_enum and isinstance(value, str):
+            value = value_enum[value.upper()]
+        self.set(param, value)
+
+    return property(getter, setter, doc="The parameter RAPS_PARAM_%s." % param.name)
+
+
+class Settings(_Handle):
+    """Parameters with the library's defaults (mean value weights, area monitor, alpha 1).
+
+    Settings(monitor=Monitor.ANGLE, alpha=2.0) sets parameters by name; each is also a property
+    (settings.iterations = 5), and set(Param.X, value) / get(Param.X) reach any parameter.
+    Enumerated parameters also take their member name ("angle"). A bad value raises Error and
+    leaves the settings unchanged."""
+
+    def __init__(self, **params):
+        super().__init__(_lib.raps_settings_create, _native.raps_settings,
+                         _lib.raps_settings_destroy)
+        for name, value in params.items():
+            if name.upper() not in Param.__members__:
+                self.close()
+                raise TypeError("raps: unknown parameter %r" % name)
+            setattr(self, name.lower(), value)
+
+    @staticmethod
+    def param_info(param):
+        """ParamInfo(name, is_float, min, max, default) of a parameter."""
+        name = ctypes.c_char_p()
+        is_float = ctypes.c_int32()
+        low, high, default = ctypes.c_double(), ctypes.c_double(), ctypes.c_double()
+        _check(_lib.raps_param_info(int(param), ctypes.byref(name), ctypes.byref(is_float),
+                                    ctypes.byref(low), ctypes.byref(high),
+                                    ctypes.byref(default)))
+        return ParamInfo(name.value.decode("utf-8"), bool(is_float.value), low.value,
+                         high.value, default.value)
+
+    def set(self, param, value):
+        """Sets a parameter; float parameters take numbers, the others integers."""
+        if self.param_info(param).is_float:
+            status = _lib.raps_settings_set_float(self._ptr(), int(param), float(value))
+        else:
+            if isinstance(value, float) and not value.is_integer():
+                raise TypeError("raps: parameter %s takes an integer, not %r"
+                                % (_known(Param, param), value))
+            status = _lib.raps_settings_set_int(self._ptr(), int(param), int(value))
+        _check(status, _lib.raps_settings_last_error, self._pointer)
+
+    def get(self, param):
+        """Reads a parameter: a float for float parameters, an int otherwise."""
+        if self.param_info(param).is_float:
+            value = ctypes.c_double()
+            _check(_lib.raps_settings_get_float(self._ptr(), int(param), ctypes.byref(value)))
+        else:
+            value = ctypes.c_int64()
+            _check(_lib.raps_settings_get_int(self._ptr(), int(param), ctypes.byref(value)))
+        return value.value
+
+    def clone(self):
+        """An independent copy."""
+        copy = Settings.__new__(Settings)
+        _Handle.__init__(copy, lambda out: _lib.raps_settings_clone(self._ptr(), out),
+                         _native.raps_settings, _lib.raps_settings_destroy)
+        return copy
+
+    def as_dict(self):
+        """{parameter name: value} of every parameter."""
+        return {param.name.lower(): getattr(self, param.name.lower()) for param in Param}
+
+
+for _param in Param:
+    setattr(Settings, _param.name.lower(), _param_property(_param))
+
+
+# The statistics fields of this version of raps.h, after the size and reserved header.
+Stats = collections.namedtuple(
+    "Stats", [name for name, _ in _native.raps_stats._fields_
+              if name not in ("struct_size", "reserved")])
+
+
+class Result(_Handle):
+    """The map: per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes from,
+    the output triangles with their chart ids, the statistics and the time of each phase.
+    Filled by parameterize; reading an empty result (after a failure) raises
+    Error(Status.INVALID_OPERATION)."""
+
+    def __init__(self):
+        super().__init__(_lib.raps_result_create, _native.raps_result, _lib.raps_result_destroy)
+
+    @property
+    def vertex_count(self):
+        return _lib.raps_result_vertex_count(self._ptr())
+
+    @property
+    def index_count(self):
+        return _lib.raps_result_index_count(self._ptr())
+
+    @property
+    def triangle_count(self):
+        return self.index_count // 3
+
+    def _copy(self, copy, ctype, count, *extra):
+        """Calls a raps_result_copy_* function into a fresh buffer of count values."""
+        # The copy functions take a const result and store no message: say what went wrong.
+        if self.vertex_count == 0:
+            raise Error(_native.RAPS_ERROR_INVALID_OPERATION,
+                        "the result holds no map (parameterize failed or has not run)")
+        if numpy is not None:
+            array = numpy.empty(count, dtype=ctype)
+            _check(copy(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)), *extra))
+            return array
+        buffer = (ctype * count)()
+        _check(copy(self._ptr(), buffer, *extra))
+        return buffer
+
+    def uvs(self, dtype="float64"):
+        """The uvs: an (n, 2) numpy array of dtype float64 or float32, or a list of (u, v)."""
+        single = str(dtype) in ("float32", "f4", "<f4") or dtype is ctypes.c_float or \
+            (numpy is not None and dtype is numpy.float32)
+        copy = _lib.raps_result_copy_uvs_f32 if single else _lib.raps_result_copy_uvs_f64
+        ctype = ctypes.c_float if single else ctypes.c_double
+        n = self.vertex_count
+        values = self._copy(copy, ctype, 2 * n, n, 0)
+        if numpy is not None:
+            return values.reshape(n, 2)
+        return [(values[2 * i], values[2 * i + 1]) for i in range(n)]
+
+    def indices(self):
+        """The output triangles: a (t, 3) uint32 numpy array, or a list of (a, b, c)."""
+        count = self.index_count
+        values = self._copy(_lib.raps_result_copy_indices_u32, ctypes.c_uint32, count, count)
+        if numpy is not None:
+            return values.reshape(-1, 3)
+        return [tuple(values[i:i + 3]) for i in range(0, count, 3)]
+
+    def vertex_remap(self):
+        """Per output vertex, the input vertex it comes from: a uint32 numpy array or a list."""
+        n = self.vertex_count
+        values = self._copy(_lib.raps_result_copy_vertex_remap, ctypes.c_uint32, n, n)
+        return values if numpy is not None else list(values)
+
+    def chart_ids(self):
+        """Per output triangle, its chart (0 .. stats().chart_count - 1; all 0 for the disk
+        domain): a uint32 numpy array or a list."""
+        count = self.triangle_count
+        values = self._copy(_lib.raps_result_copy_chart_ids, ctypes.c_uint32, count, count)
+        return values if numpy is not None else list(values)
+
+    def stats(self):
+        """The distortion statistics (see raps_stats in raps.h) as a Stats named tuple."""
+        native = _native.raps_stats()
+        native.struct_size = ctypes.sizeof(native)
+        status = _lib.raps_result_get_stats(self._ptr(), ctypes.byref(native))
+        if status == _native.RAPS_ERROR_INVALID_OPERATION:
+            raise Error(status, "the result holds no map (parameterize failed or has not run)")
+        _check(status)
+        return Stats(*(getattr(native, name) for name in Stats._fields))
+
+    def phase_ms(self, phase):
+        """Wall-clock milliseconds spent in a Phase by the run that filled this result."""
+        return _lib.raps_result_phase_ms(self._ptr(), int(phase))
+
+
+def parameterize(mesh, settings=None, progress=None, result=None):
+    """Computes the map of mesh with settings (None: the defaults) and returns a Result.
+
+    progress, if given, is called as progress(phase, fraction) at the start and end of every
+    phase and about every 1% of the long ones, from this thread or, unless threads is 1, from
+    the run's worker threads (never two calls at once); returning False (or 0) cancels, which
+    raises Error(Status.CANCELLED). An exception raised by progress (also
+    KeyboardInterrupt) cancels the run and is raised here. result, if given, is refilled
+    instead of creating one. mesh and settings are only read: threads may share them (the
+    library runs without the GIL), each with its own result."""
+    if result is None:
+        result = Result()
+    if progress is None:
+        status = _lib.raps_parameterize(mesh._ptr(), settings._ptr() if settings else None,
+                                        result._ptr())
+        _check(status, _lib.raps_result_last_error, result._pointer)
+        return result
+
+    # The callback goes on a private copy of the settings, so that settings shared with other
+    # threads never see it, and the ctypes function object lives until the run is over.
+    # The library's worker threads may report too (threads != 1); the lock keeps progress
+    # from ever running twice at once, whatever the library does, as the header promises.
+    raised = []
+    serial = threading.Lock()
+
+    def call(_user, phase, fraction):
+        try:
+            with serial:
+                if raised:  # already stopping: do not call progress again
+                    return 0
+                keep_going = progress(_known(Phase, phase), fraction)
+        except BaseException as error:  # also KeyboardInterrupt: stop the run, raise below
+            raised.append(error)
+            return 0
+        return 0 if keep_going is not None and not keep_going else 1
+
+    callback = _native.raps_progress_fn(call)
+    with (settings.clone() if settings else Settings()) as private:
+        _check(_lib.raps_settings_set_progress(private._ptr(), callback, None),
+               _lib.raps_settings_last_error, private._pointer)
+        status = _lib.raps_parameterize(mesh._ptr(), private._ptr(), result._ptr())
+    if raised:
+        raise raised[0]
+    _check(status, _lib.raps_result_last_error, result._pointer)
+    return result

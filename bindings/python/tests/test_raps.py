@@ -1,0 +1,489 @@
+"""Tests of the Python binding against the real libraps (unittest, standard library only).
+
+Environment (CTest sets it): RAPS_LIBRARY, the library to test; RAPS_SHARED_DATA_DIR, the
+shared meshes (missing data fails the tests, it never skips them); RAPS_TEST_WITHOUT_NUMPY=1
+runs the whole suite as on a machine without numpy (plain sequences in, lists out).
+"""
+
+import gc
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+if os.environ.get("RAPS_TEST_WITHOUT_NUMPY") == "1":
+    sys.modules["numpy"] = None  # makes `import numpy` raise ImportError, as if absent
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import raps  # noqa: E402
+
+try:
+    import numpy
+except ImportError:
+    numpy = None
+
+DATA = os.environ.get("RAPS_SHARED_DATA_DIR", "")
+
+
+def read_off(path):
+    """positions [(x, y, z)], triangles [(a, b, c)] of an OFF file (polygons fanned)."""
+    with open(path) as stream:
+        words = [w for line in stream for w in line.split("#")[0].split()]
+    assert words[0] == "OFF", path
+    nv, nf = int(words[1]), int(words[2])
+    numbers = words[4:]
+    positions = [tuple(float(v) for v in numbers[3 * i:3 * i + 3]) for i in range(nv)]
+    triangles, at = [], 3 * nv
+    for _ in range(nf):
+        n = int(numbers[at])
+        face = [int(v) for v in numbers[at + 1:at + 1 + n]]
+        triangles += [(face[0], face[k], face[k + 1]) for k in range(1, n - 1)]
+        at += 1 + n
+    return positions, triangles
+
+
+def icosahedron():
+    """A closed mesh: no boundary loop, so the disk domain refuses it."""
+    t = (1 + 5 ** 0.5) / 2
+    positions = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                 (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    triangles = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9),
+                 (5, 11, 4), (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2),
+                 (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10),
+                 (8, 6, 7), (9, 8, 1)]
+    return positions, triangles
+
+
+def rows(values):
+    """Output rows as a list of tuples, whether numpy is there or not."""
+    return [tuple(row) for row in (values.tolist() if numpy is not None else values)]
+
+
+def signed_area(a, b, c):
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+def phase_sequence(calls):
+    """The phases of (phase, fraction) progress calls in the order entered, each once: a phase
+    entered twice, or calls of two phases interleaved, show up as a repeat."""
+    sequence = []
+    for phase, _ in calls:
+        if not sequence or sequence[-1] != phase:
+            sequence.append(phase)
+    return sequence
+
+
+class SharedMesh(unittest.TestCase):
+    """camelhead.off, a real disk-shaped scan, through the whole binding."""
+
+    @classmethod
+    def setUpClass(cls):
+        path = os.path.join(DATA, "meshes", "camelhead.off")
+        if not os.path.isfile(path):
+            raise AssertionError("shared test data missing: %r (set RAPS_SHARED_DATA_DIR)" % path)
+        cls.positions, cls.triangles = read_off(path)
+        cls.mesh = raps.Mesh(cls.positions, cls.triangles)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.mesh.close()
+
+    def test_mesh_counts(self):
+        self.assertEqual(self.mesh.vertex_count, len(self.positions))
+        self.assertEqual(self.mesh.triangle_count, len(self.triangles))
+
+    def test_area_monitor_map_is_valid_and_less_distorted(self):
+        with raps.Settings(monitor=raps.Monitor.NONE) as plain, raps.Settings() as adaptive:
+            self.assertEqual(adaptive.monitor, raps.Monitor.AREA)  # the default
+            first = raps.parameterize(self.mesh, plain)
+            second = raps.parameterize(self.mesh, adaptive)
+        for result in (first, second):
+            stats = result.stats()
+            self.assertEqual(stats.flipped_triangles, 0)
+            self.assertEqual(stats.vertex_count, len(self.positions))
+            self.assertEqual(stats.triangle_count, len(self.triangles))
+            uvs = rows(result.uvs())
+            self.assertEqual(len(uvs), len(self.positions))
+            for u, v in uvs:
+                self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= v <= 1.0, (u, v))
+            # Counter-clockwise in 3D stays counter-clockwise in uv: check it here too.
+            for a, b, c in self.triangles[::97]:
+                self.assertGreater(signed_area(uvs[a], uvs[b], uvs[c]), 0.0)
+            self.assertEqual(rows(result.indices()), [tuple(t) for t in self.triangles])
+            self.assertEqual(list(result.vertex_remap()), list(range(len(self.positions))))
+        self.assertEqual(first.stats().adaptive_solves, 0)
+        self.assertEqual(second.stats().adaptive_solves, 1)
+        # The adaptive step equidistributes area: README measures 2.509 -> 0.721.
+        self.assertLess(second.stats().area_log_mean, 0.5 * first.stats().area_log_mean)
+        self.assertGreater(second.phase_ms(raps.Phase.ADAPT), 0.0)
+        first.close()
+        second.close()
+
+    def test_float32_and_float64_agree(self):
+        with raps.parameterize(self.mesh) as result:
+            single = rows(result.uvs("float32"))
+            double = rows(result.uvs())
+        for (u32, v32), (u64, v64) in zip(single, double):
+            self.assertAlmostEqual(u32, u64, delta=1e-6)
+            self.assertAlmostEqual(v32, v64, delta=1e-6)
+
+    def test_result_is_refilled(self):
+        result = raps.Result()
+        self.assertIs(raps.parameterize(self.mesh, result=result), result)
+        self.assertEqual(result.vertex_count, len(self.positions))
+        result.close()
+
+    @unittest.skipIf(numpy is None, "the numpy path")
+    def test_numpy_strided_and_u16_inputs(self):
+        # An interleaved buffer (x, y, z, nx, ny, nz) read through a strided view, float32,
+        # and uint16 indices: the library is given the stride and reads in place.
+        interleaved = numpy.zeros((len(self.positions), 6), dtype=numpy.float32)
+        interleaved[:, :3] = self.positions
+        view = interleaved[:, :3]
+        self.assertEqual(view.strides[0], 24)
+        with raps.Mesh(view, numpy.array(self.triangles, dtype=numpy.uint32)) as packed, \
+                raps.Mesh(numpy.ascontiguousarray(view), numpy.array(self.triangles)) as plain:
+            a = raps.parameterize(packed).uvs()
+            b = raps.parameterize(plain).uvs()
+        self.assertTrue(numpy.array_equal(a, b))
+        self.assertEqual(a.shape, (len(self.positions), 2))
+        self.assertEqual(a.dtype, numpy.float64)
+
+    def test_concurrent_runs_share_mesh_and_settings(self):
+        settings = raps.Settings(iterations=2)
+        expected = rows(raps.parameterize(self.mesh, settings).uvs())
+        outputs = [None] * 4
+
+        def run(k):
+            outputs[k] = rows(raps.parameterize(self.mesh, settings).uvs())
+
+        threads = [threading.Thread(target=run, args=(k,)) for k in range(4)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        for output in outputs:
+            self.assertEqual(output, expected)
+        settings.close()
+
+    def test_progress_reports_phases_in_order(self):
+        # The disk domain goes through the first five phases; SEGMENT and PACK are the atlas's.
+        calls = []
+        raps.parameterize(self.mesh, progress=lambda phase, fraction: calls.append(
+            (phase, fraction)))
+        self.assertEqual(phase_sequence(calls), [
+            raps.Phase.VALIDATE, raps.Phase.TOPOLOGY, raps.Phase.INITIAL_MAP, raps.Phase.ADAPT,
+            raps.Phase.METRICS])
+        self.assertTrue(all(isinstance(p, raps.Phase) for p, _ in calls))
+        self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
+
+    def test_progress_cancels_and_handles_stay_usable(self):
+        settings = raps.Settings()
+        result = raps.Result()
+        with self.assertRaises(raps.Error) as caught:
+            raps.parameterize(self.mesh, settings, progress=lambda p, f: p < raps.Phase.ADAPT,
+                              result=result)
+        self.assertEqual(caught.exception.status, raps.Status.CANCELLED)
+        self.assertEqual(result.vertex_count, 0)
+        # The callback was on a private copy: the shared settings never saw it.
+        raps.parameterize(self.mesh, settings, result=result)
+        self.assertEqual(result.vertex_count, len(self.positions))
+        settings.close()
+        result.close()
+
+    def test_exception_in_progress_propagates(self):
+        class Stop(Exception):
+            pass
+
+        def fail(phase, fraction):
+            raise Stop()
+
+        with self.assertRaises(Stop):
+            raps.parameterize(self.mesh, progress=fail)
+
+
+class Atlas(unittest.TestCase):
+    """The atlas domain on bunny.off, a closed mesh the disk domain refuses."""
+
+    @classmethod
+    def setUpClass(cls):
+        path = os.path.join(DATA, "meshes", "bunny.off")
+        if not os.path.isfile(path):
+            raise AssertionError("shared test data missing: %r (set RAPS_SHARED_DATA_DIR)" % path)
+        cls.positions, cls.triangles = read_off(path)
+        cls.mesh = raps.Mesh(cls.positions, cls.triangles)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.mesh.close()
+
+    def run_atlas(self, threads, progress=None):
+        with raps.Settings(domain=raps.Domain.ATLAS, threads=threads) as settings:
+            self.assertEqual(settings.domain, raps.Domain.ATLAS)
+            self.assertEqual(settings.threads, threads)
+            return raps.parameterize(self.mesh, settings, progress=progress)
+
+    def test_closed_mesh_becomes_a_valid_atlas(self):
+        with self.assertRaises(raps.Error) as caught:
+            raps.parameterize(self.mesh)  # the disk domain needs a boundary
+        self.assertEqual(caught.exception.status, raps.Status.NO_BOUNDARY)
+        with self.run_atlas(threads=1) as result:
+            stats = result.stats()
+            uvs = rows(result.uvs())
+            indices = rows(result.indices())
+            remap = list(result.vertex_remap())
+            charts = list(result.chart_ids())
+        # The input triangles, in input order, over vertices duplicated along seams.
+        self.assertEqual(len(indices), len(self.triangles))
+        self.assertEqual(stats.triangle_count, len(self.triangles))
+        self.assertEqual(stats.vertex_count, len(uvs))
+        self.assertEqual(len(remap), len(uvs))
+        self.assertGreaterEqual(len(uvs), len(self.positions))
+        self.assertTrue(all(0 <= r < len(self.positions) for r in remap))
+        for output, triangle in zip(indices, self.triangles):
+            self.assertEqual(tuple(remap[i] for i in output), tuple(triangle))
+        # One chart id per triangle, below the chart count.
+        self.assertEqual(len(charts), len(self.triangles))
+        self.assertGreaterEqual(stats.chart_count, 1)
+        self.assertTrue(all(0 <= c < stats.chart_count for c in charts))
+        for u, v in uvs:
+            self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= v <= 1.0, (u, v))
+        self.assertEqual(stats.flipped_triangles, 0)
+        self.assertGreater(stats.atlas_width, 0)
+        self.assertGreater(stats.atlas_height, 0)
+        self.assertTrue(0.0 < stats.utilization <= 1.0, stats.utilization)
+
+    def test_threads_do_not_change_the_map(self):
+        with self.run_atlas(threads=1) as one, self.run_atlas(threads=2) as two:
+            self.assertEqual(rows(one.uvs()), rows(two.uvs()))
+            self.assertEqual(list(one.chart_ids()), list(two.chart_ids()))
+
+    def test_progress_reports_the_atlas_phases(self):
+        calls = []
+        inside = [0]
+        overlaps = [0]
+
+        def record(phase, fraction):
+            # Chart progress comes from the worker threads: calls must still never overlap.
+            inside[0] += 1
+            overlaps[0] += inside[0] > 1
+            calls.append((phase, fraction))
+            time.sleep(0.0005)  # lets another thread run, were it allowed in
+            inside[0] -= 1
+
+        with self.run_atlas(threads=2, progress=record) as result:
+            self.assertGreater(result.phase_ms(raps.Phase.SEGMENT), 0.0)
+            self.assertGreater(result.phase_ms(raps.Phase.PACK), 0.0)
+        self.assertEqual(phase_sequence(calls), [
+            raps.Phase.VALIDATE, raps.Phase.TOPOLOGY, raps.Phase.SEGMENT,
+            raps.Phase.INITIAL_MAP, raps.Phase.PACK, raps.Phase.METRICS])
+        self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
+        self.assertEqual(overlaps[0], 0)
+
+    def test_exception_from_a_worker_thread_propagates(self):
+        # With threads != 1 the atlas reports chart progress from its worker threads too; an
+        # exception raised there still cancels the run and is raised by parameterize.
+        class Stop(Exception):
+            pass
+
+        def fail(phase, fraction):
+            if phase == raps.Phase.INITIAL_MAP and fraction > 0.0:
+                raise Stop()
+
+        result = raps.Result()
+        with raps.Settings(domain="atlas", threads=2) as settings:
+            with self.assertRaises(Stop):
+                raps.parameterize(self.mesh, settings, progress=fail, result=result)
+        self.assertEqual(result.vertex_count, 0)
+        result.close()
+
+    def test_atlas_settings(self):
+        expected = {"threads": (False, 0, 1024, 0), "atlas_resolution": (False, 16, 16384, 1024),
+                    "atlas_padding": (False, 0, 64, 1), "weld_tolerance": (True, 0.0, None, 0.0),
+                    "hard_edge_angle": (True, 0.0, 180.0, 180.0),
+                    "atlas_max_l2_stretch": (True, 1.0, 10.0, 1.01),
+                    "atlas_max_linf_stretch": (True, 1.0, 1000.0, 2.9)}
+        with raps.Settings() as settings:
+            for name, (is_float, low, high, default) in expected.items():
+                info = raps.Settings.param_info(raps.Param[name.upper()])
+                self.assertEqual(info.name, name)
+                self.assertEqual((info.is_float, info.min, info.default),
+                                 (is_float, low, default), name)
+                if high is not None:
+                    self.assertEqual(info.max, high, name)
+                self.assertEqual(getattr(settings, name), default, name)
+                self.assertIsInstance(getattr(settings, name), float if is_float else int)
+        with raps.Settings(threads=2, atlas_resolution=512, atlas_padding=4,
+                           weld_tolerance=1e-6, hard_edge_angle=60.0, atlas_max_l2_stretch=1.5,
+                           atlas_max_linf_stretch=4.0) as settings:
+            copy = settings.clone()
+            self.assertEqual(
+                {name: getattr(copy, name) for name in expected},
+                {"threads": 2, "atlas_resolution": 512, "atlas_padding": 4,
+                 "weld_tolerance": 1e-6, "hard_edge_angle": 60.0, "atlas_max_l2_stretch": 1.5,
+                 "atlas_max_linf_stretch": 4.0})
+            copy.close()
+            for name, bad in (("threads", -1), ("atlas_resolution", 8), ("atlas_padding", 65),
+                              ("hard_edge_angle", 181.0), ("atlas_max_l2_stretch", 0.5)):
+                with self.assertRaises(raps.Error) as caught:
+                    setattr(settings, name, bad)
+                self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+            self.assertEqual(settings.atlas_resolution, 512)  # a failed setter changes nothing
+
+    def test_disk_results_have_one_chart(self):
+        with raps.Mesh(*read_off(os.path.join(DATA, "meshes", "camelhead.off"))) as mesh, \
+                raps.parameterize(mesh) as result:
+            stats = result.stats()
+            self.assertEqual(stats.chart_count, 1)
+            self.assertEqual((stats.atlas_width, stats.atlas_height), (0, 0))
+            self.assertEqual(set(result.chart_ids()), {0})
+            self.assertEqual(len(result.chart_ids()), result.triangle_count)
+
+
+class Errors(unittest.TestCase):
+    def test_closed_mesh_has_no_boundary(self):
+        positions, triangles = icosahedron()
+        with raps.Mesh(positions, triangles) as mesh:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(mesh)
+        error = caught.exception
+        self.assertEqual(error.status, raps.Status.NO_BOUNDARY)
+        self.assertTrue(error.name)
+        self.assertNotEqual(error.name, "unknown status")
+        self.assertTrue(error.message)
+        self.assertIn(error.name, str(error))
+        self.assertIn(error.message, str(error))
+
+    def test_index_out_of_range_names_the_triangle(self):
+        positions, triangles = icosahedron()
+        triangles[3] = (0, 7, 12)
+        with raps.Mesh(positions, triangles) as mesh:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(mesh)
+        self.assertEqual(caught.exception.status, raps.Status.INDEX_OUT_OF_RANGE)
+        self.assertIn("12", caught.exception.message)
+
+    def test_setter_errors_carry_the_mesh_message(self):
+        with raps.Mesh() as mesh:
+            with self.assertRaises(raps.Error) as caught:
+                mesh.set_indices([0, 1, 2, 3])
+            self.assertEqual(caught.exception.status, raps.Status.INDEX_COUNT)
+            self.assertTrue(caught.exception.message)
+            with self.assertRaises(raps.Error) as caught:
+                mesh.set_positions([(0.0, float("nan"), 0.0)])
+            self.assertEqual(caught.exception.status, raps.Status.NON_FINITE_POSITION)
+            self.assertEqual(mesh.vertex_count, 0)  # a failed setter changes nothing
+            with self.assertRaises(ValueError):
+                mesh.set_indices([0, -1, 2])
+            with self.assertRaises(ValueError):
+                mesh.set_positions([0.0, 1.0])
+
+    def test_settings_reject_bad_values_and_stay_unchanged(self):
+        with raps.Settings(alpha=2.0) as settings:
+            with self.assertRaises(raps.Error) as caught:
+                settings.alpha = -1.0
+            self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+            self.assertIn("alpha", caught.exception.message)
+            self.assertEqual(settings.alpha, 2.0)
+            with self.assertRaises(raps.Error):
+                settings.iterations = 0
+            self.assertEqual(settings.iterations, 1)
+        with self.assertRaises(TypeError):
+            raps.Settings(no_such_parameter=1)
+
+    def test_empty_result_cannot_be_read(self):
+        with raps.Result() as result:
+            for read in (result.uvs, result.indices, result.vertex_remap, result.chart_ids,
+                         result.stats):
+                with self.assertRaises(raps.Error) as caught:
+                    read()
+                self.assertEqual(caught.exception.status, raps.Status.INVALID_OPERATION)
+
+
+class Handles(unittest.TestCase):
+    def test_close_twice_and_use_after_close(self):
+        for make in (raps.Mesh, raps.Settings, raps.Result):
+            handle = make()
+            handle.close()
+            handle.close()  # no double free
+            self.assertTrue(handle.closed)
+        with self.assertRaises(ValueError):
+            handle.vertex_count
+        mesh = raps.Mesh()
+        mesh.close()
+        with self.assertRaises(ValueError):
+            raps.parameterize(mesh)
+
+    def test_collected_without_close(self):
+        # Many handles left to the collector: each destroyed once (a double free or a leak of
+        # this size would show under ASan or valgrind; here it must at least not crash).
+        for _ in range(2000):
+            raps.Mesh([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)])
+            raps.Settings(alpha=3.0).clone()
+        gc.collect()
+
+    def test_settings_properties_and_clone(self):
+        settings = raps.Settings(weights="uniform", monitor=raps.Monitor.ANGLE, iterations=3,
+                                 iteration_mode=raps.IterationMode.REAPPLY, boundary="square")
+        copy = settings.clone()
+        settings.iterations = 7
+        self.assertEqual(copy.iterations, 3)
+        self.assertEqual(copy.weights, raps.Weights.UNIFORM)
+        self.assertEqual(copy.boundary, raps.Boundary.SQUARE)
+        self.assertEqual(copy.iteration_mode, raps.IterationMode.REAPPLY)
+        self.assertEqual(settings.as_dict()["iterations"], 7)
+        info = raps.Settings.param_info(raps.Param.ALPHA)
+        self.assertEqual(info.name, "alpha")
+        self.assertTrue(info.is_float)
+        self.assertEqual(info.default, 1.0)
+        self.assertEqual(copy.domain, raps.Domain.DISK)
+        settings.close()
+        copy.close()
+
+    def test_version(self):
+        self.assertEqual(raps.version()[0], 0)
+        self.assertEqual(raps.version_string(), "%d.%d.%d" % raps.version())
+
+    def test_plain_lists_are_accepted(self):
+        # Sequences in either shape, also when numpy is present.
+        ring = [(math.cos(k * math.pi / 3), math.sin(k * math.pi / 3), 0.0) for k in range(6)]
+        flat = [c for p in [(0.0, 0.0, 0.5)] + ring for c in p]
+        triangles = [i for k in range(6) for i in (0, 1 + k, 1 + (k + 1) % 6)]
+        with raps.Mesh(flat, triangles) as mesh:
+            uvs = rows(raps.parameterize(mesh).uvs())
+        self.assertAlmostEqual(uvs[0][0], 0.5, delta=1e-12)
+        self.assertAlmostEqual(uvs[0][1], 0.5, delta=1e-12)
+
+    def test_found_through_the_loader_path_too(self):
+        # Without RAPS_LIBRARY, the module asks the dynamic loader (LD_LIBRARY_PATH here).
+        env = dict(os.environ)
+        folder = os.path.dirname(os.path.abspath(raps.library_path))
+        env.pop("RAPS_LIBRARY", None)
+        env["LD_LIBRARY_PATH"] = folder
+        code = "import raps; print(raps.library_path, raps.version_string())"
+        output = subprocess.run([sys.executable, "-c", code], env=env, check=True,
+                                cwd=os.path.join(os.path.dirname(__file__), ".."),
+                                stdout=subprocess.PIPE, universal_newlines=True).stdout
+        self.assertIn(raps.version_string(), output)
+        # And an explicit RAPS_LIBRARY that does not load is an error, not a fallback.
+        env["RAPS_LIBRARY"] = os.path.join(folder, "no-such-libraps.so")
+        failed = subprocess.run([sys.executable, "-c", code], env=env,
+                                cwd=os.path.join(os.path.dirname(__file__), ".."),
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.assertNotEqual(failed.returncode, 0)
+        self.assertIn(b"no-such-libraps.so", failed.stderr)
+
+    def test_numpy_is_used_when_present(self):
+        with raps.Mesh(*icosahedron()[:1], [(0, 11, 5), (0, 5, 1), (0, 1, 7)]) as mesh:
+            self.assertEqual(mesh.triangle_count, 3)
+        if os.environ.get("RAPS_TEST_WITHOUT_NUMPY") == "1":
+            self.assertIsNone(raps.numpy)
+        else:
+            self.assertIsNotNone(raps.numpy)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,15 @@
+fn main() -> Result<(), raps::Error> {
+    // A hexagonal cap: one vertex raised above the middle of six on a circle.
+    let xyz = [
+        0.0, 0.0, 0.5, 1.0, 0.0, 0.0, 0.5, 0.866, 0.0, -0.5, 0.866, 0.0, //
+        -1.0, 0.0, 0.0, -0.5, -0.866, 0.0, 0.5, -0.866, 0.0,
+    ];
+    let indices = [0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5, 0, 5, 6, 0, 6, 1];
+    let mesh = raps::Mesh::from_f32(&xyz, &indices)?;
+    let mut settings = raps::Settings::new()?;
+    settings.set_monitor(raps::Monitor::AREA)?.set_alpha(1.0)?;
+    let map = raps::parameterize(&mesh, Some(&settings))?;
+    println!("uv of the top: {:?}", map.uvs()?[0]);
+    println!("flipped triangles: {}", map.stats()?.flipped_triangles);
+    Ok(())
+}
