@@ -69,6 +69,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
     pack_settings.padding = settings.atlas_padding;
+    pack_settings.threads = settings.threads;
     const PackResult packed = pack_charts(inputs, pack_settings);
     pack_timer.finish();
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include "parallel/parallel_for.h"
+
 namespace raps {
 namespace {
 
@@ -439,9 +441,11 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     std::vector<int> turn(count);
     int32_t used_width = 0, used_height = 0;
     const int32_t limit = static_cast<int32_t>(resolution);
+    // Charts, strip widths and layouts are independent: each runs on its own thread and writes
+    // only its own slot, so the result does not depend on the thread count.
     auto rasterise_all = [&](double at_scale, int32_t& widest) {
-        widest = 1;
-        for (size_t c = 0; c < count; ++c) {
+        std::vector<int32_t> narrow_side(count);
+        parallel_for(settings.threads, count, [&](size_t c) {
             BitImage raster;
             raster.resize(
                 static_cast<int32_t>(std::ceil(extent[c].x() * at_scale)) + 1 + 2 * padding,
@@ -459,8 +463,9 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
                 prepared[c].profiles[q] = make_profile(raster, padding);
                 if (q < 3) raster = rotate_quarter(raster);
             }
-            widest = std::max(widest, std::min(raster.width, raster.height));
-        }
+            narrow_side[c] = std::min(raster.width, raster.height);
+        });
+        widest = std::max(1, *std::max_element(narrow_side.begin(), narrow_side.end()));
     };
     struct Layout {
         double area;
@@ -486,18 +491,23 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         }
         std::sort(widths.begin(), widths.end());
         widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
-        std::vector<Layout> layouts;
-        for (int trial = 0; trial < 2 * static_cast<int>(widths.size()); ++trial) {
+        const size_t trials = 2 * widths.size();
+        std::vector<Layout> tried(trials);
+        std::vector<char> fits(trials, 0);
+        parallel_for(settings.threads, trials, [&](size_t trial) {
             std::vector<Eigen::Vector2i> at(count);
             std::vector<int> quarter(count);
             int32_t width = 0, height = 0;
             const int32_t strip = widths[trial / 2];
-            if (!pack_strip(prepared, order, strip, trial % 2 == 1, false, at, quarter, width,
-                            height) ||
-                std::max(width, height) > limit) {
-                continue;
-            }
-            layouts.push_back({static_cast<double>(width) * height, strip, trial % 2 == 1});
+            const bool waste = trial % 2 == 1;
+            fits[trial] =
+                pack_strip(prepared, order, strip, waste, false, at, quarter, width, height) &&
+                std::max(width, height) <= limit;
+            tried[trial] = {static_cast<double>(width) * height, strip, waste};
+        });
+        std::vector<Layout> layouts;
+        for (size_t trial = 0; trial < trials; ++trial) {
+            if (fits[trial]) layouts.push_back(tried[trial]);
         }
         std::sort(layouts.begin(), layouts.end(), [](const Layout& x, const Layout& y) {
             return x.area < y.area || (x.area == y.area && x.strip < y.strip);
@@ -539,24 +549,34 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     if (fitted_scale != scale) rasterise_all(fitted_scale, widest);
     scale = fitted_scale;
     const std::vector<Layout> fitted = skyline_layouts(widest);
-    // Holes under overhangs, for the two best layouts only (it is the slow part).
+    // Holes under overhangs, for the two best layouts only (it is the slow part); the
+    // skyline-only layout of the same strip is the fallback when filling holes overflows.
+    struct Candidate {
+        std::vector<Eigen::Vector2i> at;
+        std::vector<int> quarter;
+        int32_t width = 0, height = 0;
+    };
+    const size_t finalists = std::min<size_t>(fitted.size(), 2);
+    std::vector<Candidate> with_holes(finalists), skyline_only(finalists);
+    parallel_for(settings.threads, 2 * finalists, [&](size_t i) {
+        const Layout& layout = fitted[i / 2];
+        Candidate& candidate = i % 2 == 0 ? with_holes[i / 2] : skyline_only[i / 2];
+        candidate.at.resize(count);
+        candidate.quarter.resize(count);
+        pack_strip(prepared, order, layout.strip, layout.waste, i % 2 == 0, candidate.at,
+                   candidate.quarter, candidate.width, candidate.height);
+    });
     double best_area = std::numeric_limits<double>::max();
-    for (size_t k = 0; k < fitted.size() && k < 2; ++k) {
-        for (bool holes : {true, false}) {
-            std::vector<Eigen::Vector2i> at(count);
-            std::vector<int> quarter(count);
-            int32_t width = 0, height = 0;
-            pack_strip(prepared, order, fitted[k].strip, fitted[k].waste, holes, at, quarter, width,
-                       height);
-            const double area = static_cast<double>(width) * height;
-            if (std::max(width, height) <= limit && area < best_area) {
-                best_area = area;
-                placed = at;
-                turn = quarter;
-                used_width = width;
-                used_height = height;
-            }
-            if (holes) break;  // the skyline-only layout is only a fallback if holes overflow
+    for (size_t k = 0; k < finalists; ++k) {
+        const bool holes_fit = std::max(with_holes[k].width, with_holes[k].height) <= limit;
+        const Candidate& candidate = holes_fit ? with_holes[k] : skyline_only[k];
+        const double area = static_cast<double>(candidate.width) * candidate.height;
+        if (std::max(candidate.width, candidate.height) <= limit && area < best_area) {
+            best_area = area;
+            placed = candidate.at;
+            turn = candidate.quarter;
+            used_width = candidate.width;
+            used_height = candidate.height;
         }
     }
 

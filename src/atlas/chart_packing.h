@@ -27,6 +27,7 @@ struct PackInput {
 struct PackSettings {
     int32_t resolution = 1024;  // texels per side of the square
     int32_t padding = 2;        // texels between charts
+    int threads = 1;            // for rasterising charts and trying layouts; 0: all cores
 };
 
 struct PackResult {
