@@ -515,6 +515,27 @@ BakeResult bake(const Asset& asset, const BakeOptions& options) {
         result.preview.push_back(std::move(preview));
     }
 
+    size_t dropped = 0, continuity = 0;
+    for (const PrimitiveReport& p : result.primitives) {
+        dropped += p.tangents_dropped;
+        continuity += p.texcoord_sets.size() > 1;
+    }
+    if (dropped) {
+        result.notes.push_back(
+            "TANGENT dropped on " + std::to_string(dropped) +
+            " primitive(s): tangents follow the normal map's uv set, which was rewritten, and no "
+            "MikkTSpace implementation is packaged in Debian; renderers generate MikkTSpace "
+            "tangents when TANGENT is absent (glTF 2.0, 3.7.2.1)");
+    }
+    if (continuity) {
+        result.notes.push_back(std::to_string(continuity) + " primitive(s) lacked lower " +
+                               "TEXCOORD sets; they hold the new uvs too (glTF's continuity rule)");
+    }
+    if (options.texcoord > 0) {
+        result.notes.push_back(set_name +
+                               " is referenced by no material yet: gltfpack drops such "
+                               "sets unless run with -kv");
+    }
     return result;
 }
 

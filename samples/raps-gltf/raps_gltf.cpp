@@ -448,10 +448,13 @@ int run(int argc, char** argv) {
             std::fprintf(stderr, "raps-gltf: %s: %s\n", options.inputs[0].c_str(),
                          r.json["error"]["message"].get<std::string>().c_str());
         } else if (r.status == 3) {
-            std::fprintf(stderr,
-                         "raps-gltf: %s: nothing to bake (no triangle primitive with "
-                         "positions); no output written\n",
-                         options.inputs[0].c_str());
+            std::string why;
+            for (const Json& skip : r.json["skipped"]) {
+                why += "; mesh " + skip["mesh"].dump() + " primitive " + skip["primitive"].dump() +
+                       ": " + skip["reason"].get<std::string>();
+            }
+            std::fprintf(stderr, "raps-gltf: %s: nothing to bake, no output written%s\n",
+                         options.inputs[0].c_str(), why.c_str());
         }
         if (!options.report.empty()) write_json_file(options.report, r.json);
         return r.status;
