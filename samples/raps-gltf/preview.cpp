@@ -179,6 +179,7 @@ void draw_layouts(Canvas& canvas, int size, const BakeResult& bake) {
     const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
     const int rows = static_cast<int>((n + columns - 1) / columns);
     const int tile = size / std::max(columns, rows);
+    const double top = (size - rows * tile) / 2.0;  // centre the tiles' rows vertically
     const std::array<double, 3> frame{0.6, 0.6, 0.6}, outline{0.1, 0.1, 0.15};
     for (size_t i = 0; i < n; ++i) {
         const PreviewGeometry& g = bake.preview[i];
@@ -186,7 +187,7 @@ void draw_layouts(Canvas& canvas, int size, const BakeResult& bake) {
         const double aspect = g.atlas_height ? double(g.atlas_width) / g.atlas_height : 1.0;
         const double span = tile - 2 * margin;
         const double w = aspect >= 1 ? span : span * aspect, h = aspect >= 1 ? span / aspect : span;
-        const double ox = (i % columns) * tile + margin, oy = (i / columns) * tile + margin;
+        const double ox = (i % columns) * tile + margin, oy = top + (i / columns) * tile + margin;
         canvas.fill_rect(int(ox), int(oy), int(ox + w), int(oy + h), {0.97, 0.97, 0.97});
         canvas.line(ox, oy, ox + w, oy, frame);
         canvas.line(ox, oy + h, ox + w, oy + h, frame);
