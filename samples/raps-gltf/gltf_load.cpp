@@ -15,6 +15,7 @@ namespace {
 // strides and counts fits in 64 bits without a check of its own.
 constexpr uint64_t kMaxOffset = uint64_t(1) << 40;
 constexpr uint64_t kMaxCount = (uint64_t(1) << 31) - 1;
+constexpr uint64_t kMaxAccessorBytes = uint64_t(1) << 31;
 
 const Json* member(const Json& object, const char* key) {
     const auto it = object.find(key);
@@ -193,6 +194,13 @@ void check_document(const Json& doc, const std::string& folder, const GlbParts* 
                                             std::to_string(component_type));
         }
         const uint64_t count = get_uint(a, "count", what, true, 0, 1, kMaxCount);
+        // Reading materialises count elements (zeros without a bufferView, or sparse): bound
+        // that memory, since a count alone costs the file nothing.
+        if (count * element > kMaxAccessorBytes) {
+            throw GltfError("accessor", what + ": " + std::to_string(count) + " elements of " +
+                                            std::to_string(element) + " bytes exceed " +
+                                            std::to_string(kMaxAccessorBytes) + " bytes");
+        }
         if (const Json* normalized = member(a, "normalized");
             normalized && !normalized->is_boolean()) {
             throw GltfError("json", what + ": 'normalized' is not a boolean");

@@ -296,6 +296,14 @@ class RapsGltfTest(unittest.TestCase):
             rc, out, err = run(path, os.path.join(self.tmp, 'o.glb'))
             self.assertEqual(rc, 1, uri)
             self.assertIn(message, err, uri)
+        # A count alone costs the file nothing: an accessor of 2^31 - 1 zeros is refused unread.
+        path = os.path.join(self.tmp, 'zeros.gltf')
+        write_asset(path, [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                    extra=lambda d: d['accessors'].append({'componentType': 5126, 'type': 'VEC3',
+                                                           'count': 2**31 - 1}))
+        rc, out, err = run(path, os.path.join(self.tmp, 'o.glb'))
+        self.assertEqual(rc, 1)
+        self.assertIn('accessor 1: 2147483647 elements of 12 bytes exceed', err)
         self.assertFalse(os.path.exists(os.path.join(self.tmp, 'o.glb')))
 
     def test_existing_set_needs_overwrite(self):
