@@ -1,0 +1,89 @@
+// The rewrite: new texture coordinates for every triangle primitive of an asset.
+//
+// Per group of primitives (a mesh, or one primitive with --group primitive): positions and
+// triangles (strips and fans converted, non-indexed ones numbered) go to raps's atlas domain,
+// which returns output vertices (each the copy of one input vertex, split along seams) and the
+// input triangles in input order. Every vertex attribute and every morph target delta is then
+// gathered through that vertex map into new accessors; the new TEXCOORD_n is FLOAT VEC2 with
+// v flipped to glTF's top-left origin. Accessors are never changed in place: the edited
+// primitives point at new accessors, so accessors shared with other meshes keep their data. A
+// mesh is processed once however many nodes use it, and meshes whose primitives are defined
+// alike (same accessors) share one result.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gltf_load.h"
+#include "raps.h"
+
+namespace raps_gltf {
+
+struct BakeOptions {
+    int texcoord = 0;                         // TEXCOORD_<texcoord> is written
+    bool overwrite = false;                   // replace a set the asset already has
+    bool group_by_mesh = true;                // one atlas per mesh (else one per primitive)
+    const raps_settings* settings = nullptr;  // the library's settings (domain set to atlas here)
+    // Called from the library's progress callback: a label ("mesh 2/5 'wheels'"), the phase and
+    // its fraction. Return false to cancel.
+    std::function<bool(const std::string&, raps_phase, double)> progress;
+};
+
+struct PrimitiveReport {
+    int mesh = 0, primitive = 0;
+    int input_mode = 4;
+    uint64_t input_vertices = 0, output_vertices = 0, triangles = 0;
+    int index_component_type = 0;
+    std::vector<std::string> attributes;  // as written, in order
+    std::vector<int> texcoord_sets;       // sets that now hold the new uvs (continuity copies)
+    bool tangents_dropped = false;
+    int targets = 0;
+};
+
+struct GroupReport {
+    int mesh = 0;
+    std::string mesh_name;
+    std::vector<int> primitives;
+    uint64_t input_vertices = 0, output_vertices = 0, triangles = 0;
+    raps_stats stats{};
+    double phase_ms[RAPS_PHASE_COUNT] = {};
+    double total_ms = 0;
+    int reused_from_mesh = -1;  // >= 0: the same primitives were baked for that mesh
+};
+
+struct SkipReport {
+    int mesh = 0, primitive = 0;
+    std::string reason;
+};
+
+// What the preview draws for one baked group: new vertices and triangles of all its primitives.
+struct PreviewGeometry {
+    int mesh = 0;
+    std::vector<float> positions;  // x, y, z per vertex
+    std::vector<float> uvs;        // u, v per vertex (glTF: v down)
+    std::vector<uint32_t> indices;
+    std::vector<uint32_t> chart_of_triangle;
+    uint64_t atlas_width = 0, atlas_height = 0;
+};
+
+struct BakeResult {
+    Json doc;  // the edited document
+    // Bytes of the bufferViews the bake appended: doc["bufferViews"][first_new_view + k].
+    size_t first_new_view = 0;
+    std::vector<std::vector<uint8_t>> new_views;
+    std::vector<PrimitiveReport> primitives;
+    std::vector<GroupReport> groups;
+    std::vector<SkipReport> skipped;
+    std::vector<std::string> notes;
+    std::vector<PreviewGeometry> preview;
+    std::vector<int> preview_of_group;  // per groups[i]: its preview (shared when reused)
+    uint64_t baked_triangles = 0;
+};
+
+// Throws GltfError ("texcoord_exists" without overwrite, "mesh"/"accessor" for bad geometry,
+// "raps" when the library fails).
+BakeResult bake(const Asset& asset, const BakeOptions& options);
+
+}  // namespace raps_gltf

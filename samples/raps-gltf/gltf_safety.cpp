@@ -1,0 +1,328 @@
+#include "gltf_safety.h"
+
+#include <sys/stat.h>
+
+#include <climits>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+#include "gltf_error.h"
+
+namespace raps_gltf {
+
+namespace {
+
+uint32_t read_u32(const std::vector<uint8_t>& b, size_t at) {
+    return uint32_t(b[at]) | (uint32_t(b[at + 1]) << 8) | (uint32_t(b[at + 2]) << 16) |
+           (uint32_t(b[at + 3]) << 24);
+}
+
+constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A;
+constexpr uint32_t kChunkBin = 0x004E4942;
+
+std::string real_path(const std::string& path) {
+    std::unique_ptr<char, decltype(&std::free)> resolved(realpath(path.c_str(), nullptr),
+                                                         &std::free);
+    return resolved ? std::string(resolved.get()) : std::string();
+}
+
+bool inside(const std::string& folder, const std::string& real) {
+    if (real.empty()) return false;
+    const std::string prefix = folder == "/" ? folder : folder + "/";
+    return real.size() > prefix.size() && real.compare(0, prefix.size(), prefix) == 0;
+}
+
+bool is_regular_file(const std::string& path) {
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+int hex_value(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+int base64_value(unsigned char c) {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    if (c == '+') return 62;
+    if (c == '/') return 63;
+    return -1;
+}
+
+// RFC 2045 token characters, for the media type and its parameters.
+bool is_token(const std::string& s) {
+    if (s.empty()) return false;
+    for (unsigned char c : s) {
+        if (c <= 0x20 || c >= 0x7f || std::strchr("()<>@,;:\\\"/[]?=", c)) return false;
+    }
+    return true;
+}
+
+// tinygltf's callbacks get absolute paths it built by joining its search folders with the uri;
+// they accept a path only when its real path is a regular file inside the asset's folder.
+bool fs_file_exists(const std::string& path, void* user) {
+    const std::string& folder = *static_cast<const std::string*>(user);
+    const std::string real = real_path(path);
+    return inside(folder, real) && is_regular_file(real);
+}
+
+std::string fs_expand(const std::string& path, void*) {
+    return path;
+}
+
+bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+             void* user) {
+    const std::string& folder = *static_cast<const std::string*>(user);
+    const std::string real = real_path(path);
+    if (!inside(folder, real)) {
+        if (err) *err += "refused to open " + path + ": outside the asset's folder\n";
+        return false;
+    }
+    try {
+        *out = read_file(real, kMaxFileBytes);
+    } catch (const std::exception& e) {
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+    return true;
+}
+
+bool fs_write(std::string* err, const std::string& path, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "raps-gltf never lets tinygltf write files (" + path + ")\n";
+    return false;
+}
+
+}  // namespace
+
+bool looks_like_glb(const std::vector<uint8_t>& bytes) {
+    return bytes.size() >= 4 && read_u32(bytes, 0) == kGlbMagic;
+}
+
+GlbParts split_glb(const std::vector<uint8_t>& bytes) {
+    auto fail = [](const std::string& what) { throw GltfError("glb", "invalid GLB: " + what); };
+    if (bytes.size() < 12) fail("the file is shorter than the 12-byte header");
+    if (read_u32(bytes, 0) != kGlbMagic) fail("no 'glTF' magic");
+    if (read_u32(bytes, 4) != 2)
+        fail("container version " + std::to_string(read_u32(bytes, 4)) + " (only 2 is glTF 2.0)");
+    const uint64_t declared = read_u32(bytes, 8);
+    if (declared != bytes.size()) {
+        fail("the header declares " + std::to_string(declared) + " bytes but the file has " +
+             std::to_string(bytes.size()) +
+             (declared > bytes.size() ? " (truncated)" : " (trailing bytes)"));
+    }
+    GlbParts parts;
+    size_t at = 12;
+    int index = 0;
+    while (at < bytes.size()) {
+        if (bytes.size() - at < 8) fail("chunk " + std::to_string(index) + " header is cut off");
+        const uint64_t length = read_u32(bytes, at);
+        const uint32_t type = read_u32(bytes, at + 4);
+        at += 8;
+        if (length > bytes.size() - at) {
+            fail("chunk " + std::to_string(index) + " declares " + std::to_string(length) +
+                 " bytes but only " + std::to_string(bytes.size() - at) +
+                 " remain in the file (chunk length too big or data truncated)");
+        }
+        if (index == 0) {
+            if (type != kChunkJson) fail("the first chunk is not JSON");
+            if (length == 0) fail("the JSON chunk is empty");
+            parts.json_offset = at;
+            parts.json_size = length;
+        } else if (type == kChunkJson) {
+            fail("a second JSON chunk");
+        } else if (type == kChunkBin) {
+            if (index != 1) fail("the BIN chunk is not the second chunk");
+            parts.has_bin = true;
+            parts.bin_offset = at;
+            parts.bin_size = length;
+        }  // other chunk types are skipped, as the GLB specification asks
+        at += length;
+        ++index;
+    }
+    if (index == 0) fail("no JSON chunk");
+    return parts;
+}
+
+void check_json_depth(const char* text, size_t size, int max_depth) {
+    int depth = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < size; ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') {
+                ++i;  // the escaped character cannot end the string
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > max_depth) {
+                throw GltfError("json", "JSON nests deeper than " + std::to_string(max_depth) +
+                                            " levels (at byte " + std::to_string(i) +
+                                            "); refused before parsing");
+            }
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+std::vector<uint8_t> read_file(const std::string& path, uint64_t max_bytes) {
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0) throw GltfError("io", "cannot open " + path);
+    if (!S_ISREG(st.st_mode)) throw GltfError("io", path + " is not a regular file");
+    if (static_cast<uint64_t>(st.st_size) > max_bytes) {
+        throw GltfError("io", path + " is larger than " + std::to_string(max_bytes) + " bytes");
+    }
+    std::unique_ptr<FILE, decltype(&std::fclose)> file(std::fopen(path.c_str(), "rb"),
+                                                       &std::fclose);
+    if (!file) throw GltfError("io", "cannot open " + path);
+    std::vector<uint8_t> bytes(static_cast<size_t>(st.st_size));
+    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
+        throw GltfError("io", "cannot read " + path);
+    }
+    return bytes;
+}
+
+std::string real_folder_of(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+    const std::string real = real_path(folder);
+    if (real.empty()) throw GltfError("io", "cannot resolve the folder of " + path);
+    return real;
+}
+
+bool is_data_uri(const std::string& uri) {
+    return uri.compare(0, 5, "data:") == 0;
+}
+
+DataUri decode_data_uri(const std::string& uri, const std::string& what) {
+    auto fail = [&](const std::string& why) {
+        throw GltfError("uri", what + ": malformed data uri (" + why + ")");
+    };
+    const size_t comma = uri.find(',');
+    if (comma == std::string::npos) fail("no ','");
+    const std::string header = uri.substr(5, comma - 5);
+    const std::string marker = ";base64";
+    if (header.size() < marker.size() ||
+        header.compare(header.size() - marker.size(), marker.size(), marker) != 0) {
+        fail("glTF data uris must be ;base64");
+    }
+    DataUri out;
+    const std::string media = header.substr(0, header.size() - marker.size());
+    if (!media.empty()) {
+        // type/subtype, then ;name=value parameters, all tokens.
+        size_t start = 0;
+        bool first = true;
+        while (true) {
+            const size_t end = media.find(';', start);
+            const std::string part =
+                media.substr(start, end == std::string::npos ? std::string::npos : end - start);
+            if (first) {
+                const size_t slash = part.find('/');
+                if (slash == std::string::npos || !is_token(part.substr(0, slash)) ||
+                    !is_token(part.substr(slash + 1))) {
+                    fail("media type '" + part + "'");
+                }
+                out.mime = part;
+                first = false;
+            } else {
+                const size_t eq = part.find('=');
+                if (eq == std::string::npos || !is_token(part.substr(0, eq)) ||
+                    part.size() == eq + 1) {
+                    fail("parameter '" + part + "'");
+                }
+            }
+            if (end == std::string::npos) break;
+            start = end + 1;
+        }
+    }
+    const size_t begin = comma + 1;
+    size_t length = uri.size() - begin;
+    size_t padding = 0;
+    while (length > 0 && padding < 2 && uri[begin + length - 1] == '=') {
+        --length;
+        ++padding;
+    }
+    if (length % 4 == 1 || (padding > 0 && (length + padding) % 4 != 0)) {
+        fail("base64 length");
+    }
+    out.bytes.reserve(length / 4 * 3 + 2);
+    uint32_t accumulator = 0;
+    int bits = 0;
+    for (size_t i = 0; i < length; ++i) {
+        const int value = base64_value(static_cast<unsigned char>(uri[begin + i]));
+        if (value < 0) fail("'" + std::string(1, uri[begin + i]) + "' is not base64");
+        accumulator = (accumulator << 6) | uint32_t(value);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            out.bytes.push_back(static_cast<uint8_t>(accumulator >> bits));
+            accumulator &= (1u << bits) - 1;
+        }
+    }
+    return out;
+}
+
+std::string resolve_inside(const std::string& folder, const std::string& uri,
+                           const std::string& what) {
+    auto refuse = [&](const std::string& why) {
+        throw GltfError("uri", what + ": uri '" + uri + "' refused: " + why);
+    };
+    if (uri.empty()) refuse("empty");
+    // A scheme is letters, digits, + - . before the first ':' that comes before any '/'.
+    const size_t colon = uri.find(':');
+    if (colon != std::string::npos && colon < uri.find('/')) {
+        refuse("only relative paths inside the asset's folder are read (no scheme)");
+    }
+    std::string decoded;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%') {
+            const int hi = i + 2 < uri.size() ? hex_value(uri[i + 1]) : -1;
+            const int lo = i + 2 < uri.size() ? hex_value(uri[i + 2]) : -1;
+            if (hi < 0 || lo < 0) refuse("bad percent-encoding");
+            decoded += static_cast<char>(hi * 16 + lo);
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    if (decoded.find('\0') != std::string::npos) refuse("NUL byte");
+    if (decoded.find('\\') != std::string::npos) refuse("backslash");
+    if (decoded[0] == '/') refuse("absolute path");
+    size_t start = 0;
+    while (start <= decoded.size()) {
+        const size_t end = std::min(decoded.find('/', start), decoded.size());
+        if (decoded.compare(start, end - start, "..") == 0 && end - start == 2) {
+            refuse("'..' leaves the asset's folder");
+        }
+        start = end + 1;
+    }
+    const std::string joined = folder + "/" + decoded;
+    struct stat st;
+    if (lstat(joined.c_str(), &st) != 0) return "";
+    const std::string real = real_path(joined);
+    if (!inside(folder, real)) refuse("it resolves (through a link) outside the asset's folder");
+    if (!is_regular_file(real)) refuse("not a regular file");
+    return real;
+}
+
+tinygltf::FsCallbacks confined_fs_callbacks(const std::string* folder) {
+    tinygltf::FsCallbacks fs;
+    fs.FileExists = &fs_file_exists;
+    fs.ExpandFilePath = &fs_expand;
+    fs.ReadWholeFile = &fs_read;
+    fs.WriteWholeFile = &fs_write;
+    fs.user_data = const_cast<std::string*>(folder);
+    return fs;
+}
+
+}  // namespace raps_gltf

@@ -1,0 +1,64 @@
+// Checks that run before any glTF parser sees a byte: glTF files are untrusted, and Debian's
+// tinygltf 2.7 by itself follows uris out of the asset's folder (syoyo/tinygltf#373), reads image
+// bytes through a bufferView it never range-checks, and recurses through nested JSON without a
+// bound. Everything here refuses with a GltfError naming the problem; nothing here opens a file
+// outside the asset's folder.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+namespace raps_gltf {
+
+// Files larger than this are refused before they are read (GLB lengths are 32-bit anyway).
+constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;
+// JSON nesting deeper than this is refused before parsing; real glTF documents stay near 10.
+constexpr int kMaxJsonDepth = 100;
+
+// The parts of a GLB container, checked against the GLB 2.0 layout: 12-byte header with magic,
+// version 2 and a length equal to the file's size; a JSON chunk first; an optional BIN chunk
+// second; every chunk inside the file. Offsets are into the file's bytes.
+struct GlbParts {
+    size_t json_offset = 0, json_size = 0;
+    bool has_bin = false;
+    size_t bin_offset = 0, bin_size = 0;
+};
+bool looks_like_glb(const std::vector<uint8_t>& bytes);
+GlbParts split_glb(const std::vector<uint8_t>& bytes);
+
+// Refuses JSON text whose arrays and objects nest deeper than max_depth (strings are skipped,
+// escapes included), so no recursive parser or serializer downstream can run out of stack.
+void check_json_depth(const char* text, size_t size, int max_depth);
+
+// Reads a whole regular file of at most max_bytes. Throws GltfError("io", ...).
+std::vector<uint8_t> read_file(const std::string& path, uint64_t max_bytes);
+
+// The absolute, symlink-resolved folder of a file.
+std::string real_folder_of(const std::string& path);
+
+// A data: uri, checked strictly (RFC 2397 with ;base64, RFC 4648 alphabet and padding).
+bool is_data_uri(const std::string& uri);
+struct DataUri {
+    std::string mime;  // "" when the uri names none
+    std::vector<uint8_t> bytes;
+};
+DataUri decode_data_uri(const std::string& uri, const std::string& what);
+
+// Resolves a relative uri reference (percent-decoded) against the asset's real folder. Refuses
+// schemes (http:, file:, ...), absolute paths, drive letters, backslashes, `..` segments, NUL
+// bytes and anything whose real path (symlinks resolved) lies outside the folder; nothing is
+// opened. `what` names the referring object in messages ("buffer 0"). Returns the real path, or
+// "" when the file does not exist inside the folder (the caller decides whether that is an error).
+std::string resolve_inside(const std::string& folder, const std::string& uri,
+                           const std::string& what);
+
+// tinygltf file-system callbacks that only ever see files inside `*folder` (a real path that
+// must outlive the loader): FileExists answers false, and ReadWholeFile fails, for anything else,
+// WriteWholeFile always fails, and ExpandFilePath never expands.
+tinygltf::FsCallbacks confined_fs_callbacks(const std::string* folder);
+
+}  // namespace raps_gltf

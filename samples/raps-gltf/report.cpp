@@ -1,0 +1,158 @@
+#include "report.h"
+
+#include <cmath>
+
+namespace raps_gltf {
+
+namespace {
+
+const char* kPhaseNames[RAPS_PHASE_COUNT] = {"validate", "topology", "initial_map", "adapt",
+                                             "metrics",  "segment",  "pack"};
+
+const char* choice(raps_param param, int64_t value) {
+    switch (param) {
+        case RAPS_PARAM_WEIGHTS: {
+            static const char* names[] = {"mvc", "cotan", "uniform"};
+            return value >= 0 && value < 3 ? names[value] : "?";
+        }
+        case RAPS_PARAM_MONITOR: {
+            static const char* names[] = {"none", "area", "length", "angle"};
+            return value >= 0 && value < 4 ? names[value] : "?";
+        }
+        case RAPS_PARAM_ITERATION_MODE:
+            return value == RAPS_ITERATION_REAPPLY ? "reapply" : "accumulate";
+        default:
+            return "?";
+    }
+}
+
+}  // namespace
+
+Json json_number(double value) {
+    return std::isfinite(value) ? Json(value) : Json(nullptr);
+}
+
+Json settings_json(const raps_settings* settings, const BakeOptions& options) {
+    Json out = Json::object();
+    out["texcoord"] = options.texcoord;
+    out["overwrite"] = options.overwrite;
+    out["group"] = options.group_by_mesh ? "mesh" : "primitive";
+    const raps_param choices[] = {RAPS_PARAM_WEIGHTS, RAPS_PARAM_MONITOR,
+                                  RAPS_PARAM_ITERATION_MODE};
+    const raps_param numbers[] = {RAPS_PARAM_ALPHA,
+                                  RAPS_PARAM_ITERATIONS,
+                                  RAPS_PARAM_ATLAS_RESOLUTION,
+                                  RAPS_PARAM_ATLAS_PADDING,
+                                  RAPS_PARAM_WELD_TOLERANCE,
+                                  RAPS_PARAM_HARD_EDGE_ANGLE,
+                                  RAPS_PARAM_ATLAS_MAX_L2_STRETCH,
+                                  RAPS_PARAM_ATLAS_MAX_LINF_STRETCH,
+                                  RAPS_PARAM_MAX_TRIANGLES,
+                                  RAPS_PARAM_THREADS};
+    for (raps_param p : choices) {
+        const char* name = nullptr;
+        raps_param_info(p, &name, nullptr, nullptr, nullptr, nullptr);
+        int64_t value = 0;
+        raps_settings_get_int(settings, p, &value);
+        out[name] = choice(p, value);
+    }
+    for (raps_param p : numbers) {
+        const char* name = nullptr;
+        int32_t is_float = 0;
+        raps_param_info(p, &name, &is_float, nullptr, nullptr, nullptr);
+        if (is_float) {
+            double value = 0;
+            raps_settings_get_float(settings, p, &value);
+            out[name] = json_number(value);
+        } else {
+            int64_t value = 0;
+            raps_settings_get_int(settings, p, &value);
+            out[name] = value;
+        }
+    }
+    return out;
+}
+
+Json bake_json(const BakeResult& bake) {
+    Json groups = Json::array();
+    for (const GroupReport& g : bake.groups) {
+        Json j = Json::object();
+        j["mesh"] = g.mesh;
+        j["name"] = g.mesh_name;
+        j["primitives"] = g.primitives;
+        j["triangles"] = g.triangles;
+        j["input_vertices"] = g.input_vertices;
+        j["output_vertices"] = g.output_vertices;
+        j["charts"] = g.stats.chart_count;
+        j["atlas"] = {g.stats.atlas_width, g.stats.atlas_height};
+        j["utilization"] = json_number(g.stats.utilization);
+        j["distortion"] = {{"area_log_mean", json_number(g.stats.area_log_mean)},
+                           {"area_max", json_number(g.stats.area_max)},
+                           {"angle_mean_deg", json_number(g.stats.angle_mean_deg)},
+                           {"angle_max_deg", json_number(g.stats.angle_max_deg)},
+                           {"stretch_l2", json_number(g.stats.stretch_l2)},
+                           {"stretch_linf", json_number(g.stats.stretch_linf)},
+                           {"flipped_triangles", g.stats.flipped_triangles},
+                           {"zero_area_triangles", g.stats.zero_area_triangles}};
+        if (g.reused_from_mesh >= 0) {
+            j["reused_from_mesh"] = g.reused_from_mesh;
+        } else {
+            Json times = Json::object();
+            for (int p = 0; p < RAPS_PHASE_COUNT; ++p)
+                times[kPhaseNames[p]] = json_number(g.phase_ms[p]);
+            times["total"] = json_number(g.total_ms);
+            j["time_ms"] = times;
+        }
+        groups.push_back(j);
+    }
+    Json primitives = Json::array();
+    for (const PrimitiveReport& p : bake.primitives) {
+        static const char* modes[] = {"points",    "lines",          "line_loop",   "line_strip",
+                                      "triangles", "triangle_strip", "triangle_fan"};
+        Json j = Json::object();
+        j["mesh"] = p.mesh;
+        j["primitive"] = p.primitive;
+        j["input_mode"] = modes[p.input_mode];
+        j["triangles"] = p.triangles;
+        j["input_vertices"] = p.input_vertices;
+        j["output_vertices"] = p.output_vertices;
+        j["indices"] = p.index_component_type == 5125 ? "uint32" : "uint16";
+        j["attributes"] = p.attributes;
+        j["texcoord_sets"] = p.texcoord_sets;
+        j["morph_targets"] = p.targets;
+        j["tangents"] = p.tangents_dropped ? "dropped" : "kept";
+        primitives.push_back(j);
+    }
+    Json skipped = Json::array();
+    for (const SkipReport& s : bake.skipped) {
+        skipped.push_back({{"mesh", s.mesh}, {"primitive", s.primitive}, {"reason", s.reason}});
+    }
+    Json out = Json::object();
+    out["baked"] = {{"groups", bake.groups.size()},
+                    {"primitives", bake.primitives.size()},
+                    {"triangles", bake.baked_triangles}};
+    out["groups"] = groups;
+    out["primitives"] = primitives;
+    out["skipped"] = skipped;
+    out["notes"] = bake.notes;
+    return out;
+}
+
+Json output_json(const WriteReport& write) {
+    Json out = Json::object();
+    out["files"] = write.files;
+    out["bytes"] = write.bytes;
+    out["unused_data_removed"] = write.pruned;
+    if (write.pruned) {
+        out["removed_accessors"] = write.removed_accessors;
+        out["removed_buffer_views"] = write.removed_buffer_views;
+    } else {
+        out["kept_unused_data_because"] = write.kept_unused_because;
+    }
+    out["repaired_buffer_views"] = write.repaired_buffer_views;
+    out["embedded_images"] = write.embedded_images;
+    out["copied_images"] = write.copied_images;
+    return out;
+}
+
+}  // namespace raps_gltf
