@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -222,6 +223,48 @@ void remove_entries(Json& doc, const char* array, const std::set<uint64_t>& remo
     for_each(doc, [&](Json& v) { v = new_index.at(v.get<uint64_t>()); });
 }
 
+// A .gltf output's buffer file is named after its content, OUT.<16 hex digits>.bin. The .gltf
+// and its .bin are two files renamed one after the other; with a fixed name, a process killed
+// between the two renames would leave the old .gltf reading a new buffer of another layout.
+// Named by content, the old .gltf keeps its own .bin until the new .gltf has replaced it, and
+// that old .bin is removed only then.
+std::string content_addressed_bin(const std::string& stem, const std::vector<uint8_t>& bytes) {
+    uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a, 64 bits
+    for (uint8_t b : bytes) {
+        hash ^= b;
+        hash *= 0x100000001b3ull;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
+    return stem + "." + hex + ".bin";
+}
+
+// The buffer file that an earlier output at `main_path` names, when it is one this tool wrote
+// (stem.<16 hex digits>.bin); empty otherwise. A plain search of the old file's text: it may be
+// anything, and it is not parsed.
+std::string earlier_bin(const std::string& main_path, const std::string& stem) {
+    struct stat info;
+    if (stat(main_path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return {};
+    std::vector<uint8_t> bytes;
+    try {
+        bytes = read_file(main_path, kMaxFileBytes);
+    } catch (const GltfError&) {
+        return {};
+    }
+    const std::string text(bytes.begin(), bytes.end());
+    const std::string prefix = "\"" + stem + ".";
+    for (size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at + 1)) {
+        const std::string name = text.substr(at + 1, stem.size() + 1 + 16 + 4);
+        const std::string digits = name.substr(stem.size() + 1, 16);
+        if (name.size() == stem.size() + 21 && name.compare(name.size() - 4, 4, ".bin") == 0 &&
+            digits.find_first_not_of("0123456789abcdef") == std::string::npos &&
+            text.compare(at + 1 + name.size(), 1, "\"") == 0) {
+            return name;
+        }
+    }
+    return {};
+}
+
 }  // namespace
 
 bool extension_is_known(const std::string& name) {
@@ -418,13 +461,14 @@ WriteReport write_output(const Asset& asset, BakeResult& bake, const std::string
     first_buffer.erase("uri");
     first_buffer["byteLength"] = buffer.size();
     const std::string main_path = absolute_target(path);
-    std::string bin_name;
+    std::string bin_name, replaced_bin;
     if (!glb && !buffer.empty()) {
         if (options.embed) {
             first_buffer["uri"] = "data:application/octet-stream;base64," + base64(buffer);
         } else {
-            bin_name = base_name(path);
-            bin_name = bin_name.substr(0, bin_name.size() - 5) + ".bin";
+            const std::string stem = base_name(path).substr(0, base_name(path).size() - 5);
+            bin_name = content_addressed_bin(stem, buffer);
+            replaced_bin = earlier_bin(main_path, stem);
             first_buffer["uri"] = bin_name;
         }
     }
@@ -501,6 +545,10 @@ WriteReport write_output(const Asset& asset, BakeResult& bake, const std::string
     report.files.push_back(main_path);
     report.bytes += main.size();
     staged.commit();
+    if (!replaced_bin.empty() && replaced_bin != bin_name) {
+        const std::string stale = out_folder + "/" + replaced_bin;
+        if (!inputs.count(real_or_empty(stale))) unlink(stale.c_str());
+    }
     return report;
 }
 

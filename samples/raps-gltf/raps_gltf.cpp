@@ -58,7 +58,7 @@ options:
                              such an asset is refused)
   --group mesh|primitive     one atlas per mesh (default; primitives sharing a texture must
                              share an atlas) or one per primitive
-  --embed                    .gltf output: the buffer as a data uri instead of OUT.bin
+  --embed                    .gltf output: the buffer as a data uri instead of OUT.<hash>.bin
   --report FILE              also write the JSON to FILE
   --preview FILE.png         write a picture: the uv layout with chart outlines beside the model
                              rendered with a checker texture through the new uvs

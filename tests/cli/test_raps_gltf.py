@@ -477,12 +477,80 @@ class RapsGltfTest(unittest.TestCase):
         folder = os.path.join(self.tmp, 'duck')
         shutil.copytree(os.path.join(DATA, 'gltf', 'Duck'), folder)
         before = digest_tree(folder)
-        for target in ('Duck.gltf', 'Duck0.gltf'):  # the asset itself, then its .bin's name
-            rc, out, err = run(os.path.join(folder, 'Duck.gltf'), os.path.join(folder, target),
-                               '--overwrite')
-            self.assertEqual(rc, 1, target)
-            self.assertIn("one of the input's files", err)
+        rc, out, err = run(os.path.join(folder, 'Duck.gltf'), os.path.join(folder, 'Duck.gltf'),
+                           '--overwrite')
+        self.assertEqual(rc, 1)
+        self.assertIn("one of the input's files", err)
         self.assertEqual(before, digest_tree(folder))
+        # Beside the input, under the name of its buffer's stem: the buffer file is named by its
+        # content, so the input's Duck0.bin is never replaced.
+        self.bake(os.path.join(folder, 'Duck.gltf'), os.path.join(folder, 'Duck0.gltf'),
+                  '--overwrite')
+        after = digest_tree(folder)
+        self.assertEqual({k: v for k, v in after.items() if k in before}, before)
+
+    def test_sigkill_while_writing_leaves_the_old_output_or_the_complete_new_one(self):
+        """raps-gltf killed with SIGKILL at random moments of a run that replaces an earlier
+        output: the output path always holds the earlier file or the complete new one, byte for
+        byte, and a .gltf always names a buffer file holding its own buffer."""
+        import random
+        import signal
+        import time
+        src = os.path.join(DATA, 'gltf', 'CesiumMilkTruck', 'CesiumMilkTruck.gltf')
+        rng = random.Random(20261123)
+        for ext in ('.glb', '.gltf'):
+            ref_dir, out_dir = os.path.join(self.tmp, 'ref' + ext), os.path.join(self.tmp, 'out' + ext)
+            os.mkdir(ref_dir)
+            os.mkdir(out_dir)
+            # The complete new output (runs are deterministic), and an earlier, different one.
+            self.bake(src, os.path.join(ref_dir, 'truck' + ext), '--overwrite')
+            new_files = digest_tree(ref_dir)
+            started = time.monotonic()
+            self.bake(src, os.path.join(out_dir, 'truck' + ext), '--overwrite', '--resolution', '256')
+            duration = time.monotonic() - started
+            old_files = digest_tree(out_dir)
+            main = os.path.join(out_dir, 'truck' + ext)
+            new_main = new_files[os.path.join(ref_dir, 'truck' + ext)]
+            old_main = old_files[main]
+            self.assertNotEqual(old_main, new_main)
+            for _ in range(24):
+                delay = rng.uniform(0.3, 1.1) * duration
+                proc = subprocess.Popen([RAPS_GLTF, '--no-progress', src, main, '--overwrite'],
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                time.sleep(delay)
+                proc.send_signal(signal.SIGKILL)
+                proc.wait()
+                with open(main, 'rb') as fh:
+                    digest = hashlib.sha256(fh.read()).hexdigest()
+                self.assertIn(digest, (old_main, new_main), f'{ext}: killed after {delay:.3f} s')
+                outcome = 'new' if digest == new_main else 'old'
+                if ext == '.gltf':
+                    # Every file the present .gltf names is there with the content that goes
+                    # with it.
+                    doc = json.load(open(main))
+                    expected = new_files if outcome == 'new' else old_files
+                    folder = ref_dir if outcome == 'new' else out_dir
+                    for item in doc.get('buffers', []) + doc.get('images', []):
+                        if 'uri' not in item or item['uri'].startswith('data:'):
+                            continue
+                        with open(os.path.join(out_dir, item['uri']), 'rb') as fh:
+                            self.assertEqual(hashlib.sha256(fh.read()).hexdigest(),
+                                             expected[os.path.join(folder, item['uri'])], item['uri'])
+                if outcome == 'new':  # start again from the earlier output
+                    shutil.rmtree(out_dir)
+                    os.mkdir(out_dir)
+                    self.bake(src, main, '--overwrite', '--resolution', '256')
+            # A kill can leave a temporary (OUT.tmp-XXXXXX) beside the output, never anything else.
+            leftovers = [f for f in os.listdir(out_dir) if '.tmp-' not in f]
+            self.assertTrue(set(leftovers) <= {os.path.basename(f) for f in old_files} |
+                            {os.path.basename(f) for f in new_files}, leftovers)
+            # A run that completes replaces the earlier .bin instead of leaving it behind.
+            for f in os.listdir(out_dir):
+                if '.tmp-' in f:
+                    os.unlink(os.path.join(out_dir, f))
+            self.bake(src, main, '--overwrite')
+            self.assertEqual(sorted(os.listdir(out_dir)),
+                             sorted(os.path.basename(f) for f in new_files))
 
     def test_usage_errors_exit_2(self):
         src = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
