@@ -36,7 +36,10 @@ namespace Raps
         Cancelled = Native.RAPS_ERROR_CANCELLED,
         SolverFailed = Native.RAPS_ERROR_SOLVER_FAILED,
         InvalidOperation = Native.RAPS_ERROR_INVALID_OPERATION,
-        Internal = Native.RAPS_ERROR_INTERNAL
+        Internal = Native.RAPS_ERROR_INTERNAL,
+        /// <summary>Sphere domain: the mesh is not closed (the message counts its boundary
+        /// loops).</summary>
+        OpenMesh = Native.RAPS_ERROR_OPEN_MESH
     }
 
     public enum Param
@@ -50,6 +53,12 @@ namespace Raps
         Boundary = Native.RAPS_PARAM_BOUNDARY,
         MaxTriangles = Native.RAPS_PARAM_MAX_TRIANGLES,
         Threads = Native.RAPS_PARAM_THREADS,
+        SphereMethod = Native.RAPS_PARAM_SPHERE_METHOD,
+        SphereUv = Native.RAPS_PARAM_SPHERE_UV,
+        SphereDamping = Native.RAPS_PARAM_SPHERE_DAMPING,
+        SphereTolerance = Native.RAPS_PARAM_SPHERE_TOLERANCE,
+        SphereMaxSweeps = Native.RAPS_PARAM_SPHERE_MAX_SWEEPS,
+        SphereAlphaSteps = Native.RAPS_PARAM_SPHERE_ALPHA_STEPS,
         AtlasResolution = Native.RAPS_PARAM_ATLAS_RESOLUTION,
         AtlasPadding = Native.RAPS_PARAM_ATLAS_PADDING,
         WeldTolerance = Native.RAPS_PARAM_WELD_TOLERANCE,
@@ -63,10 +72,36 @@ namespace Raps
         /// <summary>A topological disk mapped into [0,1]^2 with its boundary on a convex
         /// shape; one output vertex per input vertex.</summary>
         Disk = Native.RAPS_DOMAIN_DISK,
+        /// <summary>A closed genus-0 mesh mapped bijectively onto the unit sphere: one output
+        /// vertex per input vertex, read with Result.GetSpherePoints; no uvs unless SphereUv is
+        /// SphereUv.Octahedral, which adds them and duplicates the cut's vertices.</summary>
+        Sphere = Native.RAPS_DOMAIN_SPHERE,
         /// <summary>Any triangle mesh, cut into charts packed into one texture atlas; output
         /// vertices are duplicated along seams (see Result.GetVertexRemap) and each output
         /// triangle, the input one in input order, has a chart (Result.GetChartIds).</summary>
         Atlas = Native.RAPS_DOMAIN_ATLAS
+    }
+
+    /// <summary>How the sphere domain computes its map.</summary>
+    public enum SphereMethod
+    {
+        /// <summary>Paper algorithm 7.1 as written: one thread, no safeguards; it may fold
+        /// triangles.</summary>
+        Literal = Native.RAPS_SPHERE_LITERAL,
+        /// <summary>The same relaxation made robust: a bijective initial map, fold-refusing
+        /// moves, Moebius centring, continuation in alpha. Never folds (the default).</summary>
+        Robust = Native.RAPS_SPHERE_ROBUST
+    }
+
+    /// <summary>Texture coordinates for the sphere domain.</summary>
+    public enum SphereUv
+    {
+        /// <summary>Sphere points only: the result has no uvs (the default).</summary>
+        None = Native.RAPS_SPHERE_UV_NONE,
+        /// <summary>Also unfold the sphere onto [0,1]^2 through the octahedron: one chart, the
+        /// cut's vertices duplicated (see Result.GetVertexRemap), no flipped uv
+        /// triangle.</summary>
+        Octahedral = Native.RAPS_SPHERE_UV_OCTAHEDRAL
     }
 
     public enum Weights
@@ -463,6 +498,53 @@ namespace Raps
             set { SetInt(Param.Threads, value); }
         }
 
+        /// <summary>Sphere: how the map is computed (Robust by default).</summary>
+        public SphereMethod SphereMethod
+        {
+            get { return (SphereMethod)GetInt(Param.SphereMethod); }
+            set { SetInt(Param.SphereMethod, (long)value); }
+        }
+
+        /// <summary>Sphere: whether to unfold the map into uvs (None by default: sphere points
+        /// only).</summary>
+        public SphereUv SphereUv
+        {
+            get { return (SphereUv)GetInt(Param.SphereUv); }
+            set { SetInt(Param.SphereUv, (long)value); }
+        }
+
+        /// <summary>Sphere relaxation: the fraction of the way to the weighted mean of its ring
+        /// that a vertex moves per sweep, in (0, 1].</summary>
+        public double SphereDamping
+        {
+            get { return GetFloat(Param.SphereDamping); }
+            set { SetFloat(Param.SphereDamping, value); }
+        }
+
+        /// <summary>Sphere relaxation: converged when the RMS move of one sweep (in damping
+        /// times mean edge length) is below this, in [1e-12, 1].</summary>
+        public double SphereTolerance
+        {
+            get { return GetFloat(Param.SphereTolerance); }
+            set { SetFloat(Param.SphereTolerance, value); }
+        }
+
+        /// <summary>Sphere relaxation: most sweeps of one relaxation; 0 = the method's
+        /// own.</summary>
+        public int SphereMaxSweeps
+        {
+            get { return (int)GetInt(Param.SphereMaxSweeps); }
+            set { SetInt(Param.SphereMaxSweeps, value); }
+        }
+
+        /// <summary>Robust sphere method: relaxations by which each adaptive iteration reaches
+        /// its exponent.</summary>
+        public int SphereAlphaSteps
+        {
+            get { return (int)GetInt(Param.SphereAlphaSteps); }
+            set { SetInt(Param.SphereAlphaSteps, value); }
+        }
+
         /// <summary>Atlas: texels on the atlas's longer side.</summary>
         public int AtlasResolution
         {
@@ -515,8 +597,9 @@ namespace Raps
 
     /// <summary>The map: per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes
     /// from, the output triangles and their charts, the statistics and the time of each
-    /// phase. Reading an empty result (after a failure) throws with
-    /// Status.InvalidOperation.</summary>
+    /// phase. A sphere map has a point on the unit sphere per output vertex instead, and uvs
+    /// too only with SphereUv.Octahedral. Reading an empty result (after a failure), or what
+    /// the result does not hold, throws with Status.InvalidOperation.</summary>
     public sealed class Result : IDisposable
     {
         private readonly ResultHandle handle;
@@ -558,6 +641,26 @@ namespace Raps
             return count;
         }
 
+        // The copy functions take a const result and store no message: say which of their
+        // failures this is.
+        private const string NoUvs =
+            "the result holds no uvs: a sphere map has them only with SphereUv.Octahedral (read " +
+            "its points with GetSpherePoints)";
+        private const string NoSpherePoints =
+            "the result holds no sphere points (only Domain.Sphere has them)";
+
+        private static void CheckCopy(int status, string missing, long count, long capacity,
+                                      string items)
+        {
+            if (status == Native.RAPS_OK) return;
+            if (status == Native.RAPS_ERROR_INVALID_OPERATION)
+                throw new RapsException(Status.InvalidOperation, missing);
+            if (status == Native.RAPS_ERROR_INVALID_ARGUMENT && capacity < count)
+                throw Interop.BadInput(count + " " + items + " do not fit in a buffer for " +
+                                       capacity);
+            throw new RapsException((Status)status, "");
+        }
+
         /// <summary>The uvs: u and v of each output vertex, 2 * VertexCount floats.</summary>
         public float[] GetUvs()
         {
@@ -570,11 +673,10 @@ namespace Raps
         public void CopyUvs(float[] destination)
         {
             if (destination == null) throw new ArgumentNullException("destination");
-            long count = RequireMap();
-            Interop.Check(Native.raps_result_copy_uvs_f32(handle, destination,
-                                                           Interop.Size(destination.Length / 2),
-                                                           UIntPtr.Zero),
-                          () => count + " uvs do not fit in " + destination.Length + " floats");
+            long count = RequireMap(), capacity = destination.Length / 2;
+            CheckCopy(Native.raps_result_copy_uvs_f32(handle, destination,
+                                                       Interop.Size(capacity), UIntPtr.Zero),
+                      NoUvs, count, capacity, "uvs");
         }
 
         /// <summary>The uvs in double precision.</summary>
@@ -582,9 +684,44 @@ namespace Raps
         {
             long count = RequireMap();
             var uvs = new double[2 * count];
-            Interop.Check(Native.raps_result_copy_uvs_f64(handle, uvs, Interop.Size(count),
-                                                           UIntPtr.Zero));
+            CheckCopy(Native.raps_result_copy_uvs_f64(handle, uvs, Interop.Size(count),
+                                                       UIntPtr.Zero),
+                      NoUvs, count, count, "uvs");
             return uvs;
+        }
+
+        /// <summary>Sphere domain: the point on the unit sphere of each output vertex, x, y, z,
+        /// 3 * VertexCount floats (with the octahedral unfold, a duplicated vertex has its
+        /// input vertex's point).</summary>
+        public float[] GetSpherePoints()
+        {
+            var points = new float[3 * RequireMap()];
+            CopySpherePoints(points);
+            return points;
+        }
+
+        /// <summary>Copies the sphere points into destination (at least 3 * VertexCount
+        /// long).</summary>
+        public void CopySpherePoints(float[] destination)
+        {
+            if (destination == null) throw new ArgumentNullException("destination");
+            long count = RequireMap(), capacity = destination.Length / 3;
+            CheckCopy(Native.raps_result_copy_sphere_points_f32(handle, destination,
+                                                                 Interop.Size(capacity),
+                                                                 UIntPtr.Zero),
+                      NoSpherePoints, count, capacity, "sphere points");
+        }
+
+        /// <summary>The sphere points in double precision.</summary>
+        public double[] GetSpherePointsDouble()
+        {
+            long count = RequireMap();
+            var points = new double[3 * count];
+            CheckCopy(Native.raps_result_copy_sphere_points_f64(handle, points,
+                                                                 Interop.Size(count),
+                                                                 UIntPtr.Zero),
+                      NoSpherePoints, count, count, "sphere points");
+            return points;
         }
 
         /// <summary>The output triangles: three indices into the output vertices each.</summary>

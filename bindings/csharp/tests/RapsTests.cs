@@ -63,6 +63,19 @@ static class RapsTests
         };
     }
 
+    // An open mesh: a hexagonal cap, one vertex raised above the middle of six on a circle.
+    static Off FanDisk()
+    {
+        var xyz = new List<double> { 0, 0, 0.5 };
+        var indices = new List<uint>();
+        for (int k = 0; k < 6; k++)
+        {
+            xyz.AddRange(new[] { Math.Cos(k * Math.PI / 3), Math.Sin(k * Math.PI / 3), 0.0 });
+            indices.AddRange(new[] { 0u, (uint)(1 + k), (uint)(1 + (k + 1) % 6) });
+        }
+        return new Off { Xyz = xyz.ToArray(), Indices = indices.ToArray() };
+    }
+
     static void Expect(bool condition, string what)
     {
         if (!condition) throw new Exception("expected " + what);
@@ -86,6 +99,53 @@ static class RapsTests
     {
         return (uv[2 * b] - uv[2 * a]) * (uv[2 * c + 1] - uv[2 * a + 1]) -
                (uv[2 * b + 1] - uv[2 * a + 1]) * (uv[2 * c] - uv[2 * a]);
+    }
+
+    // det[a, b, c] of three points on the sphere: positive when the triangle is
+    // counter-clockwise seen from outside.
+    static double Det(double[] p, uint a, uint b, uint c)
+    {
+        double ax = p[3 * a], ay = p[3 * a + 1], az = p[3 * a + 2];
+        double bx = p[3 * b], by = p[3 * b + 1], bz = p[3 * b + 2];
+        double cx = p[3 * c], cy = p[3 * c + 1], cz = p[3 * c + 2];
+        return ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+    }
+
+    // What the binding must hand over of a sphere map: one unit point (x, y, z) per vertex, and
+    // every triangle of the input counter-clockwise seen from outside on them.
+    static void ExpectSphereMap(Result result, Off input)
+    {
+        int n = input.Xyz.Length / 3;
+        double[] points = result.GetSpherePointsDouble();
+        Expect(points.Length == 3 * n, "a point per vertex");
+        for (int i = 0; i < n; i++)
+        {
+            double norm = Math.Sqrt(points[3 * i] * points[3 * i] +
+                                    points[3 * i + 1] * points[3 * i + 1] +
+                                    points[3 * i + 2] * points[3 * i + 2]);
+            Expect(Math.Abs(norm - 1) <= 1e-9, "point " + i + " of unit norm, got " + norm);
+        }
+        for (int t = 0; t < input.Indices.Length; t += 3)
+            Expect(Det(points, input.Indices[t], input.Indices[t + 1], input.Indices[t + 2]) > 0,
+                   "triangle " + t / 3 + " counter-clockwise on the sphere");
+        float[] single = result.GetSpherePoints();
+        for (int i = 0; i < points.Length; i++)
+            Expect(Math.Abs(single[i] - points[i]) < 1e-6, "float and double points agree");
+        Stats stats = result.GetStats();
+        Expect(stats.FlippedTriangles == 0, "no flipped triangle");
+        Expect(stats.RelaxationSweeps > 0, "relaxation sweeps counted");
+        Expect(stats.VertexCount == (ulong)n && stats.ChartCount == 1 && stats.Utilization == 0,
+               "one chart, one output vertex per input vertex, no uv area");
+        Expect(result.GetIndices().SequenceEqual(input.Indices), "the input triangles");
+        Expect(result.GetVertexRemap().SequenceEqual(Enumerable.Range(0, n).Select(i => (uint)i)),
+               "the identity remap");
+    }
+
+    static Settings SphereSettings()
+    {
+        var settings = new Settings { Domain = Domain.Sphere };
+        Expect(settings.Domain == Domain.Sphere, "the sphere domain set");
+        return settings;
     }
 
     // The phases of a run's progress calls in the order entered, each once: a phase entered
@@ -489,6 +549,273 @@ static class RapsTests
         }
     }
 
+    static void SphereMapOfAnIcosahedronIsBijective()
+    {
+        Off ico = Icosahedron();
+        using (var mesh = new Mesh(ico.Xyz, ico.Indices))
+        using (var settings = SphereSettings())
+        using (var result = Library.Parameterize(mesh, settings))
+        {
+            Expect(settings.SphereMethod == SphereMethod.Robust &&
+                       settings.SphereUv == SphereUv.None,
+                   "the robust method without uvs by default");
+            ExpectSphereMap(result, ico);
+            // The area monitor's iteration reached through 4 relaxations (SphereAlphaSteps).
+            Expect(result.GetStats().AdaptiveSolves == 4, "4 adaptive relaxations");
+            // Without the octahedral unfold a sphere map has no uvs, and says so.
+            RapsException error = ExpectFailure(Status.InvalidOperation, () => result.GetUvs());
+            Expect(error.Detail.Contains("Octahedral") && error.Detail.Contains("GetSpherePoints"),
+                   "the message points to the unfold and the points: " + error.Detail);
+            ExpectFailure(Status.InvalidOperation, () => result.GetUvsDouble());
+            ExpectFailure(Status.InvalidArgument, () => result.CopySpherePoints(new float[35]));
+        }
+        // The literal method starts from the Gauss map, which the symmetric icosahedron keeps:
+        // vertex i's point is its position normalised, x, y, z in that order.
+        using (var mesh = new Mesh(ico.Xyz, ico.Indices))
+        using (var settings = new Settings
+               {
+                   Domain = Domain.Sphere, SphereMethod = SphereMethod.Literal,
+                   Monitor = ErrorMonitor.None
+               })
+        using (var result = Library.Parameterize(mesh, settings))
+        {
+            ExpectSphereMap(result, ico);
+            double[] points = result.GetSpherePointsDouble();
+            for (int i = 0; i < 12; i++)
+            {
+                double norm = Math.Sqrt(ico.Xyz[3 * i] * ico.Xyz[3 * i] +
+                                        ico.Xyz[3 * i + 1] * ico.Xyz[3 * i + 1] +
+                                        ico.Xyz[3 * i + 2] * ico.Xyz[3 * i + 2]);
+                for (int c = 0; c < 3; c++)
+                    Expect(Math.Abs(points[3 * i + c] - ico.Xyz[3 * i + c] / norm) < 1e-9,
+                           "vertex " + i + " at its normalised position");
+            }
+        }
+    }
+
+    static void SphereMapOfASharedMeshEquidistributesArea()
+    {
+        Off bunny = ReadOff("meshes/bunny.off");
+        using (var mesh = new Mesh(bunny.Xyz, bunny.Indices))
+        using (var plain = new Settings { Domain = Domain.Sphere, Monitor = ErrorMonitor.None })
+        using (var adaptive = SphereSettings())
+        using (var first = Library.Parameterize(mesh, plain))
+        using (var second = Library.Parameterize(mesh, adaptive))
+        {
+            ExpectSphereMap(first, bunny);
+            ExpectSphereMap(second, bunny);
+            Expect(first.GetStats().AdaptiveSolves == 0, "no adaptive step with monitor None");
+            // Spherical area distortion, measured in tests/test_sphere.c: 1.638 -> 0.667.
+            double before = first.GetStats().AreaLogMean, after = second.GetStats().AreaLogMean;
+            Expect(after < 0.5 * before, "spherical area distortion " + before + " -> " + after);
+            Expect(second.PhaseMilliseconds(Phase.Adapt) > 0, "a timed adaptive phase");
+            // SphereMaxSweeps and SphereAlphaSteps reach the library: 2 adaptive relaxations,
+            // and at most 3 sweeps in each of the 3 relaxations.
+            using (var capped = new Settings
+                   {
+                       Domain = Domain.Sphere, SphereMaxSweeps = 3, SphereAlphaSteps = 2
+                   })
+            using (var result = Library.Parameterize(mesh, capped))
+            {
+                Stats stats = result.GetStats();
+                Expect(stats.AdaptiveSolves == 2, "2 adaptive relaxations, got " +
+                                                      stats.AdaptiveSolves);
+                Expect(stats.RelaxationSweeps > 0 && stats.RelaxationSweeps <= 9 &&
+                           second.GetStats().RelaxationSweeps > 9,
+                       "sweeps capped at 3 per relaxation, got " + stats.RelaxationSweeps);
+            }
+        }
+    }
+
+    static void OctahedralUnfoldGivesUvsInTheSquare()
+    {
+        foreach (Off input in new[] { Icosahedron(), ReadOff("meshes/bunny.off") })
+        {
+            int n = input.Xyz.Length / 3;
+            using (var mesh = new Mesh(input.Xyz, input.Indices))
+            using (var plain = SphereSettings())
+            using (var unfolded = new Settings
+                   {
+                       Domain = Domain.Sphere, SphereUv = SphereUv.Octahedral
+                   })
+            using (var sphere = Library.Parameterize(mesh, plain))
+            using (var result = Library.Parameterize(mesh, unfolded))
+            {
+                Expect(unfolded.SphereUv == SphereUv.Octahedral, "the octahedral unfold set");
+                long count = result.VertexCount;
+                // The cut's vertices are duplicated: more output vertices than input.
+                Expect(count > n, count + " output vertices for " + n);
+                float[] uv = result.GetUvs();
+                uint[] remap = result.GetVertexRemap();
+                uint[] indices = result.GetIndices();
+                double[] points = result.GetSpherePointsDouble();
+                double[] original = sphere.GetSpherePointsDouble();
+                Expect(uv.Length == 2 * count && remap.Length == count &&
+                           points.Length == 3 * count,
+                       "a uv, a remap and a point per output vertex");
+                Expect(uv.All(c => c >= 0 && c <= 1), "uvs in [0,1]^2");
+                Expect(indices.Length == input.Indices.Length, "the input's triangle count");
+                for (int i = 0; i < indices.Length; i++)
+                    Expect(remap[indices[i]] == input.Indices[i],
+                           "corner " + i + " remaps to the input triangle's vertex");
+                for (int t = 0; t < indices.Length; t += 3)
+                    Expect(SignedArea(uv, indices[t], indices[t + 1], indices[t + 2]) > 0,
+                           "uv triangle " + t / 3 + " counter-clockwise");
+                for (long o = 0; o < count; o++)
+                    for (int c = 0; c < 3; c++)
+                        Expect(points[3 * o + c] == original[3 * remap[o] + c],
+                               "output vertex " + o + " at its input vertex's sphere point");
+                Stats stats = result.GetStats();
+                Expect(stats.FlippedTriangles == 0 && stats.VertexCount == (ulong)count &&
+                           stats.RelaxationSweeps > 0 && stats.ChartCount == 1 &&
+                           stats.Utilization > 0 && stats.Utilization <= 1,
+                       "the statistics of one flip-free chart");
+            }
+        }
+    }
+
+    static void SphereRefusesAnOpenMesh()
+    {
+        Off fan = FanDisk();
+        using (var mesh = new Mesh(fan.Xyz, fan.Indices))
+        using (var settings = SphereSettings())
+        using (var result = new Result())
+        {
+            RapsException error = ExpectFailure(
+                Status.OpenMesh, () => Library.Parameterize(mesh, settings, result));
+            Expect(error.Detail.Contains("closed mesh") &&
+                       error.Detail.Contains("1 boundary loop"),
+                   "the message counts the loops: " + error.Detail);
+            Expect(error.StatusName == Library.StatusString(Status.OpenMesh) &&
+                       error.StatusName != "unknown status",
+                   "the status's name: " + error.StatusName);
+            Expect(result.VertexCount == 0, "an empty result");
+            ExpectFailure(Status.InvalidOperation, () => result.GetSpherePoints());
+            // The disk domain maps the same mesh; its result has uvs but no sphere points.
+            Library.Parameterize(mesh, null, result);
+            error = ExpectFailure(Status.InvalidOperation, () => result.GetSpherePointsDouble());
+            Expect(error.Detail.Contains("sphere points"), "a message: " + error.Detail);
+        }
+    }
+
+    static void SphereProgressReportsItsPhases()
+    {
+        Off bunny = ReadOff("meshes/bunny.off");
+        using (var mesh = new Mesh(bunny.Xyz, bunny.Indices))
+        using (var settings = new Settings { Domain = Domain.Sphere, Threads = 2 })
+        {
+            var phases = new List<Phase>();
+            int inside = 0, overlaps = 0;
+            bool fractionsInRange = true;
+            using (Library.Parameterize(mesh, settings, (phase, fraction) =>
+                   {
+                       if (Interlocked.Increment(ref inside) > 1)
+                           Interlocked.Increment(ref overlaps);
+                       phases.Add(phase);
+                       fractionsInRange &= fraction >= 0 && fraction <= 1;
+                       Thread.Sleep(1);  // lets another thread in, were it allowed
+                       Interlocked.Decrement(ref inside);
+                       return true;
+                   }))
+            {
+            }
+            // The disk domain's five phases: the initial map and its relaxation, then the
+            // adaptive relaxations.
+            var sphere = new[] { Phase.Validate, Phase.Topology, Phase.InitialMap, Phase.Adapt,
+                                 Phase.Metrics };
+            Expect(PhaseSequence(phases).SequenceEqual(sphere),
+                   "the sphere phases in order, got " + Show(PhaseSequence(phases)));
+            Expect(overlaps == 0, "no overlapping progress calls, got " + overlaps);
+            Expect(fractionsInRange, "fractions in [0, 1]");
+
+            using (var result = new Result())
+            {
+                ExpectFailure(Status.Cancelled, () => Library.Parameterize(
+                    mesh, settings, result, (phase, fraction) => phase < Phase.Adapt));
+                Expect(result.VertexCount == 0, "an empty result after cancelling");
+                Library.Parameterize(mesh, settings, result);
+                Expect(result.VertexCount == bunny.Xyz.Length / 3, "the handles still usable");
+            }
+        }
+    }
+
+    static void SphereSettingsRoundTrip()
+    {
+        // As raps_param_info reports them (src/c_api.cpp); (0, 1] has the smallest normal
+        // double as its lower bound.
+        var expected = new[]
+        {
+            new { Param = Param.SphereMethod, Name = "sphere_method", IsFloat = false,
+                  Min = 0.0, Max = 1.0, Default = 1.0 },
+            new { Param = Param.SphereUv, Name = "sphere_uv", IsFloat = false, Min = 0.0,
+                  Max = 1.0, Default = 0.0 },
+            new { Param = Param.SphereDamping, Name = "sphere_damping", IsFloat = true,
+                  Min = 2.2250738585072014e-308, Max = 1.0, Default = 1.0 },
+            new { Param = Param.SphereTolerance, Name = "sphere_tolerance", IsFloat = true,
+                  Min = 1e-12, Max = 1.0, Default = 1e-4 },
+            new { Param = Param.SphereMaxSweeps, Name = "sphere_max_sweeps", IsFloat = false,
+                  Min = 0.0, Max = 1e7, Default = 0.0 },
+            new { Param = Param.SphereAlphaSteps, Name = "sphere_alpha_steps", IsFloat = false,
+                  Min = 1.0, Max = 100.0, Default = 4.0 },
+        };
+        using (var defaults = new Settings())
+        {
+            foreach (var facts in expected)
+            {
+                ParamInfo info = Settings.GetParamInfo(facts.Param);
+                Expect(info.Name == facts.Name && info.IsFloat == facts.IsFloat &&
+                           info.Min == facts.Min && info.Max == facts.Max &&
+                           info.Default == facts.Default,
+                       facts.Name + "'s facts");
+                double value = facts.IsFloat ? defaults.GetFloat(facts.Param)
+                                             : defaults.GetInt(facts.Param);
+                Expect(value == facts.Default, facts.Name + " holds its default");
+            }
+            Expect(defaults.SphereMethod == SphereMethod.Robust &&
+                       defaults.SphereUv == SphereUv.None && defaults.SphereDamping == 1 &&
+                       defaults.SphereTolerance == 1e-4 && defaults.SphereMaxSweeps == 0 &&
+                       defaults.SphereAlphaSteps == 4,
+                   "the properties read the defaults");
+            ParamInfo domain = Settings.GetParamInfo(Param.Domain);
+            Expect(domain.Min == (int)Domain.Disk && domain.Max == (int)Domain.Atlas &&
+                       (int)Domain.Disk < (int)Domain.Sphere &&
+                       (int)Domain.Sphere < (int)Domain.Atlas,
+                   "the sphere inside the domain's bounds");
+        }
+        using (var settings = new Settings
+               {
+                   Domain = Domain.Sphere, SphereMethod = SphereMethod.Literal,
+                   SphereUv = SphereUv.Octahedral, SphereDamping = 0.5, SphereTolerance = 1e-6,
+                   SphereMaxSweeps = 10000000, SphereAlphaSteps = 100
+               })
+        using (var copy = settings.Clone())
+        {
+            Expect(copy.Domain == Domain.Sphere && copy.SphereMethod == SphereMethod.Literal &&
+                       copy.SphereUv == SphereUv.Octahedral && copy.SphereDamping == 0.5 &&
+                       copy.SphereTolerance == 1e-6 && copy.SphereMaxSweeps == 10000000 &&
+                       copy.SphereAlphaSteps == 100,
+                   "the sphere parameters set and cloned");
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereMethod = (SphereMethod)2);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereUv = (SphereUv)2);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereDamping = 0);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereDamping = 1.5);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereTolerance = 1e-13);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereTolerance = 2);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereMaxSweeps = -1);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereMaxSweeps = 10000001);
+            ExpectFailure(Status.InvalidArgument, () => settings.SphereAlphaSteps = 0);
+            RapsException error =
+                ExpectFailure(Status.InvalidArgument, () => settings.SphereAlphaSteps = 101);
+            Expect(error.Detail.Contains("sphere_alpha_steps"), "the parameter in the message");
+            ExpectFailure(Status.InvalidArgument, () => settings.SetInt(Param.SphereDamping, 1));
+            Expect(settings.SphereMethod == SphereMethod.Literal &&
+                       settings.SphereUv == SphereUv.Octahedral &&
+                       settings.SphereDamping == 0.5 && settings.SphereTolerance == 1e-6 &&
+                       settings.SphereMaxSweeps == 10000000 && settings.SphereAlphaSteps == 100,
+                   "a failed setter changes nothing");
+        }
+    }
+
     static void DisposalIsSafe()
     {
         var mesh = new Mesh();
@@ -583,6 +910,18 @@ static class RapsTests
                                              AtlasProgressReportsItsPhases),
             new KeyValuePair<string, Action>("atlas settings round trip",
                                              AtlasSettingsRoundTrip),
+            new KeyValuePair<string, Action>("sphere map of an icosahedron is bijective",
+                                             SphereMapOfAnIcosahedronIsBijective),
+            new KeyValuePair<string, Action>("sphere map of a shared mesh equidistributes area",
+                                             SphereMapOfASharedMeshEquidistributesArea),
+            new KeyValuePair<string, Action>("octahedral unfold gives uvs in the square",
+                                             OctahedralUnfoldGivesUvsInTheSquare),
+            new KeyValuePair<string, Action>("sphere refuses an open mesh",
+                                             SphereRefusesAnOpenMesh),
+            new KeyValuePair<string, Action>("sphere progress reports its phases",
+                                             SphereProgressReportsItsPhases),
+            new KeyValuePair<string, Action>("sphere settings round trip",
+                                             SphereSettingsRoundTrip),
             new KeyValuePair<string, Action>("disposal is safe", DisposalIsSafe),
             new KeyValuePair<string, Action>("layout and version match the library",
                                              LayoutAndVersionMatchTheLibrary),

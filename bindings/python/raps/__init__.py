@@ -8,6 +8,9 @@ A thin, safe layer over libraps's C ABI (include/raps.h is the reference):
     result = raps.parameterize(mesh, settings)       # raises raps.Error on failure
     uv = result.uvs()                                # (n, 2) numpy array, or [(u, v), ...]
 
+    # A closed genus-0 mesh onto the unit sphere (uvs too with sphere_uv=SphereUv.OCTAHEDRAL):
+    points = raps.parameterize(closed, raps.Settings(domain=raps.Domain.SPHERE)).sphere_points()
+
 Handles (Mesh, Settings, Result) own their native object: close() or a `with` block frees it at
 once, and garbage collection frees it otherwise; either way exactly once. Errors raise
 raps.Error with the status, its name and the library's message.
@@ -35,8 +38,8 @@ except ImportError:  # plain sequences in, lists out
 
 __all__ = [
     "Boundary", "Domain", "Error", "IterationMode", "Mesh", "Monitor", "Param", "ParamInfo",
-    "Phase", "Result", "Settings", "Stats", "Status", "Weights", "parameterize", "version",
-    "version_string", "library_path",
+    "Phase", "Result", "Settings", "SphereMethod", "SphereUv", "Stats", "Status", "Weights",
+    "parameterize", "version", "version_string", "library_path",
 ]
 
 
@@ -106,6 +109,10 @@ Weights = _enum("Weights", "RAPS_WEIGHTS_")
 Monitor = _enum("Monitor", "RAPS_MONITOR_")
 IterationMode = _enum("IterationMode", "RAPS_ITERATION_")
 Boundary = _enum("Boundary", "RAPS_BOUNDARY_")
+# RAPS_SPHERE_* names the methods, RAPS_SPHERE_UV_* the uv options: one prefix inside the other.
+SphereUv = _enum("SphereUv", "RAPS_SPHERE_UV_")
+SphereMethod = _enum("SphereMethod", "RAPS_SPHERE_",
+                     skip=[name for name in vars(_native) if name.startswith("RAPS_SPHERE_UV_")])
 # RAPS_PHASE_COUNT is the number of phases, not a phase.
 Phase = _enum("Phase", "RAPS_PHASE_", skip=("RAPS_PHASE_COUNT",))
 
@@ -116,6 +123,8 @@ _PARAM_VALUES = {
     Param.MONITOR: Monitor,
     Param.ITERATION_MODE: IterationMode,
     Param.BOUNDARY: Boundary,
+    Param.SPHERE_METHOD: SphereMethod,
+    Param.SPHERE_UV: SphereUv,
 }
 
 
@@ -393,11 +402,24 @@ Stats = collections.namedtuple(
               if name not in ("struct_size", "reserved")])
 
 
+# The copy functions take a const result and store no message: say what the result lacks.
+_NO_MAP = "the result holds no map (parameterize failed or has not run)"
+_NO_UVS = ("the result holds no uvs: a sphere map has them only with "
+           "sphere_uv=SphereUv.OCTAHEDRAL (read its points with sphere_points())")
+_NO_SPHERE_POINTS = "the result holds no sphere points (only Domain.SPHERE has them)"
+
+
+def _is_single(dtype):
+    return str(dtype) in ("float32", "f4", "<f4") or dtype is ctypes.c_float or \
+        (numpy is not None and dtype is numpy.float32)
+
+
 class Result(_Handle):
     """The map: per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes from,
     the output triangles with their chart ids, the statistics and the time of each phase.
-    Filled by parameterize; reading an empty result (after a failure) raises
-    Error(Status.INVALID_OPERATION)."""
+    A sphere map has a point on the unit sphere per output vertex instead, and uvs too only
+    with sphere_uv=SphereUv.OCTAHEDRAL. Filled by parameterize; reading an empty result (after
+    a failure), or what the result does not hold, raises Error(Status.INVALID_OPERATION)."""
 
     def __init__(self):
         super().__init__(_lib.raps_result_create, _native.raps_result, _lib.raps_result_destroy)
@@ -414,31 +436,47 @@ class Result(_Handle):
     def triangle_count(self):
         return self.index_count // 3
 
-    def _copy(self, copy, ctype, count, *extra):
-        """Calls a raps_result_copy_* function into a fresh buffer of count values."""
-        # The copy functions take a const result and store no message: say what went wrong.
+    def _copy(self, copy, ctype, count, *extra, missing=_NO_MAP):
+        """Calls a raps_result_copy_* function into a fresh buffer of count values; missing is
+        the message when the result does not hold what it copies."""
         if self.vertex_count == 0:
-            raise Error(_native.RAPS_ERROR_INVALID_OPERATION,
-                        "the result holds no map (parameterize failed or has not run)")
+            raise Error(_native.RAPS_ERROR_INVALID_OPERATION, _NO_MAP)
         if numpy is not None:
-            array = numpy.empty(count, dtype=ctype)
-            _check(copy(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)), *extra))
-            return array
-        buffer = (ctype * count)()
-        _check(copy(self._ptr(), buffer, *extra))
-        return buffer
+            values = numpy.empty(count, dtype=ctype)
+            status = copy(self._ptr(), values.ctypes.data_as(ctypes.POINTER(ctype)), *extra)
+        else:
+            values = (ctype * count)()
+            status = copy(self._ptr(), values, *extra)
+        if status == _native.RAPS_ERROR_INVALID_OPERATION:
+            raise Error(status, missing)
+        _check(status)
+        return values
 
-    def uvs(self, dtype="float64"):
-        """The uvs: an (n, 2) numpy array of dtype float64 or float32, or a list of (u, v)."""
-        single = str(dtype) in ("float32", "f4", "<f4") or dtype is ctypes.c_float or \
-            (numpy is not None and dtype is numpy.float32)
-        copy = _lib.raps_result_copy_uvs_f32 if single else _lib.raps_result_copy_uvs_f64
+    def _points(self, copy_f32, copy_f64, width, dtype, missing):
+        """Per output vertex `width` coordinates: an (n, width) numpy array or a list of
+        tuples."""
+        single = _is_single(dtype)
         ctype = ctypes.c_float if single else ctypes.c_double
         n = self.vertex_count
-        values = self._copy(copy, ctype, 2 * n, n, 0)
+        values = self._copy(copy_f32 if single else copy_f64, ctype, width * n, n, 0,
+                            missing=missing)
         if numpy is not None:
-            return values.reshape(n, 2)
-        return [(values[2 * i], values[2 * i + 1]) for i in range(n)]
+            return values.reshape(n, width)
+        return [tuple(values[width * i:width * i + width]) for i in range(n)]
+
+    def uvs(self, dtype="float64"):
+        """The uvs: an (n, 2) numpy array of dtype float64 or float32, or a list of (u, v).
+        A sphere map has them only with sphere_uv=SphereUv.OCTAHEDRAL."""
+        return self._points(_lib.raps_result_copy_uvs_f32, _lib.raps_result_copy_uvs_f64, 2,
+                            dtype, _NO_UVS)
+
+    def sphere_points(self, dtype="float64"):
+        """Sphere domain: the point on the unit sphere of each output vertex, an (n, 3) numpy
+        array of dtype float64 or float32, or a list of (x, y, z). With the octahedral unfold a
+        duplicated vertex has its input vertex's point."""
+        return self._points(_lib.raps_result_copy_sphere_points_f32,
+                            _lib.raps_result_copy_sphere_points_f64, 3, dtype,
+                            _NO_SPHERE_POINTS)
 
     def indices(self):
         """The output triangles: a (t, 3) uint32 numpy array, or a list of (a, b, c)."""
@@ -467,7 +505,7 @@ class Result(_Handle):
         native.struct_size = ctypes.sizeof(native)
         status = _lib.raps_result_get_stats(self._ptr(), ctypes.byref(native))
         if status == _native.RAPS_ERROR_INVALID_OPERATION:
-            raise Error(status, "the result holds no map (parameterize failed or has not run)")
+            raise Error(status, _NO_MAP)
         _check(status)
         return Stats(*(getattr(native, name) for name in Stats._fields))
 

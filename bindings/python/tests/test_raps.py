@@ -57,6 +57,18 @@ def icosahedron():
     return positions, triangles
 
 
+def fan_disk():
+    """An open mesh: a hexagonal cap, one vertex raised above the middle of six on a circle."""
+    ring = [(math.cos(k * math.pi / 3), math.sin(k * math.pi / 3), 0.0) for k in range(6)]
+    return [(0.0, 0.0, 0.5)] + ring, [(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)]
+
+
+def det(a, b, c):
+    """det[a, b, c]: positive when the triangle is counter-clockwise seen from outside."""
+    return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0]))
+
+
 def rows(values):
     """Output rows as a list of tuples, whether numpy is there or not."""
     return [tuple(row) for row in (values.tolist() if numpy is not None else values)]
@@ -341,6 +353,240 @@ class Atlas(unittest.TestCase):
             self.assertEqual((stats.atlas_width, stats.atlas_height), (0, 0))
             self.assertEqual(set(result.chart_ids()), {0})
             self.assertEqual(len(result.chart_ids()), result.triangle_count)
+
+
+class Sphere(unittest.TestCase):
+    """The sphere domain on a built icosahedron and on bunny.off, closed genus-0 meshes."""
+
+    @classmethod
+    def setUpClass(cls):
+        path = os.path.join(DATA, "meshes", "bunny.off")
+        if not os.path.isfile(path):
+            raise AssertionError("shared test data missing: %r (set RAPS_SHARED_DATA_DIR)" % path)
+        cls.bunny = read_off(path)
+
+    def check_sphere_map(self, result, positions, triangles):
+        """One unit point (x, y, z) per input vertex, every input triangle counter-clockwise
+        seen from outside on them, the input triangles and an identity remap; the stats."""
+        points = rows(result.sphere_points())
+        self.assertEqual(len(points), len(positions))
+        for i, p in enumerate(points):
+            self.assertAlmostEqual(math.sqrt(sum(c * c for c in p)), 1.0, delta=1e-9, msg=i)
+        for t, (a, b, c) in enumerate(triangles):
+            self.assertGreater(det(points[a], points[b], points[c]), 0.0, "triangle %d" % t)
+        for single, double in zip(rows(result.sphere_points("float32")), points):
+            for x, y in zip(single, double):
+                self.assertAlmostEqual(x, y, delta=1e-6)
+        stats = result.stats()
+        self.assertEqual(stats.flipped_triangles, 0)
+        self.assertGreater(stats.relaxation_sweeps, 0)
+        self.assertEqual(stats.vertex_count, len(positions))
+        self.assertEqual(stats.chart_count, 1)
+        self.assertEqual(stats.utilization, 0.0)  # no uvs, no uv area
+        self.assertEqual(rows(result.indices()), [tuple(t) for t in triangles])
+        self.assertEqual(list(result.vertex_remap()), list(range(len(positions))))
+        return stats
+
+    def test_icosahedron_maps_onto_the_unit_sphere(self):
+        positions, triangles = icosahedron()
+        with raps.Mesh(positions, triangles) as mesh, \
+                raps.Settings(domain=raps.Domain.SPHERE) as settings:
+            self.assertEqual(settings.sphere_method, raps.SphereMethod.ROBUST)
+            self.assertEqual(settings.sphere_uv, raps.SphereUv.NONE)
+            result = raps.parameterize(mesh, settings)
+        stats = self.check_sphere_map(result, positions, triangles)
+        # The area monitor's iteration reached through 4 relaxations (sphere_alpha_steps).
+        self.assertEqual(stats.adaptive_solves, 4)
+        if numpy is not None:
+            points = result.sphere_points()
+            self.assertEqual((points.shape, points.dtype), ((12, 3), numpy.float64))
+            self.assertEqual(result.sphere_points("float32").dtype, numpy.float32)
+        # Without the octahedral unfold a sphere map has no uvs, and says so.
+        for dtype in ("float64", "float32"):
+            with self.assertRaises(raps.Error) as caught:
+                result.uvs(dtype)
+            self.assertEqual(caught.exception.status, raps.Status.INVALID_OPERATION)
+            self.assertIn("OCTAHEDRAL", caught.exception.message)
+            self.assertIn("sphere_points", caught.exception.message)
+        result.close()
+
+    def test_literal_method_keeps_the_icosahedrons_gauss_map(self):
+        # Its Gauss map, which the symmetric icosahedron keeps: vertex i's point is its
+        # position normalised, x, y, z in that order.
+        positions, triangles = icosahedron()
+        with raps.Mesh(positions, triangles) as mesh, \
+                raps.Settings(domain="sphere", sphere_method="literal", monitor="none") as s, \
+                raps.parameterize(mesh, s) as result:
+            self.check_sphere_map(result, positions, triangles)
+            for point, position in zip(rows(result.sphere_points()), positions):
+                norm = math.sqrt(sum(c * c for c in position))
+                for x, y in zip(point, position):
+                    self.assertAlmostEqual(x, y / norm, delta=1e-9)
+
+    def test_shared_mesh_maps_bijectively_and_equidistributes_area(self):
+        positions, triangles = self.bunny
+        with raps.Mesh(positions, triangles) as mesh, \
+                raps.Settings(domain=raps.Domain.SPHERE, monitor=raps.Monitor.NONE) as plain, \
+                raps.Settings(domain=raps.Domain.SPHERE) as adaptive, \
+                raps.Settings(domain=raps.Domain.SPHERE, sphere_max_sweeps=3,
+                              sphere_alpha_steps=2) as capped:
+            first = raps.parameterize(mesh, plain)
+            second = raps.parameterize(mesh, adaptive)
+            before = self.check_sphere_map(first, positions, triangles)
+            after = self.check_sphere_map(second, positions, triangles)
+            self.assertEqual(before.adaptive_solves, 0)
+            # Spherical area distortion, measured in tests/test_sphere.c: 1.638 -> 0.667.
+            self.assertLess(after.area_log_mean, 0.5 * before.area_log_mean)
+            self.assertGreater(second.phase_ms(raps.Phase.ADAPT), 0.0)
+            # sphere_max_sweeps and sphere_alpha_steps reach the library: 2 adaptive
+            # relaxations, at most 3 sweeps in each of the 3 relaxations.
+            with raps.parameterize(mesh, capped) as result:
+                stats = result.stats()
+            self.assertEqual(stats.adaptive_solves, 2)
+            self.assertTrue(0 < stats.relaxation_sweeps <= 9, stats.relaxation_sweeps)
+            self.assertGreater(after.relaxation_sweeps, 9)
+            first.close()
+            second.close()
+
+    def test_octahedral_unfold_gives_one_chart_in_the_square(self):
+        for positions, triangles in (icosahedron(), self.bunny):
+            n = len(positions)
+            with raps.Mesh(positions, triangles) as mesh, \
+                    raps.Settings(domain="sphere") as plain, \
+                    raps.Settings(domain="sphere", sphere_uv=raps.SphereUv.OCTAHEDRAL) as s, \
+                    raps.parameterize(mesh, plain) as sphere, \
+                    raps.parameterize(mesh, s) as result:
+                self.assertEqual(s.sphere_uv, raps.SphereUv.OCTAHEDRAL)
+                count = result.vertex_count
+                # The cut's vertices are duplicated: more output vertices than input.
+                self.assertGreater(count, n)
+                uvs = rows(result.uvs())
+                remap = list(result.vertex_remap())
+                indices = rows(result.indices())
+                points = rows(result.sphere_points())
+                original = rows(sphere.sphere_points())
+                stats = result.stats()
+            self.assertEqual((len(uvs), len(remap), len(points)), (count, count, count))
+            for u, v in uvs:
+                self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= v <= 1.0, (u, v))
+            self.assertEqual(len(indices), len(triangles))
+            for output, triangle in zip(indices, triangles):
+                self.assertEqual(tuple(remap[i] for i in output), tuple(triangle))
+            for a, b, c in indices:
+                self.assertGreater(signed_area(uvs[a], uvs[b], uvs[c]), 0.0)
+            for o, r in enumerate(remap):
+                self.assertEqual(points[o], original[r], o)
+            self.assertEqual(stats.flipped_triangles, 0)
+            self.assertEqual(stats.vertex_count, count)
+            self.assertEqual(stats.chart_count, 1)
+            self.assertGreater(stats.relaxation_sweeps, 0)
+            self.assertTrue(0.0 < stats.utilization <= 1.0, stats.utilization)
+
+    def test_open_mesh_is_refused_with_its_boundary_counted(self):
+        result = raps.Result()
+        with raps.Mesh(*fan_disk()) as mesh, raps.Settings(domain=raps.Domain.SPHERE) as s:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(mesh, s, result=result)
+            error = caught.exception
+            self.assertEqual(error.status, raps.Status.OPEN_MESH)
+            self.assertIsInstance(error.status, raps.Status)
+            self.assertIn("closed mesh", error.message)
+            self.assertIn("1 boundary loop", error.message)
+            self.assertTrue(error.name)
+            self.assertNotEqual(error.name, "unknown status")
+            self.assertIn(error.name, str(error))
+            self.assertEqual(result.vertex_count, 0)
+            with self.assertRaises(raps.Error) as caught:
+                result.sphere_points()
+            self.assertEqual(caught.exception.status, raps.Status.INVALID_OPERATION)
+            # The disk domain maps the same mesh; its result has uvs but no sphere points.
+            raps.parameterize(mesh, result=result)
+            with self.assertRaises(raps.Error) as caught:
+                result.sphere_points()
+            self.assertEqual(caught.exception.status, raps.Status.INVALID_OPERATION)
+            self.assertIn("sphere points", caught.exception.message)
+        result.close()
+
+    def test_progress_reports_the_sphere_phases_and_cancels(self):
+        calls = []
+        inside = [0]
+        overlaps = [0]
+
+        def record(phase, fraction):
+            inside[0] += 1
+            overlaps[0] += inside[0] > 1
+            calls.append((phase, fraction))
+            time.sleep(0.0005)  # lets another thread run, were it allowed in
+            inside[0] -= 1
+
+        with raps.Mesh(*self.bunny) as mesh, \
+                raps.Settings(domain=raps.Domain.SPHERE, threads=2) as settings:
+            raps.parameterize(mesh, settings, progress=record).close()
+            # The disk domain's five phases: the initial map and its relaxation, then the
+            # adaptive relaxations.
+            self.assertEqual(phase_sequence(calls), [
+                raps.Phase.VALIDATE, raps.Phase.TOPOLOGY, raps.Phase.INITIAL_MAP,
+                raps.Phase.ADAPT, raps.Phase.METRICS])
+            self.assertTrue(all(0.0 <= f <= 1.0 for _, f in calls))
+            self.assertEqual(overlaps[0], 0)
+            result = raps.Result()
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(mesh, settings, progress=lambda p, f: p < raps.Phase.ADAPT,
+                                  result=result)
+            self.assertEqual(caught.exception.status, raps.Status.CANCELLED)
+            self.assertEqual(result.vertex_count, 0)
+            raps.parameterize(mesh, settings, result=result)
+            self.assertEqual(result.vertex_count, len(self.bunny[0]))
+            result.close()
+
+    def test_sphere_settings(self):
+        # As raps_param_info reports them (src/c_api.cpp); (0, 1] has the smallest normal
+        # double as its lower bound.
+        expected = {"sphere_method": (False, 0, 1, 1), "sphere_uv": (False, 0, 1, 0),
+                    "sphere_damping": (True, sys.float_info.min, 1.0, 1.0),
+                    "sphere_tolerance": (True, 1e-12, 1.0, 1e-4),
+                    "sphere_max_sweeps": (False, 0, 10000000, 0),
+                    "sphere_alpha_steps": (False, 1, 100, 4)}
+        with raps.Settings() as settings:
+            for name, (is_float, low, high, default) in expected.items():
+                info = raps.Settings.param_info(raps.Param[name.upper()])
+                self.assertEqual(info, (name, is_float, low, high, default))
+                self.assertEqual(getattr(settings, name), default, name)
+                self.assertIsInstance(getattr(settings, name), float if is_float else int)
+            self.assertIs(settings.sphere_method, raps.SphereMethod.ROBUST)
+            self.assertIs(settings.sphere_uv, raps.SphereUv.NONE)
+        domain = raps.Settings.param_info(raps.Param.DOMAIN)
+        self.assertEqual((domain.min, domain.max), (raps.Domain.DISK, raps.Domain.ATLAS))
+        self.assertTrue(raps.Domain.DISK < raps.Domain.SPHERE < raps.Domain.ATLAS)
+        self.assertEqual({m.name for m in raps.SphereMethod}, {"LITERAL", "ROBUST"})
+        self.assertEqual({m.name for m in raps.SphereUv}, {"NONE", "OCTAHEDRAL"})
+        with raps.Settings(domain="sphere", sphere_method="literal", sphere_uv="octahedral",
+                           sphere_damping=0.5, sphere_tolerance=1e-6,
+                           sphere_max_sweeps=10000000, sphere_alpha_steps=100) as settings:
+            copy = settings.clone()
+            self.assertEqual(
+                {name: getattr(copy, name) for name in expected},
+                {"sphere_method": raps.SphereMethod.LITERAL,
+                 "sphere_uv": raps.SphereUv.OCTAHEDRAL, "sphere_damping": 0.5,
+                 "sphere_tolerance": 1e-6, "sphere_max_sweeps": 10000000,
+                 "sphere_alpha_steps": 100})
+            self.assertEqual(copy.domain, raps.Domain.SPHERE)
+            copy.close()
+            for name, bad in (("sphere_method", 2), ("sphere_uv", 2), ("sphere_damping", 0.0),
+                              ("sphere_damping", 1.5), ("sphere_tolerance", 1e-13),
+                              ("sphere_tolerance", 2.0), ("sphere_max_sweeps", -1),
+                              ("sphere_max_sweeps", 10000001), ("sphere_alpha_steps", 0),
+                              ("sphere_alpha_steps", 101)):
+                with self.assertRaises(raps.Error) as caught:
+                    setattr(settings, name, bad)
+                self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+                self.assertIn(name, caught.exception.message)
+            with self.assertRaises(KeyError):
+                settings.sphere_uv = "cube"  # not a member's name
+            # A failed setter changes nothing.
+            self.assertEqual(settings.sphere_method, raps.SphereMethod.LITERAL)
+            self.assertEqual(settings.sphere_damping, 0.5)
+            self.assertEqual(settings.sphere_alpha_steps, 100)
 
 
 class Errors(unittest.TestCase):

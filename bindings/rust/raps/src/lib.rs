@@ -94,6 +94,8 @@ int_values! {
         SOLVER_FAILED = sys::RAPS_ERROR_SOLVER_FAILED,
         INVALID_OPERATION = sys::RAPS_ERROR_INVALID_OPERATION,
         INTERNAL = sys::RAPS_ERROR_INTERNAL,
+        /// Sphere domain: the mesh is not closed (the message counts its boundary loops).
+        OPEN_MESH = sys::RAPS_ERROR_OPEN_MESH,
     }
 }
 
@@ -109,6 +111,12 @@ int_values! {
         BOUNDARY = sys::RAPS_PARAM_BOUNDARY,
         MAX_TRIANGLES = sys::RAPS_PARAM_MAX_TRIANGLES,
         THREADS = sys::RAPS_PARAM_THREADS,
+        SPHERE_METHOD = sys::RAPS_PARAM_SPHERE_METHOD,
+        SPHERE_UV = sys::RAPS_PARAM_SPHERE_UV,
+        SPHERE_DAMPING = sys::RAPS_PARAM_SPHERE_DAMPING,
+        SPHERE_TOLERANCE = sys::RAPS_PARAM_SPHERE_TOLERANCE,
+        SPHERE_MAX_SWEEPS = sys::RAPS_PARAM_SPHERE_MAX_SWEEPS,
+        SPHERE_ALPHA_STEPS = sys::RAPS_PARAM_SPHERE_ALPHA_STEPS,
         ATLAS_RESOLUTION = sys::RAPS_PARAM_ATLAS_RESOLUTION,
         ATLAS_PADDING = sys::RAPS_PARAM_ATLAS_PADDING,
         WELD_TOLERANCE = sys::RAPS_PARAM_WELD_TOLERANCE,
@@ -123,11 +131,38 @@ int_values! {
     Domain {
         /// A topological disk mapped into [0,1]^2 with its boundary on a convex shape.
         DISK = sys::RAPS_DOMAIN_DISK,
+        /// A closed genus-0 mesh mapped bijectively onto the unit sphere: one output vertex per
+        /// input vertex ([`Parameterization::sphere_points`]), no uvs unless
+        /// [`Settings::set_sphere_uv`] asks for the octahedral unfold, which duplicates the
+        /// cut's vertices.
+        SPHERE = sys::RAPS_DOMAIN_SPHERE,
         /// Any triangle mesh, cut into charts packed into one texture atlas: output vertices
         /// are duplicated along seams ([`Parameterization::vertex_remap`]), and each output
         /// triangle, the input one in input order, has a chart
         /// ([`Parameterization::chart_ids`]).
         ATLAS = sys::RAPS_DOMAIN_ATLAS,
+    }
+}
+
+int_values! {
+    /// How the sphere domain computes its map (`RAPS_SPHERE_*`).
+    SphereMethod {
+        /// Paper algorithm 7.1 as written: one thread, no safeguards; it may fold triangles.
+        LITERAL = sys::RAPS_SPHERE_LITERAL,
+        /// The same relaxation made robust (bijective initial map, fold-refusing moves,
+        /// Moebius centring, continuation in alpha): never folds (the default).
+        ROBUST = sys::RAPS_SPHERE_ROBUST,
+    }
+}
+
+int_values! {
+    /// Texture coordinates for the sphere domain (`RAPS_SPHERE_UV_*`).
+    SphereUv {
+        /// Sphere points only: the result has no uvs (the default).
+        NONE = sys::RAPS_SPHERE_UV_NONE,
+        /// Also unfold the sphere onto [0,1]^2 through the octahedron: one chart, the cut's
+        /// vertices duplicated ([`Parameterization::vertex_remap`]), no flipped uv triangle.
+        OCTAHEDRAL = sys::RAPS_SPHERE_UV_OCTAHEDRAL,
     }
 }
 
@@ -194,8 +229,8 @@ int_values! {
 
 impl Phase {
     /// Every phase of this version, in numeric order. A run enters only its domain's phases:
-    /// the disk domain VALIDATE, TOPOLOGY, INITIAL_MAP, ADAPT, METRICS; the atlas VALIDATE,
-    /// TOPOLOGY, SEGMENT, INITIAL_MAP, PACK, METRICS.
+    /// the disk and sphere domains VALIDATE, TOPOLOGY, INITIAL_MAP, ADAPT, METRICS; the atlas
+    /// VALIDATE, TOPOLOGY, SEGMENT, INITIAL_MAP, PACK, METRICS.
     pub fn all() -> impl Iterator<Item = Phase> {
         (0..sys::RAPS_PHASE_COUNT).map(Phase)
     }
@@ -297,6 +332,30 @@ fn no_map() -> Error {
         sys::RAPS_ERROR_INVALID_OPERATION,
         "the result holds no map (parameterize failed or has not run)".to_string(),
     )
+}
+
+// The copy functions take a const result and store no message: say which of their failures
+// this is.
+const NO_UVS: &str = "the result holds no uvs: a sphere map has them only with \
+                      SphereUv::OCTAHEDRAL (read its points with sphere_points)";
+const NO_SPHERE_POINTS: &str = "the result holds no sphere points (only Domain::SPHERE has them)";
+
+fn copy_check(
+    status: i32,
+    missing: &str,
+    count: usize,
+    capacity: usize,
+    items: &str,
+) -> Result<()> {
+    check(status, || {
+        if status == sys::RAPS_ERROR_INVALID_OPERATION {
+            missing.to_string()
+        } else if status == sys::RAPS_ERROR_INVALID_ARGUMENT && capacity < count {
+            format!("{} {} do not fit in {}", count, items, capacity)
+        } else {
+            String::new()
+        }
+    })
 }
 
 /// The library's version as (major, minor, patch).
@@ -609,6 +668,34 @@ impl Settings {
     pub fn set_threads(&mut self, threads: u32) -> Result<&mut Self> {
         self.set_int(Param::THREADS, threads.into())
     }
+    /// Sphere: how the map is computed ([`SphereMethod::ROBUST`] by default).
+    pub fn set_sphere_method(&mut self, method: SphereMethod) -> Result<&mut Self> {
+        self.set_int(Param::SPHERE_METHOD, method.0.into())
+    }
+    /// Sphere: whether to unfold the map into uvs ([`SphereUv::NONE`] by default: sphere
+    /// points only).
+    pub fn set_sphere_uv(&mut self, uv: SphereUv) -> Result<&mut Self> {
+        self.set_int(Param::SPHERE_UV, uv.0.into())
+    }
+    /// Sphere relaxation: the fraction of the way to the weighted mean of its ring that a
+    /// vertex moves per sweep, in (0, 1].
+    pub fn set_sphere_damping(&mut self, damping: f64) -> Result<&mut Self> {
+        self.set_float(Param::SPHERE_DAMPING, damping)
+    }
+    /// Sphere relaxation: converged when the RMS move of one sweep (in damping times mean edge
+    /// length) is below this, in [1e-12, 1].
+    pub fn set_sphere_tolerance(&mut self, tolerance: f64) -> Result<&mut Self> {
+        self.set_float(Param::SPHERE_TOLERANCE, tolerance)
+    }
+    /// Sphere relaxation: most sweeps of one relaxation; 0 = the method's own.
+    pub fn set_sphere_max_sweeps(&mut self, sweeps: u32) -> Result<&mut Self> {
+        self.set_int(Param::SPHERE_MAX_SWEEPS, sweeps.into())
+    }
+    /// Robust sphere method: relaxations by which each adaptive iteration reaches its
+    /// exponent.
+    pub fn set_sphere_alpha_steps(&mut self, steps: u32) -> Result<&mut Self> {
+        self.set_int(Param::SPHERE_ALPHA_STEPS, steps.into())
+    }
     /// Atlas: texels on the atlas's longer side.
     pub fn set_atlas_resolution(&mut self, texels: u32) -> Result<&mut Self> {
         self.set_int(Param::ATLAS_RESOLUTION, texels.into())
@@ -664,6 +751,25 @@ impl Settings {
     pub fn threads(&self) -> Result<u32> {
         self.int(Param::THREADS).map(|v| v as u32)
     }
+    pub fn sphere_method(&self) -> Result<SphereMethod> {
+        self.int(Param::SPHERE_METHOD)
+            .map(|v| SphereMethod(v as i32))
+    }
+    pub fn sphere_uv(&self) -> Result<SphereUv> {
+        self.int(Param::SPHERE_UV).map(|v| SphereUv(v as i32))
+    }
+    pub fn sphere_damping(&self) -> Result<f64> {
+        self.float(Param::SPHERE_DAMPING)
+    }
+    pub fn sphere_tolerance(&self) -> Result<f64> {
+        self.float(Param::SPHERE_TOLERANCE)
+    }
+    pub fn sphere_max_sweeps(&self) -> Result<u32> {
+        self.int(Param::SPHERE_MAX_SWEEPS).map(|v| v as u32)
+    }
+    pub fn sphere_alpha_steps(&self) -> Result<u32> {
+        self.int(Param::SPHERE_ALPHA_STEPS).map(|v| v as u32)
+    }
     pub fn atlas_resolution(&self) -> Result<u32> {
         self.int(Param::ATLAS_RESOLUTION).map(|v| v as u32)
     }
@@ -703,8 +809,9 @@ impl fmt::Debug for Settings {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut s = f.debug_struct("Settings");
         // Every parameter the loaded library knows, also ones newer than this crate. Numbers
-        // are only appended, in blocks with gaps between them (1.. general, 32.. atlas), so
-        // each number below DEBUG_PARAM_LIMIT is asked rather than stopping at the first gap.
+        // are only appended, in blocks with gaps between them (1.. general and sphere,
+        // 32.. atlas), so each number below DEBUG_PARAM_LIMIT is asked rather than stopping at
+        // the first gap.
         for param in (1..DEBUG_PARAM_LIMIT).map(Param) {
             let info = match Settings::param_info(param) {
                 Ok(info) => info,
@@ -726,7 +833,10 @@ impl fmt::Debug for Settings {
 
 /// The output of [`parameterize`] (a `raps_result`; named so as not to shadow [`Result`]):
 /// per output vertex a uv in [0,1]^2 (v up) and the input vertex it comes from, the output
-/// triangles and their charts, the statistics and the time of each phase.
+/// triangles and their charts, the statistics and the time of each phase. A sphere map has a
+/// point on the unit sphere per output vertex instead, and uvs too only with
+/// [`SphereUv::OCTAHEDRAL`]; reading what a result does not hold is an
+/// [`Status::INVALID_OPERATION`] error.
 pub struct Parameterization {
     raw: NonNull<sys::raps_result>,
 }
@@ -787,14 +897,14 @@ impl Parameterization {
         let status = unsafe {
             sys::raps_result_copy_uvs_f64(self.raw.as_ptr(), uvs.as_mut_ptr() as *mut f64, n, 0)
         };
-        check(status, no_message)?;
+        copy_check(status, NO_UVS, n, n, "uvs")?;
         Ok(uvs)
     }
 
     /// Copies the uvs into `dst` (at least [`vertex_count`](Self::vertex_count) long), e.g. a
     /// mapped vertex buffer.
     pub fn copy_uvs_into(&self, dst: &mut [[f32; 2]]) -> Result<()> {
-        self.require_map()?;
+        let n = self.require_map()?;
         // SAFETY: [f32; 2] is two packed floats; the capacity is the slice's length.
         let status = unsafe {
             sys::raps_result_copy_uvs_f32(
@@ -804,9 +914,49 @@ impl Parameterization {
                 0,
             )
         };
-        check(status, || {
-            format!("{} uvs do not fit in {}", self.vertex_count(), dst.len())
-        })
+        copy_check(status, NO_UVS, n, dst.len(), "uvs")
+    }
+
+    /// Sphere domain: the point on the unit sphere of each output vertex, [x, y, z] (with the
+    /// octahedral unfold, a duplicated vertex has its input vertex's point).
+    pub fn sphere_points(&self) -> Result<Vec<[f32; 3]>> {
+        let n = self.require_map()?;
+        let mut points = vec![[0.0f32; 3]; n];
+        self.copy_sphere_points_into(&mut points)?;
+        Ok(points)
+    }
+
+    /// The sphere points in double precision.
+    pub fn sphere_points_f64(&self) -> Result<Vec<[f64; 3]>> {
+        let n = self.require_map()?;
+        let mut points = vec![[0.0f64; 3]; n];
+        // SAFETY: [f64; 3] is three packed doubles; the call writes at most `n` of them.
+        let status = unsafe {
+            sys::raps_result_copy_sphere_points_f64(
+                self.raw.as_ptr(),
+                points.as_mut_ptr() as *mut f64,
+                n,
+                0,
+            )
+        };
+        copy_check(status, NO_SPHERE_POINTS, n, n, "sphere points")?;
+        Ok(points)
+    }
+
+    /// Copies the sphere points into `dst` (at least [`vertex_count`](Self::vertex_count)
+    /// long).
+    pub fn copy_sphere_points_into(&self, dst: &mut [[f32; 3]]) -> Result<()> {
+        let n = self.require_map()?;
+        // SAFETY: [f32; 3] is three packed floats; the capacity is the slice's length.
+        let status = unsafe {
+            sys::raps_result_copy_sphere_points_f32(
+                self.raw.as_ptr(),
+                dst.as_mut_ptr() as *mut f32,
+                dst.len(),
+                0,
+            )
+        };
+        copy_check(status, NO_SPHERE_POINTS, n, dst.len(), "sphere points")
     }
 
     /// The output triangles, three indices into the output vertices each.

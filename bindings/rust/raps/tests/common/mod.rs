@@ -55,3 +55,15 @@ pub fn icosahedron() -> (Vec<f64>, Vec<u32>) {
     ];
     (xyz, indices)
 }
+
+/// An open mesh: a hexagonal cap, one vertex raised above the middle of six on a circle.
+pub fn fan_disk() -> (Vec<f64>, Vec<u32>) {
+    let mut xyz = vec![0.0, 0.0, 0.5];
+    let mut indices = Vec::new();
+    for k in 0..6u32 {
+        let angle = f64::from(k) * std::f64::consts::PI / 3.0;
+        xyz.extend_from_slice(&[angle.cos(), angle.sin(), 0.0]);
+        indices.extend_from_slice(&[0, 1 + k, 1 + (k + 1) % 6]);
+    }
+    (xyz, indices)
+}
