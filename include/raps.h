@@ -419,11 +419,14 @@ RAPS_API raps_status raps_result_create(raps_result** out_result);
 RAPS_API void raps_result_destroy(raps_result* result);
 
 /* Parameterizes mesh with settings (NULL: the defaults) into result, replacing what it held.
- * mesh and settings are only read (see Threading). Runs on the calling thread; the sphere domain
- * also starts up to RAPS_PARAM_THREADS - 1 worker threads of its own and joins them before it
- * returns (the progress callback is still only called on the calling thread).
+ * mesh and settings are only read (see Threading). Runs on the calling thread; the sphere and
+ * atlas domains also start up to RAPS_PARAM_THREADS - 1 worker threads of their own and join
+ * them before it returns (the progress callback may be called from them, never two calls at
+ * once; see raps_progress_fn).
  * On success result holds the output vertices (UVs and the input vertex each comes from), the
- * output triangles and the statistics. On failure it holds nothing and its message names the
+ * output triangles and the statistics. The errors below are those of every domain: the disk's
+ * topology statuses (NO_BOUNDARY, MULTIPLE_BOUNDARIES, ...) do not apply to the atlas, which
+ * takes any triangle mesh. On failure it holds nothing and its message names the
  * problem (for mesh problems: the first offending triangle, vertex or edge).
  * Errors: INVALID_ARGUMENT (mesh or result NULL), EMPTY_MESH, INDEX_OUT_OF_RANGE, TOO_LARGE,
  * REPEATED_VERTEX, ZERO_AREA_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX,

@@ -836,9 +836,8 @@ namespace Raps
             }
             // The callback goes on a private copy, so settings shared with other threads never
             // see it; the delegate stays reachable until the native call has returned. It may run
-            // on the library's worker threads (Threads != 1), whose calls the atlas does not
-            // serialise: the lock keeps progress from ever running twice at once, as raps.h
-            // promises, and publishes 'raised' to this thread.
+            // on the library's worker threads (Threads != 1); the library never overlaps the
+            // calls, and the lock also publishes 'raised' to this thread.
             Exception raised = null;
             var serial = new object();
             ProgressFn callback = null;

@@ -1084,9 +1084,9 @@ unsafe extern "C" fn progress_trampoline<F: FnMut(Phase, f64) -> bool + Send>(
     // SAFETY: `user` is the Mutex<Progress<F>> of parameterize_with_progress, alive for the
     // whole run (the library joins its worker threads before raps_parameterize returns).
     let shared = &*(user as *const Mutex<Progress<F>>);
-    // The library calls back from its worker threads too, and the atlas does so concurrently
-    // although raps.h promises calls never overlap: the lock gives each call exclusive access
-    // (F: Send, as it runs on whichever thread holds the lock). Panics are caught below, so the
+    // The library calls back from its worker threads too, one call at a time (raps.h); the lock
+    // turns that promise into exclusive access the compiler can check (F: Send, as it runs on
+    // whichever thread holds the lock). Panics are caught below, so the
     // lock is never poisoned; were it, the state is still whole.
     let mut guard = shared.lock().unwrap_or_else(PoisonError::into_inner);
     let state = &mut *guard;
