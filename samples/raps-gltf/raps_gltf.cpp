@@ -28,6 +28,7 @@
 #include "gltf_error.h"
 #include "gltf_load.h"
 #include "gltf_output.h"
+#include "parameter_text.h"
 #include "preview.h"
 #include "raps.h"
 #include "report.h"
@@ -383,27 +384,9 @@ int run(int argc, char** argv) {
             }
             if (!found) throw UsageError("unknown value '" + name + "' for " + arg);
         } else if (kNumbers.count(arg)) {
-            const std::string text = value();
-            char* end = nullptr;
-            errno = 0;
-            const double number = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || errno != 0) {
-                throw UsageError(arg + " needs a number, not '" + text + "'");
-            }
-            const raps_param param = kNumbers.at(arg);
-            int32_t is_float = 0;
-            raps_param_info(param, nullptr, &is_float, nullptr, nullptr, nullptr);
-            raps_status status;
-            if (is_float) {
-                status = raps_settings_set_float(h.settings, param, number);
-            } else {
-                if (number != std::floor(number) || std::fabs(number) > 9e18) {
-                    throw UsageError(arg + " needs a whole number, not '" + text + "'");
-                }
-                status = raps_settings_set_int(h.settings, param, static_cast<int64_t>(number));
-            }
-            if (status != RAPS_OK)
-                throw UsageError(arg + ": " + raps_settings_last_error(h.settings));
+            const std::string error =
+                raps_samples::set_parameter_from_text(h.settings, kNumbers.at(arg), arg, value());
+            if (!error.empty()) throw UsageError(error);
             if (arg == "--threads") options.threads_set = true;
         } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
             throw UsageError("unknown option " + arg);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mesh_io.h"
+#include "parameter_text.h"
 #include "raps.h"
 
 namespace {
@@ -303,26 +304,9 @@ int run(int argc, char** argv) {
             check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
                   [&] { return raps_settings_last_error(h.settings); });
         } else if (kNumberParams.count(arg)) {
-            const std::string text = value();
-            char* end = nullptr;
-            errno = 0;
-            const double number = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || errno != 0) {
-                throw UsageError(arg + " needs a number, not '" + text + "'");
-            }
-            const raps_param param = kNumberParams.at(arg);
-            int32_t is_float = 0;
-            raps_param_info(param, nullptr, &is_float, nullptr, nullptr, nullptr);
-            raps_status status;
-            if (is_float) {
-                status = raps_settings_set_float(h.settings, param, number);
-            } else {
-                if (number != std::floor(number) || std::abs(number) > 9e18) {
-                    throw UsageError(arg + " needs a whole number, not '" + text + "'");
-                }
-                status = raps_settings_set_int(h.settings, param, static_cast<int64_t>(number));
-            }
-            if (status != RAPS_OK) throw UsageError(raps_settings_last_error(h.settings));
+            const std::string error = raps_samples::set_parameter_from_text(
+                h.settings, kNumberParams.at(arg), arg, value());
+            if (!error.empty()) throw UsageError(error);
         } else if (!arg.empty() && arg[0] == '-') {
             throw UsageError("unknown option " + arg);
         } else if (input.empty()) {
