@@ -71,6 +71,19 @@ using raps::ErrorCode;
 
 constexpr int64_t kMaxElements = 0x7fffffff;  // int32 indexing inside the library
 
+// Stores a failure's message in a handle. Storing may need memory itself; when there is none,
+// the handle gets a message that fits the string's inline buffer (no allocation), so that no
+// exception ever leaves the catch blocks below and crosses the ABI (found by failing each
+// allocation in turn: tests/test_alloc_failures.c).
+void store_message(std::string* last_error, const char* message) {
+    if (!last_error) return;
+    try {
+        *last_error = message;
+    } catch (...) {
+        last_error->assign("out of memory");  // 13 characters: within every std::string
+    }
+}
+
 // Runs `body`, storing the message of any failure in `last_error`; never lets an exception
 // cross the ABI.
 template <typename Body>
@@ -80,16 +93,20 @@ raps_status guarded(std::string* last_error, Body&& body) {
         if (last_error) last_error->clear();
         return RAPS_OK;
     } catch (const Error& error) {
-        if (last_error) *last_error = error.what();
+        store_message(last_error, error.what());
         return static_cast<raps_status>(error.code());
     } catch (const std::bad_alloc&) {
-        if (last_error) *last_error = "out of memory";
+        store_message(last_error, "out of memory");
         return RAPS_ERROR_OUT_OF_MEMORY;
     } catch (const std::exception& error) {
-        if (last_error) *last_error = std::string("internal error: ") + error.what();
+        try {
+            store_message(last_error, (std::string("internal error: ") + error.what()).c_str());
+        } catch (...) {
+            store_message(last_error, "out of memory");
+        }
         return RAPS_ERROR_INTERNAL;
     } catch (...) {
-        if (last_error) *last_error = "internal error: unknown exception";
+        store_message(last_error, "internal error: unknown exception");
         return RAPS_ERROR_INTERNAL;
     }
 }
