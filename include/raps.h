@@ -106,11 +106,14 @@ enum {
     RAPS_ERROR_INDEX_COUNT = 4,
     /* An index is >= the vertex count. */
     RAPS_ERROR_INDEX_OUT_OF_RANGE = 5,
-    /* A position coordinate is NaN or infinite. */
+    /* A position coordinate is NaN, infinite, or beyond +-1e30 (products of such coordinates
+     * would overflow a double inside the algorithms). */
     RAPS_ERROR_NON_FINITE_POSITION = 6,
     /* A triangle names the same vertex twice. */
     RAPS_ERROR_REPEATED_VERTEX = 7,
-    /* A triangle has (numerically) zero area: below 1e-12 times the mean triangle area. */
+    /* A triangle has (numerically) zero area: below 1e-12 times the mean triangle area.
+     * Atlas domain (which takes such triangles as they come): every triangle would get zero uv
+     * area, the mesh's extent being too large next to its triangles for double precision. */
     RAPS_ERROR_ZERO_AREA_TRIANGLE = 8,
     /* An edge is shared by more than two triangles. */
     RAPS_ERROR_NON_MANIFOLD_EDGE = 9,
@@ -164,9 +167,11 @@ RAPS_API void raps_mesh_destroy(raps_mesh* mesh);
 /* Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
  * the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
  * 24 for f64). The data is copied; the pointer need not be aligned.
- * Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+ * Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point,
+ * or so large that the points would span more bytes than an address reaches),
  * EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count >= 2^31),
- * NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY. */
+ * NON_FINITE_POSITION (NaN, infinite or |x| > 1e30; the message names the first such vertex),
+ * OUT_OF_MEMORY. */
 RAPS_API raps_status raps_mesh_set_positions_f32(raps_mesh* mesh, const float* xyz,
                                                  size_t vertex_count, size_t stride_bytes);
 RAPS_API raps_status raps_mesh_set_positions_f64(raps_mesh* mesh, const double* xyz,
@@ -444,16 +449,18 @@ RAPS_API size_t raps_result_index_count(const raps_result* result);
 
 /* Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
  * i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
- * be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
- * INVALID_OPERATION (the result holds no map, or a sphere map without uvs). */
+ * be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small,
+ * or a stride that would place a vertex beyond any address), INVALID_OPERATION (the result holds
+ * no map, or a sphere map without uvs). */
 RAPS_API raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst,
                                               size_t capacity, size_t stride_bytes);
 RAPS_API raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst,
                                               size_t capacity, size_t stride_bytes);
 /* Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
  * like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity >=
- * raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
- * INVALID_OPERATION (the result holds no sphere map, e.g. a disk result). */
+ * raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small, or a
+ * stride beyond any address, as for the uvs), INVALID_OPERATION (the result holds no sphere map,
+ * e.g. a disk result). */
 RAPS_API raps_status raps_result_copy_sphere_points_f32(const raps_result* result, float* dst,
                                                         size_t capacity, size_t stride_bytes);
 RAPS_API raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -294,8 +295,15 @@ auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
     }
 }
 
+// Coordinates beyond this are refused like non-finite ones: the algorithms multiply up to a few
+// coordinates together (areas, squared areas, products of edge vectors), and a product of four
+// overflows a double once coordinates pass about 1e77; 1e30 keeps every such product finite with
+// a wide margin and lies far beyond any real mesh (fuzzing found coordinates near 1e151, 1e191
+// and 1e307 turning areas infinite and the statistics and atlas packing into NaN).
+constexpr double kMaxCoordinate = 1e30;
+
 // Reads `count` points of three coordinates of type T at `stride` bytes into doubles, refusing
-// non-finite values. memcpy because the caller's data need not be aligned.
+// non-finite and huge values. memcpy because the caller's data need not be aligned.
 template <typename T>
 void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) {
     require(mesh != nullptr, "mesh is NULL");
@@ -311,18 +319,29 @@ void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) 
                                                      " is smaller than one point (" +
                                                      std::to_string(3 * sizeof(T)) + " bytes)");
     }
+    // The last point ends at (count - 1) * stride + one point: that must be an address.
+    if (count > 1 && stride > (SIZE_MAX - 3 * sizeof(T)) / (count - 1)) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "vertex_count " + std::to_string(count) + " points at stride_bytes " +
+                        std::to_string(stride) + " span more bytes than an address can reach");
+    }
     std::vector<Eigen::Vector3d> positions(count);
     const unsigned char* bytes = reinterpret_cast<const unsigned char*>(xyz);
     for (size_t i = 0; i < count; ++i) {
         T point[3];
         std::memcpy(point, bytes + i * stride, sizeof(point));
         for (int c = 0; c < 3; ++c) {
-            if (!std::isfinite(point[c])) {
+            const double value = static_cast<double>(point[c]);
+            if (!(std::abs(value) <= kMaxCoordinate)) {  // also NaN
+                char text[32];
+                std::snprintf(text, sizeof(text), "%g", value);
                 throw Error(ErrorCode::kNonFinitePosition,
-                            "vertex " + std::to_string(i) + " has a non-finite coordinate (" +
-                                std::to_string(static_cast<double>(point[c])) + ")");
+                            "vertex " + std::to_string(i) +
+                                (std::isfinite(value) ? " has a coordinate beyond 1e30 ("
+                                                      : " has a non-finite coordinate (") +
+                                text + ")");
             }
-            positions[i][c] = static_cast<double>(point[c]);
+            positions[i][c] = value;
         }
     }
     mesh->mesh.positions = std::move(positions);
@@ -368,6 +387,12 @@ void copy_points(const raps_result* result, const std::vector<Eigen::Matrix<doub
         throw Error(ErrorCode::kInvalidArgument, "capacity " + std::to_string(capacity) +
                                                      " is smaller than the " +
                                                      std::to_string(count) + " output vertices");
+    }
+    // The last one ends at (count - 1) * stride + one vector: that must be an address.
+    if (count > 1 && stride > (SIZE_MAX - N * sizeof(T)) / (count - 1)) {
+        throw Error(ErrorCode::kInvalidArgument, "stride_bytes " + std::to_string(stride) +
+                                                     " spreads the " + std::to_string(count) +
+                                                     " output vertices beyond any address");
     }
     unsigned char* bytes = reinterpret_cast<unsigned char*>(dst);
     for (size_t i = 0; i < points.size(); ++i) {

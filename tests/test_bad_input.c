@@ -112,8 +112,19 @@ static void non_finite_positions_are_refused(void** state) {
     assert_non_null(strstr(raps_mesh_last_error(m), "vertex 2"));
     assert_status(raps_mesh_set_positions_f32(m, inf_at_1, 3, 0), RAPS_ERROR_NON_FINITE_POSITION);
     assert_non_null(strstr(raps_mesh_last_error(m), "vertex 1"));
+    /* Finite but beyond 1e30: products of such coordinates overflow inside the algorithms. */
+    const double huge_at_1[] = {0, 0, 0, 1, -2e30, 0, 0, 1, 0};
+    const float float_max_at_0[] = {3.4e38f, 0, 0, 1, 0, 0, 0, 1, 0};
+    assert_status(raps_mesh_set_positions_f64(m, huge_at_1, 3, 0), RAPS_ERROR_NON_FINITE_POSITION);
+    assert_non_null(strstr(raps_mesh_last_error(m), "vertex 1 has a coordinate beyond 1e30"));
+    assert_status(raps_mesh_set_positions_f32(m, float_max_at_0, 3, 0),
+                  RAPS_ERROR_NON_FINITE_POSITION);
+    assert_non_null(strstr(raps_mesh_last_error(m), "vertex 0"));
     /* The refused arrays did not replace anything. */
     assert_int_equal(raps_mesh_vertex_count(m), 0);
+    /* 1e30 itself is in. */
+    const double at_bound[] = {0, 0, 0, 1e30, 0, 0, 0, -1e30, 0};
+    assert_status(raps_mesh_set_positions_f64(m, at_bound, 3, 0), RAPS_OK);
     raps_mesh_destroy(m);
 }
 

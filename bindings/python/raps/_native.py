@@ -23,11 +23,14 @@ RAPS_ERROR_EMPTY_MESH = 3
 RAPS_ERROR_INDEX_COUNT = 4
 #   An index is >= the vertex count.
 RAPS_ERROR_INDEX_OUT_OF_RANGE = 5
-#   A position coordinate is NaN or infinite.
+#   A position coordinate is NaN, infinite, or beyond +-1e30 (products of such coordinates
+#   would overflow a double inside the algorithms).
 RAPS_ERROR_NON_FINITE_POSITION = 6
 #   A triangle names the same vertex twice.
 RAPS_ERROR_REPEATED_VERTEX = 7
 #   A triangle has (numerically) zero area: below 1e-12 times the mean triangle area.
+#   Atlas domain (which takes such triangles as they come): every triangle would get zero uv
+#   area, the mesh's extent being too large next to its triangles for double precision.
 RAPS_ERROR_ZERO_AREA_TRIANGLE = 8
 #   An edge is shared by more than two triangles.
 RAPS_ERROR_NON_MANIFOLD_EDGE = 9

@@ -25,11 +25,14 @@ pub const RAPS_ERROR_EMPTY_MESH: i32 = 3;
 pub const RAPS_ERROR_INDEX_COUNT: i32 = 4;
 /// An index is >= the vertex count.
 pub const RAPS_ERROR_INDEX_OUT_OF_RANGE: i32 = 5;
-/// A position coordinate is NaN or infinite.
+/// A position coordinate is NaN, infinite, or beyond +-1e30 (products of such coordinates
+/// would overflow a double inside the algorithms).
 pub const RAPS_ERROR_NON_FINITE_POSITION: i32 = 6;
 /// A triangle names the same vertex twice.
 pub const RAPS_ERROR_REPEATED_VERTEX: i32 = 7;
 /// A triangle has (numerically) zero area: below 1e-12 times the mean triangle area.
+/// Atlas domain (which takes such triangles as they come): every triangle would get zero uv
+/// area, the mesh's extent being too large next to its triangles for double precision.
 pub const RAPS_ERROR_ZERO_AREA_TRIANGLE: i32 = 8;
 /// An edge is shared by more than two triangles.
 pub const RAPS_ERROR_NON_MANIFOLD_EDGE: i32 = 9;
@@ -326,17 +329,21 @@ extern "C" {
     /// Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
     /// the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
     /// 24 for f64). The data is copied; the pointer need not be aligned.
-    /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+    /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point,
+    /// or so large that the points would span more bytes than an address reaches),
     /// EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count >= 2^31),
-    /// NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY.
+    /// NON_FINITE_POSITION (NaN, infinite or |x| > 1e30; the message names the first such vertex),
+    /// OUT_OF_MEMORY.
     pub fn raps_mesh_set_positions_f32(mesh: *mut raps_mesh, xyz: *const f32, vertex_count: usize, stride_bytes: usize) -> raps_status;
 
     /// Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
     /// the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
     /// 24 for f64). The data is copied; the pointer need not be aligned.
-    /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+    /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point,
+    /// or so large that the points would span more bytes than an address reaches),
     /// EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count >= 2^31),
-    /// NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY.
+    /// NON_FINITE_POSITION (NaN, infinite or |x| > 1e30; the message names the first such vertex),
+    /// OUT_OF_MEMORY.
     pub fn raps_mesh_set_positions_f64(mesh: *mut raps_mesh, xyz: *const f64, vertex_count: usize, stride_bytes: usize) -> raps_status;
 
     /// Sets (replaces) the triangle list: index_count indices, three per triangle, counter-clockwise
@@ -437,26 +444,30 @@ extern "C" {
 
     /// Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
     /// i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
-    /// be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-    /// INVALID_OPERATION (the result holds no map, or a sphere map without uvs).
+    /// be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small,
+    /// or a stride that would place a vertex beyond any address), INVALID_OPERATION (the result holds
+    /// no map, or a sphere map without uvs).
     pub fn raps_result_copy_uvs_f32(result: *const raps_result, dst: *mut f32, capacity: usize, stride_bytes: usize) -> raps_status;
 
     /// Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
     /// i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
-    /// be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-    /// INVALID_OPERATION (the result holds no map, or a sphere map without uvs).
+    /// be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small,
+    /// or a stride that would place a vertex beyond any address), INVALID_OPERATION (the result holds
+    /// no map, or a sphere map without uvs).
     pub fn raps_result_copy_uvs_f64(result: *const raps_result, dst: *mut f64, capacity: usize, stride_bytes: usize) -> raps_status;
 
     /// Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
     /// like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity >=
-    /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-    /// INVALID_OPERATION (the result holds no sphere map, e.g. a disk result).
+    /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small, or a
+    /// stride beyond any address, as for the uvs), INVALID_OPERATION (the result holds no sphere map,
+    /// e.g. a disk result).
     pub fn raps_result_copy_sphere_points_f32(result: *const raps_result, dst: *mut f32, capacity: usize, stride_bytes: usize) -> raps_status;
 
     /// Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
     /// like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity >=
-    /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-    /// INVALID_OPERATION (the result holds no sphere map, e.g. a disk result).
+    /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small, or a
+    /// stride beyond any address, as for the uvs), INVALID_OPERATION (the result holds no sphere map,
+    /// e.g. a disk result).
     pub fn raps_result_copy_sphere_points_f64(result: *const raps_result, dst: *mut f64, capacity: usize, stride_bytes: usize) -> raps_status;
 
     /// Copy the output triangles (indices into the output vertices), capacity >= index_count.
