@@ -147,6 +147,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_SPHERE_TOLERANCE, "sphere_tolerance", true, 1e-12, 1.0, 1e-4},
     {RAPS_PARAM_SPHERE_MAX_SWEEPS, "sphere_max_sweeps", false, 0, 10000000, 0},
     {RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", false, 1, 100, 4},
+    {RAPS_PARAM_MAX_MEMORY_MB, "max_memory_mb", false, 0, kMaxElements, 0},
     {RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", false, 16, 16384, 1024},
     {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 1},
     {RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", true, 0.0, 1.7976931348623157e308, 0.0},
@@ -218,6 +219,8 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.sphere_max_sweeps;
         case RAPS_PARAM_SPHERE_ALPHA_STEPS:
             return s.sphere_alpha_steps;
+        case RAPS_PARAM_MAX_MEMORY_MB:
+            return s.max_memory_mb;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -266,6 +269,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
             break;
         case RAPS_PARAM_SPHERE_ALPHA_STEPS:
             s.sphere_alpha_steps = static_cast<int>(v);
+            break;
+        case RAPS_PARAM_MAX_MEMORY_MB:
+            s.max_memory_mb = v;
             break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");

@@ -242,8 +242,9 @@ namespace Raps
         public const int RAPS_ERROR_NONZERO_GENUS = 16;
         /// <summary>
         /// The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
-        /// more vertices than uint16 indices can address (65536), or more triangles than
-        /// RAPS_PARAM_MAX_TRIANGLES allows.
+        /// more vertices than uint16 indices can address (65536), more triangles than
+        /// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
+        /// RAPS_PARAM_MAX_MEMORY_MB allows.
         /// </summary>
         public const int RAPS_ERROR_TOO_LARGE = 17;
         /// <summary>
@@ -339,6 +340,13 @@ namespace Raps
         /// Default 4.
         /// </summary>
         public const int RAPS_PARAM_SPHERE_ALPHA_STEPS = 15;
+        /// <summary>
+        /// int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
+        /// raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
+        /// resolution; the estimate lies above the peaks measured on the shared meshes, see README)
+        /// is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_MAX_MEMORY_MB = 16;
         /// <summary>
         /// int. Texels on the atlas's longer side, 16..16384. Default 1024.
         /// </summary>

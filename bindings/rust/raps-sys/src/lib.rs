@@ -51,8 +51,9 @@ pub const RAPS_ERROR_MULTIPLE_BOUNDARIES: i32 = 15;
 /// The mesh has handles (genus > 0): one boundary loop but not a topological disk.
 pub const RAPS_ERROR_NONZERO_GENUS: i32 = 16;
 /// The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
-/// more vertices than uint16 indices can address (65536), or more triangles than
-/// RAPS_PARAM_MAX_TRIANGLES allows.
+/// more vertices than uint16 indices can address (65536), more triangles than
+/// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
+/// RAPS_PARAM_MAX_MEMORY_MB allows.
 pub const RAPS_ERROR_TOO_LARGE: i32 = 17;
 /// The progress callback returned 0. Nothing was produced; the handles stay usable.
 pub const RAPS_ERROR_CANCELLED: i32 = 18;
@@ -107,6 +108,11 @@ pub const RAPS_PARAM_SPHERE_MAX_SWEEPS: i32 = 14;
 /// exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.
 /// Default 4.
 pub const RAPS_PARAM_SPHERE_ALPHA_STEPS: i32 = 15;
+/// int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
+/// raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
+/// resolution; the estimate lies above the peaks measured on the shared meshes, see README)
+/// is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0.
+pub const RAPS_PARAM_MAX_MEMORY_MB: i32 = 16;
 /// int. Texels on the atlas's longer side, 16..16384. Default 1024.
 pub const RAPS_PARAM_ATLAS_RESOLUTION: i32 = 32;
 /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
