@@ -131,7 +131,8 @@ enum {
     RAPS_ERROR_MULTIPLE_BOUNDARIES = 15,
     /* The mesh has handles (genus > 0): one boundary loop but not a topological disk. */
     RAPS_ERROR_NONZERO_GENUS = 16,
-    /* The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
+    /* The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
+     * indexes with int32, up to 8 entries per triangle),
      * more vertices than uint16 indices can address (65536), more triangles than
      * RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
      * RAPS_PARAM_MAX_MEMORY_MB allows. */
@@ -182,7 +183,7 @@ RAPS_API raps_status raps_mesh_set_positions_f64(raps_mesh* mesh, const double* 
  * seen from the front. The data is copied. Index ranges are checked against the positions when
  * the mesh is used, so positions and indices may be set in either order.
  * Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
- * multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY. */
+ * multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY. */
 RAPS_API raps_status raps_mesh_set_indices_u16(raps_mesh* mesh, const uint16_t* indices,
                                                size_t index_count);
 RAPS_API raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* indices,

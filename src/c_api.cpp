@@ -71,6 +71,10 @@ using raps::Error;
 using raps::ErrorCode;
 
 constexpr int64_t kMaxElements = 0x7fffffff;  // int32 indexing inside the library
+// Triangles accepted: the library's int32 arrays hold up to 8 entries per triangle (3 half-edges;
+// a sparse system's diagonal plus 2 per edge, at most 6), so 2^28 keeps every one of them below
+// 2^31. At 2^31 - 1, 3 half-edges per triangle overflowed int32 from 715,827,883 triangles on.
+constexpr int64_t kMaxTriangles = int64_t{1} << 28;
 
 // Stores a failure's message in a handle. Storing may need memory itself; when there is none,
 // the handle gets a message that fits the string's inline buffer (no allocation), so that no
@@ -362,8 +366,10 @@ void read_indices(raps_mesh* mesh, const T* indices, size_t count) {
         throw Error(ErrorCode::kIndexCount,
                     "index_count " + std::to_string(count) + " is not a multiple of 3");
     }
-    if (count / 3 > static_cast<size_t>(kMaxElements)) {
-        throw Error(ErrorCode::kTooLarge, "too many triangles (raps accepts at most 2^31 - 1)");
+    if (count / 3 > static_cast<size_t>(kMaxTriangles)) {
+        throw Error(ErrorCode::kTooLarge, "index_count " + std::to_string(count) +
+                                              " makes too many triangles (raps accepts at most "
+                                              "2^28 = 268435456)");
     }
     std::vector<raps::Triangle> triangles(count / 3);
     for (size_t i = 0; i < count; ++i) {

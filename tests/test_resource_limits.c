@@ -68,13 +68,15 @@ static void huge_index_counts_are_refused_unread(void** state) {
     assert_status(raps_mesh_create(&m), RAPS_OK);
     const uint32_t tri[] = {0, 1, 2};
     const uint16_t tri16[] = {0, 1, 2};
-    /* Multiples of 3 whose triangle count reaches 2^31: too large. SIZE_MAX = 2^64 - 1 is a
-     * multiple of 3. */
-    const size_t too_large[] = {(size_t)3 << 31, ((size_t)3 << 31) + 3, SIZE_MAX / 3 * 3,
-                                SIZE_MAX - 3};
+    /* Multiples of 3 making more than 2^28 triangles: too large (3 half-edges per triangle
+     * overflowed the library's int32 indexing from 715,827,883 triangles on). SIZE_MAX =
+     * 2^64 - 1 is a multiple of 3. */
+    const size_t too_large[] = {((size_t)3 << 28) + 3, (size_t)3 * 715827883, (size_t)3 << 31,
+                                SIZE_MAX / 3 * 3, SIZE_MAX - 3};
     for (size_t i = 0; i < sizeof(too_large) / sizeof(too_large[0]); ++i) {
         assert_int_equal(too_large[i] % 3, 0);
         assert_status(raps_mesh_set_indices_u32(m, tri, too_large[i]), RAPS_ERROR_TOO_LARGE);
+        assert_non_null(strstr(raps_mesh_last_error(m), "at most 2^28"));
         assert_status(raps_mesh_set_indices_u16(m, tri16, too_large[i]), RAPS_ERROR_TOO_LARGE);
     }
     /* Not multiples of 3: the count is wrong before it is large. */

@@ -241,7 +241,8 @@ namespace Raps
         /// </summary>
         public const int RAPS_ERROR_NONZERO_GENUS = 16;
         /// <summary>
-        /// The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
+        /// The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
+        /// indexes with int32, up to 8 entries per triangle),
         /// more vertices than uint16 indices can address (65536), more triangles than
         /// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
         /// RAPS_PARAM_MAX_MEMORY_MB allows.
@@ -588,7 +589,7 @@ namespace Raps
         /// seen from the front. The data is copied. Index ranges are checked against the positions when
         /// the mesh is used, so positions and indices may be set in either order.
         /// Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
-        /// multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY.
+        /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_indices_u16(MeshHandle mesh, ushort[] indices, UIntPtr index_count);
@@ -598,7 +599,7 @@ namespace Raps
         /// seen from the front. The data is copied. Index ranges are checked against the positions when
         /// the mesh is used, so positions and indices may be set in either order.
         /// Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
-        /// multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY.
+        /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_indices_u32(MeshHandle mesh, uint[] indices, UIntPtr index_count);

@@ -174,8 +174,10 @@ static void set_indices(raps_mesh* mesh, const fuzz_mesh_input* in) {
     CHECK(indices != NULL);
     memcpy(indices, in->indices, in->index_count * bytes);
     if (in->flags & FUZZ_FLAG_HUGE_INDEX_COUNT) {
-        /* A multiple of 3 past 3 * (2^31 - 1), and SIZE_MAX (also a multiple of 3). */
-        const size_t huge = (in->cancel_at & 2) ? SIZE_MAX : 3 * ((size_t)1 << 31);
+        /* Multiples of 3 past 3 * 2^28 (the most triangles raps accepts), SIZE_MAX among them. */
+        const size_t huge = (in->cancel_at & 2)   ? SIZE_MAX
+                            : (in->cancel_at & 4) ? 3 * (((size_t)1 << 28) + 1)
+                                                  : 3 * ((size_t)1 << 31);
         const raps_status status = u16 ? raps_mesh_set_indices_u16(mesh, indices, huge)
                                        : raps_mesh_set_indices_u32(mesh, indices, huge);
         CHECK_STATUS(status, RAPS_ERROR_TOO_LARGE);

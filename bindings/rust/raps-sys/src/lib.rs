@@ -50,7 +50,8 @@ pub const RAPS_ERROR_NO_BOUNDARY: i32 = 14;
 pub const RAPS_ERROR_MULTIPLE_BOUNDARIES: i32 = 15;
 /// The mesh has handles (genus > 0): one boundary loop but not a topological disk.
 pub const RAPS_ERROR_NONZERO_GENUS: i32 = 16;
-/// The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
+/// The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
+/// indexes with int32, up to 8 entries per triangle),
 /// more vertices than uint16 indices can address (65536), more triangles than
 /// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
 /// RAPS_PARAM_MAX_MEMORY_MB allows.
@@ -356,14 +357,14 @@ extern "C" {
     /// seen from the front. The data is copied. Index ranges are checked against the positions when
     /// the mesh is used, so positions and indices may be set in either order.
     /// Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
-    /// multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY.
+    /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
     pub fn raps_mesh_set_indices_u16(mesh: *mut raps_mesh, indices: *const u16, index_count: usize) -> raps_status;
 
     /// Sets (replaces) the triangle list: index_count indices, three per triangle, counter-clockwise
     /// seen from the front. The data is copied. Index ranges are checked against the positions when
     /// the mesh is used, so positions and indices may be set in either order.
     /// Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
-    /// multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY.
+    /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
     pub fn raps_mesh_set_indices_u32(mesh: *mut raps_mesh, indices: *const u32, index_count: usize) -> raps_status;
 
     /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
