@@ -106,11 +106,14 @@ enum {
     RAPS_ERROR_INDEX_COUNT = 4,
     /* An index is >= the vertex count. */
     RAPS_ERROR_INDEX_OUT_OF_RANGE = 5,
-    /* A position coordinate is NaN or infinite. */
+    /* A position coordinate is NaN, infinite, or beyond +-1e30 (products of such coordinates
+     * would overflow a double inside the algorithms). */
     RAPS_ERROR_NON_FINITE_POSITION = 6,
     /* A triangle names the same vertex twice. */
     RAPS_ERROR_REPEATED_VERTEX = 7,
-    /* A triangle has (numerically) zero area: below 1e-12 times the mean triangle area. */
+    /* A triangle has (numerically) zero area: below 1e-12 times the mean triangle area.
+     * Atlas domain (which takes such triangles as they come): every triangle would get zero uv
+     * area, the mesh's extent being too large next to its triangles for double precision. */
     RAPS_ERROR_ZERO_AREA_TRIANGLE = 8,
     /* An edge is shared by more than two triangles. */
     RAPS_ERROR_NON_MANIFOLD_EDGE = 9,
@@ -128,9 +131,11 @@ enum {
     RAPS_ERROR_MULTIPLE_BOUNDARIES = 15,
     /* The mesh has handles (genus > 0): one boundary loop but not a topological disk. */
     RAPS_ERROR_NONZERO_GENUS = 16,
-    /* The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
-     * more vertices than uint16 indices can address (65536), or more triangles than
-     * RAPS_PARAM_MAX_TRIANGLES allows. */
+    /* The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
+     * indexes with int32, up to 8 entries per triangle),
+     * more vertices than uint16 indices can address (65536), more triangles than
+     * RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
+     * RAPS_PARAM_MAX_MEMORY_MB allows. */
     RAPS_ERROR_TOO_LARGE = 17,
     /* The progress callback returned 0. Nothing was produced; the handles stay usable. */
     RAPS_ERROR_CANCELLED = 18,
@@ -164,9 +169,11 @@ RAPS_API void raps_mesh_destroy(raps_mesh* mesh);
 /* Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
  * the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
  * 24 for f64). The data is copied; the pointer need not be aligned.
- * Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+ * Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point,
+ * or so large that the points would span more bytes than an address reaches),
  * EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count >= 2^31),
- * NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY. */
+ * NON_FINITE_POSITION (NaN, infinite or |x| > 1e30; the message names the first such vertex),
+ * OUT_OF_MEMORY. */
 RAPS_API raps_status raps_mesh_set_positions_f32(raps_mesh* mesh, const float* xyz,
                                                  size_t vertex_count, size_t stride_bytes);
 RAPS_API raps_status raps_mesh_set_positions_f64(raps_mesh* mesh, const double* xyz,
@@ -176,7 +183,7 @@ RAPS_API raps_status raps_mesh_set_positions_f64(raps_mesh* mesh, const double* 
  * seen from the front. The data is copied. Index ranges are checked against the positions when
  * the mesh is used, so positions and indices may be set in either order.
  * Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
- * multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY. */
+ * multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY. */
 RAPS_API raps_status raps_mesh_set_indices_u16(raps_mesh* mesh, const uint16_t* indices,
                                                size_t index_count);
 RAPS_API raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* indices,
@@ -241,6 +248,13 @@ enum {
      * exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.
      * Default 4. */
     RAPS_PARAM_SPHERE_ALPHA_STEPS = 15,
+
+    /* Every domain (numbered after the sphere's parameters). */
+    /* int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
+     * raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
+     * resolution; the estimate lies above the peaks measured on the shared meshes, see README)
+     * is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0. */
+    RAPS_PARAM_MAX_MEMORY_MB = 16,
 
     /* Atlas domain (RAPS_DOMAIN_ATLAS); ignored by the others. */
     /* int. Texels on the atlas's longer side, 16..16384. Default 1024. */
@@ -447,16 +461,18 @@ RAPS_API size_t raps_result_index_count(const raps_result* result);
 
 /* Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
  * i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
- * be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
- * INVALID_OPERATION (the result holds no map, or a sphere map without uvs). */
+ * be >= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small,
+ * or a stride that would place a vertex beyond any address), INVALID_OPERATION (the result holds
+ * no map, or a sphere map without uvs). */
 RAPS_API raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst,
                                               size_t capacity, size_t stride_bytes);
 RAPS_API raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst,
                                               size_t capacity, size_t stride_bytes);
 /* Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
  * like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity >=
- * raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
- * INVALID_OPERATION (the result holds no sphere map, e.g. a disk result). */
+ * raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small, or a
+ * stride beyond any address, as for the uvs), INVALID_OPERATION (the result holds no sphere map,
+ * e.g. a disk result). */
 RAPS_API raps_status raps_result_copy_sphere_points_f32(const raps_result* result, float* dst,
                                                         size_t capacity, size_t stride_bytes);
 RAPS_API raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -70,6 +71,23 @@ using raps::Error;
 using raps::ErrorCode;
 
 constexpr int64_t kMaxElements = 0x7fffffff;  // int32 indexing inside the library
+// Triangles accepted: the library's int32 arrays hold up to 8 entries per triangle (3 half-edges;
+// a sparse system's diagonal plus 2 per edge, at most 6), so 2^28 keeps every one of them below
+// 2^31. At 2^31 - 1, 3 half-edges per triangle overflowed int32 from 715,827,883 triangles on.
+constexpr int64_t kMaxTriangles = int64_t{1} << 28;
+
+// Stores a failure's message in a handle. Storing may need memory itself; when there is none,
+// the handle gets a message that fits the string's inline buffer (no allocation), so that no
+// exception ever leaves the catch blocks below and crosses the ABI (found by failing each
+// allocation in turn: tests/test_alloc_failures.c).
+void store_message(std::string* last_error, const char* message) {
+    if (!last_error) return;
+    try {
+        *last_error = message;
+    } catch (...) {
+        last_error->assign("out of memory");  // 13 characters: within every std::string
+    }
+}
 
 // Runs `body`, storing the message of any failure in `last_error`; never lets an exception
 // cross the ABI.
@@ -80,16 +98,20 @@ raps_status guarded(std::string* last_error, Body&& body) {
         if (last_error) last_error->clear();
         return RAPS_OK;
     } catch (const Error& error) {
-        if (last_error) *last_error = error.what();
+        store_message(last_error, error.what());
         return static_cast<raps_status>(error.code());
     } catch (const std::bad_alloc&) {
-        if (last_error) *last_error = "out of memory";
+        store_message(last_error, "out of memory");
         return RAPS_ERROR_OUT_OF_MEMORY;
     } catch (const std::exception& error) {
-        if (last_error) *last_error = std::string("internal error: ") + error.what();
+        try {
+            store_message(last_error, (std::string("internal error: ") + error.what()).c_str());
+        } catch (...) {
+            store_message(last_error, "out of memory");
+        }
         return RAPS_ERROR_INTERNAL;
     } catch (...) {
-        if (last_error) *last_error = "internal error: unknown exception";
+        store_message(last_error, "internal error: unknown exception");
         return RAPS_ERROR_INTERNAL;
     }
 }
@@ -129,6 +151,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_SPHERE_TOLERANCE, "sphere_tolerance", true, 1e-12, 1.0, 1e-4},
     {RAPS_PARAM_SPHERE_MAX_SWEEPS, "sphere_max_sweeps", false, 0, 10000000, 0},
     {RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", false, 1, 100, 4},
+    {RAPS_PARAM_MAX_MEMORY_MB, "max_memory_mb", false, 0, kMaxElements, 0},
     {RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", false, 16, 16384, 1024},
     {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 1},
     {RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", true, 0.0, 1.7976931348623157e308, 0.0},
@@ -200,6 +223,8 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.sphere_max_sweeps;
         case RAPS_PARAM_SPHERE_ALPHA_STEPS:
             return s.sphere_alpha_steps;
+        case RAPS_PARAM_MAX_MEMORY_MB:
+            return s.max_memory_mb;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -249,6 +274,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
         case RAPS_PARAM_SPHERE_ALPHA_STEPS:
             s.sphere_alpha_steps = static_cast<int>(v);
             break;
+        case RAPS_PARAM_MAX_MEMORY_MB:
+            s.max_memory_mb = v;
+            break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -277,8 +305,15 @@ auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
     }
 }
 
+// Coordinates beyond this are refused like non-finite ones: the algorithms multiply up to a few
+// coordinates together (areas, squared areas, products of edge vectors), and a product of four
+// overflows a double once coordinates pass about 1e77; 1e30 keeps every such product finite with
+// a wide margin and lies far beyond any real mesh (fuzzing found coordinates near 1e151, 1e191
+// and 1e307 turning areas infinite and the statistics and atlas packing into NaN).
+constexpr double kMaxCoordinate = 1e30;
+
 // Reads `count` points of three coordinates of type T at `stride` bytes into doubles, refusing
-// non-finite values. memcpy because the caller's data need not be aligned.
+// non-finite and huge values. memcpy because the caller's data need not be aligned.
 template <typename T>
 void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) {
     require(mesh != nullptr, "mesh is NULL");
@@ -294,18 +329,29 @@ void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) 
                                                      " is smaller than one point (" +
                                                      std::to_string(3 * sizeof(T)) + " bytes)");
     }
+    // The last point ends at (count - 1) * stride + one point: that must be an address.
+    if (count > 1 && stride > (SIZE_MAX - 3 * sizeof(T)) / (count - 1)) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "vertex_count " + std::to_string(count) + " points at stride_bytes " +
+                        std::to_string(stride) + " span more bytes than an address can reach");
+    }
     std::vector<Eigen::Vector3d> positions(count);
     const unsigned char* bytes = reinterpret_cast<const unsigned char*>(xyz);
     for (size_t i = 0; i < count; ++i) {
         T point[3];
         std::memcpy(point, bytes + i * stride, sizeof(point));
         for (int c = 0; c < 3; ++c) {
-            if (!std::isfinite(point[c])) {
+            const double value = static_cast<double>(point[c]);
+            if (!(std::abs(value) <= kMaxCoordinate)) {  // also NaN
+                char text[32];
+                std::snprintf(text, sizeof(text), "%g", value);
                 throw Error(ErrorCode::kNonFinitePosition,
-                            "vertex " + std::to_string(i) + " has a non-finite coordinate (" +
-                                std::to_string(static_cast<double>(point[c])) + ")");
+                            "vertex " + std::to_string(i) +
+                                (std::isfinite(value) ? " has a coordinate beyond 1e30 ("
+                                                      : " has a non-finite coordinate (") +
+                                text + ")");
             }
-            positions[i][c] = static_cast<double>(point[c]);
+            positions[i][c] = value;
         }
     }
     mesh->mesh.positions = std::move(positions);
@@ -320,8 +366,10 @@ void read_indices(raps_mesh* mesh, const T* indices, size_t count) {
         throw Error(ErrorCode::kIndexCount,
                     "index_count " + std::to_string(count) + " is not a multiple of 3");
     }
-    if (count / 3 > static_cast<size_t>(kMaxElements)) {
-        throw Error(ErrorCode::kTooLarge, "too many triangles (raps accepts at most 2^31 - 1)");
+    if (count / 3 > static_cast<size_t>(kMaxTriangles)) {
+        throw Error(ErrorCode::kTooLarge, "index_count " + std::to_string(count) +
+                                              " makes too many triangles (raps accepts at most "
+                                              "2^28 = 268435456)");
     }
     std::vector<raps::Triangle> triangles(count / 3);
     for (size_t i = 0; i < count; ++i) {
@@ -351,6 +399,12 @@ void copy_points(const raps_result* result, const std::vector<Eigen::Matrix<doub
         throw Error(ErrorCode::kInvalidArgument, "capacity " + std::to_string(capacity) +
                                                      " is smaller than the " +
                                                      std::to_string(count) + " output vertices");
+    }
+    // The last one ends at (count - 1) * stride + one vector: that must be an address.
+    if (count > 1 && stride > (SIZE_MAX - N * sizeof(T)) / (count - 1)) {
+        throw Error(ErrorCode::kInvalidArgument, "stride_bytes " + std::to_string(stride) +
+                                                     " spreads the " + std::to_string(count) +
+                                                     " output vertices beyond any address");
     }
     unsigned char* bytes = reinterpret_cast<unsigned char*>(dst);
     for (size_t i = 0; i < points.size(); ++i) {

@@ -5,6 +5,7 @@
 
 #include "atlas/atlas_pipeline.h"
 #include "core/error.h"
+#include "core/memory_estimate.h"
 #include "planar/disk_parameterization.h"
 #include "sphere/sphere_parameterization.h"
 #include "sphere/spherical_geometry.h"
@@ -47,6 +48,16 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         throw Error(ErrorCode::kTooLarge, "the mesh has " + std::to_string(mesh.triangle_count()) +
                                               " triangles, more than RAPS_PARAM_MAX_TRIANGLES = " +
                                               std::to_string(settings.max_triangles));
+    }
+    if (settings.max_memory_mb > 0) {
+        const double estimate = estimated_peak_bytes(mesh, settings);
+        if (estimate > static_cast<double>(settings.max_memory_mb) * 1048576.0) {
+            throw Error(ErrorCode::kTooLarge,
+                        "the run is estimated to need " +
+                            std::to_string(static_cast<int64_t>(estimate / 1048576.0) + 1) +
+                            " MiB at its peak, more than RAPS_PARAM_MAX_MEMORY_MB = " +
+                            std::to_string(settings.max_memory_mb));
+        }
     }
     Parameterization out;
     if (settings.domain == Domain::kSphere) {

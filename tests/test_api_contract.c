@@ -58,6 +58,7 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_PARAM_SPHERE_TOLERANCE, 13);
     assert_int_equal(RAPS_PARAM_SPHERE_MAX_SWEEPS, 14);
     assert_int_equal(RAPS_PARAM_SPHERE_ALPHA_STEPS, 15);
+    assert_int_equal(RAPS_PARAM_MAX_MEMORY_MB, 16);
     assert_int_equal(RAPS_DOMAIN_DISK, 0);
     assert_int_equal(RAPS_DOMAIN_SPHERE, 1);
     assert_int_equal(RAPS_SPHERE_LITERAL, 0);
@@ -121,7 +122,8 @@ static void settings_hold_the_documented_defaults(void** state) {
                     {RAPS_PARAM_SPHERE_METHOD, RAPS_SPHERE_ROBUST},
                     {RAPS_PARAM_SPHERE_UV, RAPS_SPHERE_UV_NONE},
                     {RAPS_PARAM_SPHERE_MAX_SWEEPS, 0},
-                    {RAPS_PARAM_SPHERE_ALPHA_STEPS, 4}};
+                    {RAPS_PARAM_SPHERE_ALPHA_STEPS, 4},
+                    {RAPS_PARAM_MAX_MEMORY_MB, 0}};
     for (size_t i = 0; i < sizeof(expected) / sizeof(expected[0]); ++i) {
         int64_t value = -1;
         assert_status(raps_settings_get_int(s, expected[i].param, &value), RAPS_OK);
@@ -193,7 +195,7 @@ static void every_parameter_round_trips(void** state) {
                           RAPS_ERROR_INVALID_ARGUMENT);
         }
     }
-    assert_int_equal(known, 21);
+    assert_int_equal(known, 22);
     raps_settings_destroy(s);
 }
 

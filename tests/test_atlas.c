@@ -321,6 +321,33 @@ static void hostile_meshes_get_valid_atlases(void** state) {
     test_mesh_free(&fan);
 }
 
+/* A vertex so far out (1e29, inside the 1e30 positions accept) that every chart is thinner
+ * than double precision resolves at one texel density: every uv triangle would have zero area.
+ * That is refused, not returned as a map (found by fuzzing; the statistics were NaN). */
+static void an_atlas_of_zero_area_is_refused(void** state) {
+    (void)state;
+    test_mesh disk = make_flat_disk(10, 6, 0.2);
+    disk.positions[3 * 5 + 2] = 1e29; /* lift one vertex of the first ring */
+    raps_mesh* m = to_raps_mesh(&disk);
+    raps_settings* s = NULL;
+    raps_result* r = NULL;
+    assert_status(raps_settings_create(&s), RAPS_OK);
+    assert_status(raps_result_create(&r), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS), RAPS_OK);
+    assert_status(raps_parameterize(m, s, r), RAPS_ERROR_ZERO_AREA_TRIANGLE);
+    assert_non_null(strstr(raps_result_last_error(r), "every triangle of the atlas has zero uv"));
+    assert_int_equal(raps_result_vertex_count(r), 0);
+    /* A spike a million times the patch is still mapped (its small charts may vanish). */
+    disk.positions[3 * 5 + 2] = 1e6;
+    raps_mesh_destroy(m);
+    m = to_raps_mesh(&disk);
+    assert_status(raps_parameterize(m, s, r), RAPS_OK);
+    raps_result_destroy(r);
+    raps_settings_destroy(s);
+    raps_mesh_destroy(m);
+    test_mesh_free(&disk);
+}
+
 static int32_t count_phases(void* user, raps_phase phase, double fraction) {
     (void)fraction;
     ((int*)user)[phase] = 1;
@@ -431,6 +458,7 @@ int main(void) {
         cmocka_unit_test(every_shared_mesh_gets_a_valid_atlas),
         cmocka_unit_test(output_is_identical_for_any_thread_count),
         cmocka_unit_test(hostile_meshes_get_valid_atlases),
+        cmocka_unit_test(an_atlas_of_zero_area_is_refused),
         cmocka_unit_test(atlas_progress_and_cancellation),
         cmocka_unit_test(progress_calls_never_overlap),
         cmocka_unit_test(hard_edges_become_seams),

@@ -194,7 +194,8 @@ namespace Raps
         /// </summary>
         public const int RAPS_ERROR_INDEX_OUT_OF_RANGE = 5;
         /// <summary>
-        /// A position coordinate is NaN or infinite.
+        /// A position coordinate is NaN, infinite, or beyond +-1e30 (products of such coordinates
+        /// would overflow a double inside the algorithms).
         /// </summary>
         public const int RAPS_ERROR_NON_FINITE_POSITION = 6;
         /// <summary>
@@ -203,6 +204,8 @@ namespace Raps
         public const int RAPS_ERROR_REPEATED_VERTEX = 7;
         /// <summary>
         /// A triangle has (numerically) zero area: below 1e-12 times the mean triangle area.
+        /// Atlas domain (which takes such triangles as they come): every triangle would get zero uv
+        /// area, the mesh's extent being too large next to its triangles for double precision.
         /// </summary>
         public const int RAPS_ERROR_ZERO_AREA_TRIANGLE = 8;
         /// <summary>
@@ -238,9 +241,11 @@ namespace Raps
         /// </summary>
         public const int RAPS_ERROR_NONZERO_GENUS = 16;
         /// <summary>
-        /// The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
-        /// more vertices than uint16 indices can address (65536), or more triangles than
-        /// RAPS_PARAM_MAX_TRIANGLES allows.
+        /// The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
+        /// indexes with int32, up to 8 entries per triangle),
+        /// more vertices than uint16 indices can address (65536), more triangles than
+        /// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
+        /// RAPS_PARAM_MAX_MEMORY_MB allows.
         /// </summary>
         public const int RAPS_ERROR_TOO_LARGE = 17;
         /// <summary>
@@ -336,6 +341,13 @@ namespace Raps
         /// Default 4.
         /// </summary>
         public const int RAPS_PARAM_SPHERE_ALPHA_STEPS = 15;
+        /// <summary>
+        /// int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
+        /// raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
+        /// resolution; the estimate lies above the peaks measured on the shared meshes, see README)
+        /// is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_MAX_MEMORY_MB = 16;
         /// <summary>
         /// int. Texels on the atlas's longer side, 16..16384. Default 1024.
         /// </summary>
@@ -550,9 +562,11 @@ namespace Raps
         /// Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
         /// the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
         /// 24 for f64). The data is copied; the pointer need not be aligned.
-        /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+        /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point,
+        /// or so large that the points would span more bytes than an address reaches),
         /// EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count &gt;= 2^31),
-        /// NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY.
+        /// NON_FINITE_POSITION (NaN, infinite or |x| &gt; 1e30; the message names the first such vertex),
+        /// OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_positions_f32(MeshHandle mesh, float[] xyz, UIntPtr vertex_count, UIntPtr stride_bytes);
@@ -561,9 +575,11 @@ namespace Raps
         /// Sets (replaces) the vertex positions: vertex_count points of three coordinates x, y, z,
         /// the first at xyz, each next one stride_bytes further (0 = tightly packed: 12 bytes for f32,
         /// 24 for f64). The data is copied; the pointer need not be aligned.
-        /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point),
+        /// Errors: INVALID_ARGUMENT (mesh or xyz NULL, stride_bytes nonzero and smaller than one point,
+        /// or so large that the points would span more bytes than an address reaches),
         /// EMPTY_MESH (vertex_count 0), TOO_LARGE (vertex_count &gt;= 2^31),
-        /// NON_FINITE_POSITION (the message names the first such vertex), OUT_OF_MEMORY.
+        /// NON_FINITE_POSITION (NaN, infinite or |x| &gt; 1e30; the message names the first such vertex),
+        /// OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_positions_f64(MeshHandle mesh, double[] xyz, UIntPtr vertex_count, UIntPtr stride_bytes);
@@ -573,7 +589,7 @@ namespace Raps
         /// seen from the front. The data is copied. Index ranges are checked against the positions when
         /// the mesh is used, so positions and indices may be set in either order.
         /// Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
-        /// multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY.
+        /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_indices_u16(MeshHandle mesh, ushort[] indices, UIntPtr index_count);
@@ -583,7 +599,7 @@ namespace Raps
         /// seen from the front. The data is copied. Index ranges are checked against the positions when
         /// the mesh is used, so positions and indices may be set in either order.
         /// Errors: INVALID_ARGUMENT (mesh or indices NULL), EMPTY_MESH (index_count 0), INDEX_COUNT (not a
-        /// multiple of 3), TOO_LARGE (2^31 or more triangles), OUT_OF_MEMORY.
+        /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_indices_u32(MeshHandle mesh, uint[] indices, UIntPtr index_count);
@@ -733,8 +749,9 @@ namespace Raps
         /// <summary>
         /// Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
         /// i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
-        /// be &gt;= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-        /// INVALID_OPERATION (the result holds no map, or a sphere map without uvs).
+        /// be &gt;= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small,
+        /// or a stride that would place a vertex beyond any address), INVALID_OPERATION (the result holds
+        /// no map, or a sphere map without uvs).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_copy_uvs_f32(ResultHandle result, [Out] float[] dst, UIntPtr capacity, UIntPtr stride_bytes);
@@ -742,8 +759,9 @@ namespace Raps
         /// <summary>
         /// Copy per-output-vertex UVs (u, v pairs in [0,1]^2, v up) into dst: vertex i at byte offset
         /// i * stride_bytes (0 = tightly packed). capacity is the number of vertices dst can hold and must
-        /// be &gt;= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-        /// INVALID_OPERATION (the result holds no map, or a sphere map without uvs).
+        /// be &gt;= raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small,
+        /// or a stride that would place a vertex beyond any address), INVALID_OPERATION (the result holds
+        /// no map, or a sphere map without uvs).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_copy_uvs_f64(ResultHandle result, [Out] double[] dst, UIntPtr capacity, UIntPtr stride_bytes);
@@ -751,8 +769,9 @@ namespace Raps
         /// <summary>
         /// Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
         /// like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity &gt;=
-        /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-        /// INVALID_OPERATION (the result holds no sphere map, e.g. a disk result).
+        /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small, or a
+        /// stride beyond any address, as for the uvs), INVALID_OPERATION (the result holds no sphere map,
+        /// e.g. a disk result).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_copy_sphere_points_f32(ResultHandle result, [Out] float[] dst, UIntPtr capacity, UIntPtr stride_bytes);
@@ -760,8 +779,9 @@ namespace Raps
         /// <summary>
         /// Copy per-output-vertex points on the unit sphere (x, y, z) of a RAPS_DOMAIN_SPHERE result,
         /// like the uvs: vertex i at byte offset i * stride_bytes (0 = tightly packed), capacity &gt;=
-        /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small),
-        /// INVALID_OPERATION (the result holds no sphere map, e.g. a disk result).
+        /// raps_result_vertex_count. Errors: INVALID_ARGUMENT (NULL, capacity or stride too small, or a
+        /// stride beyond any address, as for the uvs), INVALID_OPERATION (the result holds no sphere map,
+        /// e.g. a disk result).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_copy_sphere_points_f64(ResultHandle result, [Out] double[] dst, UIntPtr capacity, UIntPtr stride_bytes);

@@ -13,6 +13,27 @@
 #include "mesh/mesh_validation.h"
 
 namespace raps {
+namespace {
+
+// Charts are scaled to one texel density, so a mesh whose extent dwarfs its triangles (fuzzing
+// found a vertex at 1e29 beside a unit-sized patch) leaves every chart thinner than double
+// precision resolves next to its place in the atlas: all uv triangles come out with zero area.
+// That is no map; say so instead of returning it.
+void refuse_collapsed_atlas(const std::vector<AtlasChart>& charts, const PackResult& packed) {
+    if (charts.empty()) return;
+    for (size_t c = 0; c < charts.size(); ++c) {
+        const std::vector<Eigen::Vector2d>& uv = packed.uv[c];
+        for (const Triangle& t : charts[c].disk.mesh.triangles) {
+            const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+            if (a.x() * b.y() - a.y() * b.x() != 0) return;
+        }
+    }
+    throw Error(ErrorCode::kZeroAreaTriangle,
+                "every triangle of the atlas has zero uv area: the mesh's extent is too large "
+                "next to its triangles for double precision at one texel density");
+}
+
+}  // namespace
 
 AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
                         const Progress& progress, PhaseTimes& times) {
@@ -71,6 +92,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     pack_settings.padding = settings.atlas_padding;
     pack_settings.threads = settings.threads;
     const PackResult packed = pack_charts(inputs, pack_settings);
+    refuse_collapsed_atlas(charts, packed);
     pack_timer.finish();
 
     // Output: walk the input triangles in order; each corner becomes the output vertex of its

@@ -23,7 +23,8 @@ struct Settings {
     IterationMode iteration_mode = IterationMode::kAccumulate;
     BoundaryShape boundary = BoundaryShape::kCircle;
     int64_t max_triangles = 0x7fffffff;
-    int threads = 0;  // 0: all hardware threads
+    int threads = 0;            // 0: all hardware threads
+    int64_t max_memory_mb = 0;  // 0: no cap on the estimated peak (core/memory_estimate.h)
 
     // Sphere domain.
     SphereMethod sphere_method = SphereMethod::kRobust;

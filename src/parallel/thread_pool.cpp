@@ -7,7 +7,14 @@ namespace raps {
 ThreadPool::ThreadPool(int threads) {
     if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     workers_.reserve(static_cast<size_t>(threads - 1));
-    for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { work(); });
+    try {
+        for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { work(); });
+    } catch (...) {
+        // A thread that cannot start (no memory for its state, no thread resources) leaves the
+        // work to those that did: the output does not depend on their number. Letting the
+        // exception out would destroy the started workers unjoined, which calls std::terminate
+        // (found by failing each allocation in turn: tests/test_alloc_failures.cpp).
+    }
 }
 
 ThreadPool::~ThreadPool() {

@@ -19,7 +19,7 @@ namespace raps {
 class ThreadPool {
   public:
     // threads: the number of threads that work, the caller's included (1: no workers; 0: one
-    // per hardware thread).
+    // per hardware thread). Fewer work when the system cannot start them all.
     explicit ThreadPool(int threads);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;

@@ -404,7 +404,14 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
     for (int c = 0; c < rhs_count; ++c) {
         for (int32_t k = 0; k < n; ++k) x(k, c) = b[static_cast<int64_t>(c) * n + order_[k]];
     }
-    Matrix gathered;
+    // One buffer of the largest update size, used through blocks and never resized: Eigen frees
+    // a matrix's storage before allocating the new one, so a resize that runs out of memory
+    // leaves the matrix pointing at freed memory, freed again when it is destroyed (found by
+    // failing each allocation in turn: tests/test_alloc_failures.c).
+    int32_t most_update = 0;
+    for (const Supernode& node : supernodes_)
+        most_update = std::max(most_update, node.rows - node.columns);
+    Matrix gathered_buffer(most_update, rhs_count);
     // Forward: L y = b, children before parents.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
@@ -413,6 +420,7 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
         auto xs = x.middleRows(node.first_column, k);
         panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
         if (update == 0) continue;
+        auto gathered = gathered_buffer.topRows(update);
         gathered.noalias() = panel.bottomRows(update) * xs;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         for (int c = 0; c < rhs_count; ++c) {
@@ -429,7 +437,7 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
         if (update > 0) {
             Eigen::Map<const Matrix> upper(lower + static_cast<int64_t>(m) * k, k, update);
             const int32_t* rows = row_indices_.data() + node.row_offset + k;
-            gathered.resize(update, rhs_count);
+            auto gathered = gathered_buffer.topRows(update);
             for (int c = 0; c < rhs_count; ++c) {
                 for (int32_t r = 0; r < update; ++r) gathered(r, c) = x(rows[r], c);
             }

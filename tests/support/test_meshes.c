@@ -206,6 +206,35 @@ test_mesh make_icosphere(int subdivisions) {
     return b.mesh;
 }
 
+test_mesh make_uv_sphere(int rings, int sectors) {
+    builder b;
+    memset(&b, 0, sizeof(b));
+    add_vertex(&b, 0, 0, 1); /* north pole: vertex 0 */
+    for (int i = 1; i < rings; ++i) {
+        const double polar = M_PI * i / rings;
+        for (int j = 0; j < sectors; ++j) {
+            const double azimuth = 2.0 * M_PI * j / sectors;
+            add_vertex(&b, sin(polar) * cos(azimuth), sin(polar) * sin(azimuth), cos(polar));
+        }
+    }
+    const size_t south = add_vertex(&b, 0, 0, -1);
+    for (int j = 0; j < sectors; ++j) { /* counter-clockwise seen from outside */
+        const size_t next = (size_t)(j + 1) % (size_t)sectors;
+        add_triangle(&b, 0, 1 + (size_t)j, 1 + next);
+        const size_t last = 1 + (size_t)(rings - 2) * (size_t)sectors;
+        add_triangle(&b, south, last + next, last + (size_t)j);
+    }
+    for (int i = 1; i + 1 < rings; ++i) {
+        const size_t row = 1 + (size_t)(i - 1) * (size_t)sectors, below = row + (size_t)sectors;
+        for (int j = 0; j < sectors; ++j) {
+            const size_t next = (size_t)(j + 1) % (size_t)sectors;
+            add_triangle(&b, row + (size_t)j, below + (size_t)j, below + next);
+            add_triangle(&b, row + (size_t)j, below + next, row + next);
+        }
+    }
+    return b.mesh;
+}
+
 static test_mesh make_torus(int nu, int nv, int punctured) {
     builder b;
     memset(&b, 0, sizeof(b));

@@ -42,6 +42,9 @@ test_mesh make_grid(int nx, int ny, double width, double height);
 
 /* Closed meshes and other topologies the disk domain refuses. */
 test_mesh make_icosphere(int subdivisions);
+/* A latitude-longitude sphere: the poles and rings - 1 rings of `sectors` vertices (closed,
+ * genus 0; quick to build at any size, unlike the icosphere). */
+test_mesh make_uv_sphere(int rings, int sectors);
 test_mesh make_annulus(int rings, int sectors); /* two boundary loops */
 test_mesh make_punctured_torus(int nu, int nv); /* one boundary loop, genus 1 */
 test_mesh make_closed_torus(int nu, int nv);    /* no boundary, genus 1 */

@@ -23,11 +23,14 @@ RAPS_ERROR_EMPTY_MESH = 3
 RAPS_ERROR_INDEX_COUNT = 4
 #   An index is >= the vertex count.
 RAPS_ERROR_INDEX_OUT_OF_RANGE = 5
-#   A position coordinate is NaN or infinite.
+#   A position coordinate is NaN, infinite, or beyond +-1e30 (products of such coordinates
+#   would overflow a double inside the algorithms).
 RAPS_ERROR_NON_FINITE_POSITION = 6
 #   A triangle names the same vertex twice.
 RAPS_ERROR_REPEATED_VERTEX = 7
 #   A triangle has (numerically) zero area: below 1e-12 times the mean triangle area.
+#   Atlas domain (which takes such triangles as they come): every triangle would get zero uv
+#   area, the mesh's extent being too large next to its triangles for double precision.
 RAPS_ERROR_ZERO_AREA_TRIANGLE = 8
 #   An edge is shared by more than two triangles.
 RAPS_ERROR_NON_MANIFOLD_EDGE = 9
@@ -45,9 +48,11 @@ RAPS_ERROR_NO_BOUNDARY = 14
 RAPS_ERROR_MULTIPLE_BOUNDARIES = 15
 #   The mesh has handles (genus > 0): one boundary loop but not a topological disk.
 RAPS_ERROR_NONZERO_GENUS = 16
-#   The mesh is too large: 2^31 or more vertices or triangles (the solver indexes with int32),
-#   more vertices than uint16 indices can address (65536), or more triangles than
-#   RAPS_PARAM_MAX_TRIANGLES allows.
+#   The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
+#   indexes with int32, up to 8 entries per triangle),
+#   more vertices than uint16 indices can address (65536), more triangles than
+#   RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
+#   RAPS_PARAM_MAX_MEMORY_MB allows.
 RAPS_ERROR_TOO_LARGE = 17
 #   The progress callback returned 0. Nothing was produced; the handles stay usable.
 RAPS_ERROR_CANCELLED = 18
@@ -102,6 +107,11 @@ RAPS_PARAM_SPHERE_MAX_SWEEPS = 14
 #   exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.
 #   Default 4.
 RAPS_PARAM_SPHERE_ALPHA_STEPS = 15
+#   int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
+#   raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
+#   resolution; the estimate lies above the peaks measured on the shared meshes, see README)
+#   is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0.
+RAPS_PARAM_MAX_MEMORY_MB = 16
 #   int. Texels on the atlas's longer side, 16..16384. Default 1024.
 RAPS_PARAM_ATLAS_RESOLUTION = 32
 #   int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing

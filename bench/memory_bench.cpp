@@ -1,0 +1,223 @@
+// raps-bench-memory: the peak memory one raps_parameterize call adds, per domain and mesh size,
+// the measurements behind the estimate RAPS_PARAM_MAX_MEMORY_MB is checked against
+// (src/core/memory_estimate.cpp).
+//
+//   raps-bench-memory [--data DIR] [--subdivide K] [--resolution R] [--only DOMAIN]
+//
+// Every case runs in its own child process: it reads the mesh (subdivided 1-to-4 up to K times,
+// default 2), sets it into a raps_mesh, resets the process's peak resident set
+// (/proc/self/clear_refs), runs the domain with its default settings, and reports the peak
+// resident set (VmHWM) minus the resident set just before the call. Printed per case: triangles,
+// that peak in MB, bytes per triangle, and the library's estimate for comparison. --resolution
+// sets the atlas resolution (default 1024); --only measures one domain (disk, sphere, atlas).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mesh_io.h"
+#include "raps.h"
+
+namespace {
+
+// 1-to-4 midpoint subdivision, shared edge midpoints created once.
+void subdivide(std::vector<double>& positions, std::vector<uint32_t>& triangles) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
+    auto middle = [&](uint32_t a, uint32_t b) {
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        const auto it = midpoint.find(key);
+        if (it != midpoint.end()) return it->second;
+        const uint32_t id = static_cast<uint32_t>(positions.size() / 3);
+        for (int c = 0; c < 3; ++c)
+            positions.push_back(0.5 * (positions[3 * a + c] + positions[3 * b + c]));
+        midpoint.emplace(key, id);
+        return id;
+    };
+    std::vector<uint32_t> next;
+    next.reserve(4 * triangles.size());
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+        const uint32_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
+        const uint32_t children[] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
+        next.insert(next.end(), children, children + 12);
+    }
+    triangles.swap(next);
+}
+
+// A "VmRSS:" or "VmHWM:" line of /proc/self/status, in bytes.
+long long status_bytes(const char* field) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.compare(0, std::strlen(field), field) == 0) {
+            return std::atoll(line.c_str() + std::strlen(field)) * 1024;
+        }
+    }
+    return -1;
+}
+
+struct Report {
+    long long triangles;
+    long long peak_bytes;   // peak resident set during the call, minus the set before it
+    long long estimate_mb;  // the smallest RAPS_PARAM_MAX_MEMORY_MB the mesh passes
+    int status;
+};
+
+// The smallest memory cap the library lets the mesh through with, found by bisection on the
+// status (RAPS_ERROR_TOO_LARGE is returned before any work).
+long long smallest_passing_cap(const raps_mesh* mesh, int32_t domain, int64_t resolution) {
+    raps_settings* settings = nullptr;
+    raps_result* result = nullptr;
+    raps_settings_create(&settings);
+    raps_result_create(&result);
+    raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, domain);
+    raps_settings_set_int(settings, RAPS_PARAM_ATLAS_RESOLUTION, resolution);
+    // Cancel at the first progress call: only the refusal before any work matters here.
+    raps_settings_set_progress(
+        settings, [](void*, raps_phase, double) -> int32_t { return 0; }, nullptr);
+    long long low = 0, high = 1 << 24;  // low refused (or 0), high passes
+    while (high - low > 1) {
+        const long long mid = (low + high) / 2;
+        raps_settings_set_int(settings, RAPS_PARAM_MAX_MEMORY_MB, mid);
+        if (raps_parameterize(mesh, settings, result) == RAPS_ERROR_TOO_LARGE) {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    raps_result_destroy(result);
+    raps_settings_destroy(settings);
+    return high;
+}
+
+Report measure(const std::string& file, int subdivisions, int32_t domain, int64_t resolution) {
+    const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(file);
+    std::vector<double> positions = polygons.positions;
+    std::vector<uint32_t> triangles = polygons.triangles();
+    for (int s = 0; s < subdivisions; ++s) subdivide(positions, triangles);
+    raps_mesh* mesh = nullptr;
+    raps_mesh_create(&mesh);
+    raps_mesh_set_positions_f64(mesh, positions.data(), positions.size() / 3, 0);
+    raps_mesh_set_indices_u32(mesh, triangles.data(), triangles.size());
+    Report report{static_cast<long long>(triangles.size() / 3), 0, 0, 0};
+    report.estimate_mb = smallest_passing_cap(mesh, domain, resolution);
+    // The input arrays are the caller's, not the call's: give them back before measuring.
+    std::vector<double>().swap(positions);
+    std::vector<uint32_t>().swap(triangles);
+    raps_settings* settings = nullptr;
+    raps_result* result = nullptr;
+    raps_settings_create(&settings);
+    raps_result_create(&result);
+    raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, domain);
+    raps_settings_set_int(settings, RAPS_PARAM_ATLAS_RESOLUTION, resolution);
+    {
+        std::ofstream reset("/proc/self/clear_refs");
+        reset << "5";  // the peak resident set becomes the current one
+    }
+    const long long before = status_bytes("VmRSS:");
+    report.status = raps_parameterize(mesh, settings, result);
+    report.peak_bytes = status_bytes("VmHWM:") - before;
+    raps_result_destroy(result);
+    raps_settings_destroy(settings);
+    raps_mesh_destroy(mesh);
+    return report;
+}
+
+Report measure_in_child(const std::string& file, int subdivisions, int32_t domain,
+                        int64_t resolution) {
+    int fds[2];
+    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid == 0) {
+        close(fds[0]);
+        try {
+            const Report report = measure(file, subdivisions, domain, resolution);
+            if (write(fds[1], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
+                _exit(3);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "raps-bench-memory: %s\n", e.what());
+            _exit(2);
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    Report report{};
+    const bool got = read(fds[0], &report, sizeof(report)) == static_cast<ssize_t>(sizeof(report));
+    close(fds[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!got) throw std::runtime_error("a child failed on " + file);
+    return report;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string data = RAPS_SHARED_DATA_DIR;
+    int most_subdivisions = 2;
+    int64_t resolution = 1024;
+    std::string only;
+    for (int a = 1; a + 1 < argc; a += 2) {
+        if (std::strcmp(argv[a], "--data") == 0) {
+            data = argv[a + 1];
+        } else if (std::strcmp(argv[a], "--subdivide") == 0) {
+            most_subdivisions = std::atoi(argv[a + 1]);
+        } else if (std::strcmp(argv[a], "--resolution") == 0) {
+            resolution = std::atoll(argv[a + 1]);
+        } else if (std::strcmp(argv[a], "--only") == 0) {
+            only = argv[a + 1];
+        } else {
+            std::fprintf(stderr,
+                         "usage: raps-bench-memory [--data DIR] [--subdivide K] [--resolution R] "
+                         "[--only DOMAIN]\n");
+            return 2;
+        }
+    }
+    struct Domain {
+        const char* name;
+        int32_t id;
+        std::vector<std::string> meshes;
+    };
+    const std::vector<Domain> domains = {
+        {"disk", RAPS_DOMAIN_DISK, {"alligator.obj", "camelhead.off", "face.obj"}},
+        {"sphere", RAPS_DOMAIN_SPHERE, {"spot.obj", "bunny.off"}},
+        {"atlas", RAPS_DOMAIN_ATLAS, {"fandisk.obj", "bunny.off"}},
+    };
+    std::printf(
+        "raps %s: peak resident memory one raps_parameterize call adds (default settings, atlas "
+        "resolution %lld)\n\n",
+        raps_version_string(), static_cast<long long>(resolution));
+    std::printf("| domain | mesh | triangles | peak MB | bytes per triangle | estimate MB |\n");
+    std::printf("|---|---|---:|---:|---:|---:|\n");
+    for (const Domain& domain : domains) {
+        if (!only.empty() && only != domain.name) continue;
+        for (const std::string& name : domain.meshes) {
+            for (int s = 0; s <= most_subdivisions; ++s) {
+                const Report r =
+                    measure_in_child(data + "/meshes/" + name, s, domain.id, resolution);
+                if (r.status != RAPS_OK) {
+                    std::printf("| %s | %s/%d | %lld | failed: %s | | |\n", domain.name,
+                                name.c_str(), 1 << (2 * s), r.triangles,
+                                raps_status_string(r.status));
+                    continue;
+                }
+                std::printf("| %s | %s/%d | %lld | %.1f | %.0f | %lld |\n", domain.name,
+                            name.c_str(), 1 << (2 * s), r.triangles, r.peak_bytes / 1048576.0,
+                            static_cast<double>(r.peak_bytes) / static_cast<double>(r.triangles),
+                            r.estimate_mb);
+                std::fflush(stdout);
+            }
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,48 @@
+#include "core/memory_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace raps {
+
+// The model: peak = kFixed + triangles * (a + b * log2(triangles)) per domain, plus, for the
+// atlas, bytes per texel of its resolution squared. The log term follows the sparse factor's
+// fill, which grows as n log n for meshes (nested dissection). The numbers lie about 15% above
+// the highest peaks measured by bench/memory_bench.cpp (raps-bench-memory --subdivide 3 and
+// --resolution 4096 / 16384, default settings, Debian 12, glibc malloc): the peak resident set
+// one raps_parameterize call added, over the shared meshes subdivided 1-to-4 zero to three
+// times. Bytes per triangle measured:
+//   disk   (alligator, camelhead, face; 6K to 3.3M triangles): 519 to 861, highest 861 at 1.45M
+//   sphere (spot, bunny; 5.9K to 446K): 711 to 871, highest 871 at 94K
+//   atlas  (fandisk, bunny; 7K to 829K): 531 to 2180 (fandisk's many charts), 2180 at 52K
+// and the atlas's texel grids 1.2 to 1.5 bytes per texel (at 4096 and 16384 texels).
+namespace {
+
+constexpr double kFixed = 4.0 * 1048576.0;  // thread stacks, allocator arenas, small tables
+
+struct PerTriangle {
+    double a, b;
+};
+
+constexpr PerTriangle kDisk{510.0, 25.0};
+constexpr PerTriangle kSphere{590.0, 25.0};
+constexpr PerTriangle kAtlas{2000.0, 40.0};
+constexpr double kAtlasBytesPerTexel = 1.75;
+
+}  // namespace
+
+double estimated_peak_bytes(const TriangleMesh& mesh, const Settings& settings) {
+    const double triangles = static_cast<double>(mesh.triangles.size());
+    const double log_triangles = std::log2(std::max(triangles, 2.0));
+    const PerTriangle per = settings.domain == Domain::kSphere  ? kSphere
+                            : settings.domain == Domain::kAtlas ? kAtlas
+                                                                : kDisk;
+    double bytes = kFixed + triangles * (per.a + per.b * log_triangles);
+    if (settings.domain == Domain::kAtlas) {
+        const double side = static_cast<double>(settings.atlas_resolution);
+        bytes += kAtlasBytesPerTexel * side * side;
+    }
+    return bytes;
+}
+
+}  // namespace raps

@@ -1,0 +1,25 @@
+# The committed seeds are exactly what `make_fuzz_seeds analytic` writes today: after a change
+# of the input layout or of the analytic meshes, regenerate them (the message says how).
+file(REMOVE_RECURSE "${WORK_DIR}")
+execute_process(COMMAND "${GENERATOR}" analytic "${WORK_DIR}" RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "make_fuzz_seeds analytic failed (${status})")
+endif()
+file(GLOB generated RELATIVE "${WORK_DIR}" "${WORK_DIR}/*")
+file(GLOB committed RELATIVE "${COMMITTED}" "${COMMITTED}/*")
+list(SORT generated)
+list(SORT committed)
+if(NOT generated STREQUAL committed)
+  message(FATAL_ERROR "seed files differ: generated [${generated}], committed [${committed}]; "
+                      "run make_fuzz_seeds analytic ${COMMITTED}")
+endif()
+foreach(name IN LISTS generated)
+  file(READ "${WORK_DIR}/${name}" new HEX)
+  file(READ "${COMMITTED}/${name}" old HEX)
+  if(NOT new STREQUAL old)
+    message(FATAL_ERROR "${name} differs from what make_fuzz_seeds writes; "
+                        "run make_fuzz_seeds analytic ${COMMITTED}")
+  endif()
+endforeach()
+list(LENGTH generated count)
+message(STATUS "${count} committed seeds match make_fuzz_seeds")
