@@ -401,8 +401,9 @@ static int32_t detect_overlap(void* user, raps_phase phase, double fraction) {
     if (__atomic_add_fetch(&probe->inside, 1, __ATOMIC_SEQ_CST) != 1) {
         __atomic_add_fetch(&probe->overlaps, 1, __ATOMIC_SEQ_CST);
     }
-    volatile double spin = 0;
-    for (int i = 0; i < 20000; ++i) spin += i; /* widen the window for a second caller */
+    /* Widen the window for a second caller. */
+    volatile int spin = 0;
+    for (int i = 0; i < 20000; ++i) spin = spin + 1;
     __atomic_add_fetch(&probe->calls, 1, __ATOMIC_SEQ_CST);
     __atomic_sub_fetch(&probe->inside, 1, __ATOMIC_SEQ_CST);
     return 1;
