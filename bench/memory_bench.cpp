@@ -18,7 +18,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -28,30 +27,6 @@
 #include "raps.h"
 
 namespace {
-
-// 1-to-4 midpoint subdivision, shared edge midpoints created once.
-void subdivide(std::vector<double>& positions, std::vector<uint32_t>& triangles) {
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
-    auto middle = [&](uint32_t a, uint32_t b) {
-        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-        const auto it = midpoint.find(key);
-        if (it != midpoint.end()) return it->second;
-        const uint32_t id = static_cast<uint32_t>(positions.size() / 3);
-        for (int c = 0; c < 3; ++c)
-            positions.push_back(0.5 * (positions[3 * a + c] + positions[3 * b + c]));
-        midpoint.emplace(key, id);
-        return id;
-    };
-    std::vector<uint32_t> next;
-    next.reserve(4 * triangles.size());
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-        const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
-        const uint32_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
-        const uint32_t children[] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
-        next.insert(next.end(), children, children + 12);
-    }
-    triangles.swap(next);
-}
 
 // A "VmRSS:" or "VmHWM:" line of /proc/self/status, in bytes.
 long long status_bytes(const char* field) {
@@ -103,7 +78,7 @@ Report measure(const std::string& file, int subdivisions, int32_t domain, int64_
     const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(file);
     std::vector<double> positions = polygons.positions;
     std::vector<uint32_t> triangles = polygons.triangles();
-    for (int s = 0; s < subdivisions; ++s) subdivide(positions, triangles);
+    for (int s = 0; s < subdivisions; ++s) raps_samples::subdivide_midpoint(positions, triangles);
     raps_mesh* mesh = nullptr;
     raps_mesh_create(&mesh);
     raps_mesh_set_positions_f64(mesh, positions.data(), positions.size() / 3, 0);

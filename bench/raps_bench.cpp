@@ -22,7 +22,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -38,30 +37,6 @@ struct Case {
     std::string file;
     int subdivisions;
 };
-
-// 1-to-4 midpoint subdivision, shared edge midpoints created once.
-void subdivide(std::vector<double>& positions, std::vector<uint32_t>& triangles) {
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
-    auto middle = [&](uint32_t a, uint32_t b) {
-        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-        const auto it = midpoint.find(key);
-        if (it != midpoint.end()) return it->second;
-        const uint32_t id = static_cast<uint32_t>(positions.size() / 3);
-        for (int c = 0; c < 3; ++c)
-            positions.push_back(0.5 * (positions[3 * a + c] + positions[3 * b + c]));
-        midpoint.emplace(key, id);
-        return id;
-    };
-    std::vector<uint32_t> next;
-    next.reserve(4 * triangles.size());
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-        const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
-        const uint32_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
-        const uint32_t children[] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
-        next.insert(next.end(), children, children + 12);
-    }
-    triangles.swap(next);
-}
 
 // What one child process reports back through its pipe.
 struct Sample {
@@ -138,7 +113,8 @@ std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, const C
             const raps_samples::PolygonMesh mesh = raps_samples::read_mesh(c.file);
             std::vector<double> positions = mesh.positions;
             std::vector<uint32_t> triangles = mesh.triangles();
-            for (int s = 0; s < c.subdivisions; ++s) subdivide(positions, triangles);
+            for (int s = 0; s < c.subdivisions; ++s)
+                raps_samples::subdivide_midpoint(positions, triangles);
             for (int r = 0; r < runs; ++r) {
                 const Sample sample = run_once(positions, triangles, config);
                 if (write(fds[1], &sample, sizeof(sample)) != static_cast<ssize_t>(sizeof(sample)))

@@ -7,9 +7,11 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include <unistd.h>
 
@@ -256,6 +258,29 @@ void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vect
         out += '\n';
     }
     write_file_atomically(path, out);
+}
+
+void subdivide_midpoint(std::vector<double>& positions, std::vector<uint32_t>& triangles) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
+    auto middle = [&](uint32_t a, uint32_t b) {
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        const auto it = midpoint.find(key);
+        if (it != midpoint.end()) return it->second;
+        const uint32_t id = static_cast<uint32_t>(positions.size() / 3);
+        for (int c = 0; c < 3; ++c)
+            positions.push_back(0.5 * (positions[3 * a + c] + positions[3 * b + c]));
+        midpoint.emplace(key, id);
+        return id;
+    };
+    std::vector<uint32_t> next;
+    next.reserve(4 * triangles.size());
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+        const uint32_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
+        const uint32_t children[] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
+        next.insert(next.end(), children, children + 12);
+    }
+    triangles.swap(next);
 }
 
 }  // namespace raps_samples

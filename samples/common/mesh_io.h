@@ -33,6 +33,10 @@ PolygonMesh read_mesh(const std::string& path);
 void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,
                const std::vector<uint32_t>& uv_corners, const std::string& header_comment);
 
+// 1-to-4 midpoint subdivision of a triangle mesh (x, y, z per vertex; 3 indices per triangle),
+// each edge's midpoint created once: how the benchmarks build large meshes from the shared ones.
+void subdivide_midpoint(std::vector<double>& positions, std::vector<uint32_t>& triangles);
+
 // Writes `text` to `path` through a temporary file and a rename.
 void write_file_atomically(const std::string& path, const std::string& text);
 
