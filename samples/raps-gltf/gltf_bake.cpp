@@ -148,6 +148,13 @@ std::vector<uint8_t> gather(const std::vector<uint8_t>& source, uint64_t element
 BakeResult bake(const Asset& asset, const BakeOptions& options) {
     BakeResult result;
     result.doc = asset.doc;
+    // The AccessorWriter appends to these two arrays. Creating them now means no later insertion
+    // into the top-level object can reallocate its members, which an ordered_json copies (its keys
+    // are const) and frees, under the references into result.doc taken below (found by fuzzing:
+    // an asset without "bufferViews", every accessor zero-filled).
+    for (const char* key : {"bufferViews", "accessors"}) {
+        if (!result.doc.contains(key)) result.doc[key] = Json::array();
+    }
     const Json& doc = asset.doc;
     const tinygltf::Model& model = asset.model;
     result.first_new_view = doc.contains("bufferViews") ? doc["bufferViews"].size() : 0;
