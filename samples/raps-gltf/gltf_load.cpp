@@ -321,6 +321,39 @@ void check_document(const Json& doc, const std::string& folder, const GlbParts* 
         }
     }
 
+    // The other accessor references the output renumbers when it prunes (gltf_output.cpp).
+    const Json& skins = array_of(doc, "skins");
+    for (size_t i = 0; i < skins.size(); ++i) {
+        get_index(skins[i], "inverseBindMatrices", accessors.size(), "skin " + std::to_string(i),
+                  false);
+    }
+    const Json& animations = array_of(doc, "animations");
+    for (size_t i = 0; i < animations.size(); ++i) {
+        const std::string what = "animation " + std::to_string(i);
+        const Json& samplers = array_of(animations[i], "samplers");
+        for (size_t k = 0; k < samplers.size(); ++k) {
+            const std::string where = what + " sampler " + std::to_string(k);
+            get_index(samplers[k], "input", accessors.size(), where, true);
+            get_index(samplers[k], "output", accessors.size(), where, true);
+        }
+    }
+    const Json& nodes = array_of(doc, "nodes");
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        const Json* extensions = member(nodes[i], "extensions");
+        const Json* instancing = extensions && extensions->is_object()
+                                     ? member(*extensions, "EXT_mesh_gpu_instancing")
+                                     : nullptr;
+        const Json* attributes =
+            instancing && instancing->is_object() ? member(*instancing, "attributes") : nullptr;
+        if (!attributes || !attributes->is_object()) continue;
+        for (auto it = attributes->begin(); it != attributes->end(); ++it) {
+            get_index(
+                *attributes, it.key().c_str(), accessors.size(),
+                "node " + std::to_string(i) + " EXT_mesh_gpu_instancing attribute " + it.key(),
+                true);
+        }
+    }
+
     const Json& images = array_of(doc, "images");
     for (size_t i = 0; i < images.size(); ++i) {
         const Json& image = images[i];
