@@ -242,10 +242,9 @@ namespace Raps
         public const int RAPS_ERROR_NONZERO_GENUS = 16;
         /// <summary>
         /// The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
-        /// indexes with int32, up to 8 entries per triangle),
-        /// more vertices than uint16 indices can address (65536), more triangles than
-        /// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
-        /// RAPS_PARAM_MAX_MEMORY_MB allows.
+        /// indexes with int32, up to 8 entries per triangle), more vertices than uint16 indices can
+        /// address (65536), more triangles than RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated
+        /// to need more memory than RAPS_PARAM_MAX_MEMORY_MB allows.
         /// </summary>
         public const int RAPS_ERROR_TOO_LARGE = 17;
         /// <summary>

@@ -51,10 +51,9 @@ pub const RAPS_ERROR_MULTIPLE_BOUNDARIES: i32 = 15;
 /// The mesh has handles (genus > 0): one boundary loop but not a topological disk.
 pub const RAPS_ERROR_NONZERO_GENUS: i32 = 16;
 /// The mesh is too large: 2^31 or more vertices or more than 2^28 triangles (the library
-/// indexes with int32, up to 8 entries per triangle),
-/// more vertices than uint16 indices can address (65536), more triangles than
-/// RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated to need more memory than
-/// RAPS_PARAM_MAX_MEMORY_MB allows.
+/// indexes with int32, up to 8 entries per triangle), more vertices than uint16 indices can
+/// address (65536), more triangles than RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated
+/// to need more memory than RAPS_PARAM_MAX_MEMORY_MB allows.
 pub const RAPS_ERROR_TOO_LARGE: i32 = 17;
 /// The progress callback returned 0. Nothing was produced; the handles stay usable.
 pub const RAPS_ERROR_CANCELLED: i32 = 18;
