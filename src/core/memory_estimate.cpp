@@ -7,14 +7,14 @@ namespace raps {
 
 // The model: peak = kFixed + triangles * (a + b * log2(triangles)) per domain, plus, for the
 // atlas, bytes per texel of its resolution squared. The log term follows the sparse factor's
-// fill, which grows as n log n for meshes (nested dissection). The numbers lie about 15% above
-// the highest peaks measured by bench/memory_bench.cpp (raps-bench-memory --subdivide 3 and
-// --resolution 4096 / 16384, default settings, Debian 12, glibc malloc): the peak resident set
-// one raps_parameterize call added, over the shared meshes subdivided 1-to-4 zero to three
-// times. Bytes per triangle measured:
-//   disk   (alligator, camelhead, face; 6K to 3.3M triangles): 519 to 861, highest 861 at 1.45M
-//   sphere (spot, bunny; 5.9K to 446K): 711 to 871, highest 871 at 94K
-//   atlas  (fandisk, bunny; 7K to 829K): 531 to 2180 (fandisk's many charts), 2180 at 52K
+// fill, which grows as n log n for meshes (nested dissection). The numbers lie above the highest
+// peaks measured by bench/memory_bench.cpp (raps-bench-memory --subdivide 3, default settings,
+// Debian 12, glibc malloc; the table is in the README): the peak resident set one
+// raps_parameterize call added, over the shared meshes subdivided 1-to-4 zero to three times.
+// Bytes per triangle measured:
+//   disk   (alligator, camelhead, face; 6K to 3.3M triangles): 483 to 860
+//   sphere (spot, bunny; 5.9K to 446K): 681 to 869
+//   atlas  (fandisk, bunny; 7K to 829K): 531 to 2342 (fandisk's many charts)
 // and the atlas's texel grids 1.2 to 1.5 bytes per texel (at 4096 and 16384 texels).
 namespace {
 

@@ -13,7 +13,7 @@ ThreadPool::ThreadPool(int threads) {
         // A thread that cannot start (no memory for its state, no thread resources) leaves the
         // work to those that did: the output does not depend on their number. Letting the
         // exception out would destroy the started workers unjoined, which calls std::terminate
-        // (found by failing each allocation in turn: tests/test_alloc_failures.cpp).
+        // (found by failing each allocation in turn: tests/test_alloc_failures.c).
     }
 }
 
