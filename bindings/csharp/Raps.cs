@@ -59,6 +59,7 @@ namespace Raps
         SphereTolerance = Native.RAPS_PARAM_SPHERE_TOLERANCE,
         SphereMaxSweeps = Native.RAPS_PARAM_SPHERE_MAX_SWEEPS,
         SphereAlphaSteps = Native.RAPS_PARAM_SPHERE_ALPHA_STEPS,
+        MaxMemoryMb = Native.RAPS_PARAM_MAX_MEMORY_MB,
         AtlasResolution = Native.RAPS_PARAM_ATLAS_RESOLUTION,
         AtlasPadding = Native.RAPS_PARAM_ATLAS_PADDING,
         WeldTolerance = Native.RAPS_PARAM_WELD_TOLERANCE,
@@ -543,6 +544,14 @@ namespace Raps
         {
             get { return (int)GetInt(Param.SphereAlphaSteps); }
             set { SetInt(Param.SphereAlphaSteps, value); }
+        }
+
+        /// <summary>Memory cap in MiB (0 = none, the default): a run estimated to need more
+        /// fails with Status.TooLarge before any work.</summary>
+        public int MaxMemoryMb
+        {
+            get { return (int)GetInt(Param.MaxMemoryMb); }
+            set { SetInt(Param.MaxMemoryMb, value); }
         }
 
         /// <summary>Atlas: texels on the atlas's longer side.</summary>

@@ -366,7 +366,7 @@ static class RapsTests
                {
                    Weights = Weights.Uniform, Monitor = ErrorMonitor.Angle, Iterations = 3,
                    IterationMode = IterationMode.Reapply, Boundary = Boundary.Square,
-                   MaxTriangles = 1000, Domain = Domain.Disk
+                   MaxTriangles = 1000, MaxMemoryMb = 64, Domain = Domain.Disk
                })
         using (var copy = settings.Clone())
         {
@@ -375,7 +375,7 @@ static class RapsTests
                        copy.Monitor == ErrorMonitor.Angle &&
                        copy.IterationMode == IterationMode.Reapply &&
                        copy.Boundary == Boundary.Square && copy.MaxTriangles == 1000 &&
-                       copy.Domain == Domain.Disk,
+                       copy.MaxMemoryMb == 64 && copy.Domain == Domain.Disk,
                    "an independent copy");
         }
         ParamInfo info = Settings.GetParamInfo(Param.Alpha);

@@ -117,6 +117,7 @@ int_values! {
         SPHERE_TOLERANCE = sys::RAPS_PARAM_SPHERE_TOLERANCE,
         SPHERE_MAX_SWEEPS = sys::RAPS_PARAM_SPHERE_MAX_SWEEPS,
         SPHERE_ALPHA_STEPS = sys::RAPS_PARAM_SPHERE_ALPHA_STEPS,
+        MAX_MEMORY_MB = sys::RAPS_PARAM_MAX_MEMORY_MB,
         ATLAS_RESOLUTION = sys::RAPS_PARAM_ATLAS_RESOLUTION,
         ATLAS_PADDING = sys::RAPS_PARAM_ATLAS_PADDING,
         WELD_TOLERANCE = sys::RAPS_PARAM_WELD_TOLERANCE,
@@ -663,6 +664,11 @@ impl Settings {
     pub fn set_max_triangles(&mut self, max_triangles: u32) -> Result<&mut Self> {
         self.set_int(Param::MAX_TRIANGLES, max_triangles.into())
     }
+    /// Memory cap in MiB (0 = none, the default): a run estimated to need more fails with
+    /// [`Status::TOO_LARGE`] before any work.
+    pub fn set_max_memory_mb(&mut self, max_memory_mb: u32) -> Result<&mut Self> {
+        self.set_int(Param::MAX_MEMORY_MB, max_memory_mb.into())
+    }
     /// Threads a run may use, 0 = every hardware thread (the default); the output is the same
     /// whatever the value.
     pub fn set_threads(&mut self, threads: u32) -> Result<&mut Self> {
@@ -747,6 +753,9 @@ impl Settings {
     }
     pub fn max_triangles(&self) -> Result<u32> {
         self.int(Param::MAX_TRIANGLES).map(|v| v as u32)
+    }
+    pub fn max_memory_mb(&self) -> Result<u32> {
+        self.int(Param::MAX_MEMORY_MB).map(|v| v as u32)
     }
     pub fn threads(&self) -> Result<u32> {
         self.int(Param::THREADS).map(|v| v as u32)

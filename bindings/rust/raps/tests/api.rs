@@ -94,6 +94,8 @@ fn settings_round_trip_and_clone_independently() {
         .unwrap()
         .set_max_triangles(1000)
         .unwrap()
+        .set_max_memory_mb(64)
+        .unwrap()
         .set_domain(Domain::DISK)
         .unwrap();
     let copy = settings.try_clone().unwrap();
@@ -104,6 +106,7 @@ fn settings_round_trip_and_clone_independently() {
     assert_eq!(copy.iteration_mode().unwrap(), IterationMode::REAPPLY);
     assert_eq!(copy.boundary().unwrap(), Boundary::SQUARE);
     assert_eq!(copy.max_triangles().unwrap(), 1000);
+    assert_eq!(copy.max_memory_mb().unwrap(), 64);
     assert_eq!(copy.domain().unwrap(), Domain::DISK);
     let info = Settings::param_info(Param::ALPHA).unwrap();
     assert_eq!(
