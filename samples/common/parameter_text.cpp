@@ -2,32 +2,107 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstdint>
 #include <cstdlib>
 
 namespace raps_samples {
 
-std::string set_parameter_from_text(raps_settings* settings, raps_param param,
-                                    const std::string& flag, const std::string& text) {
-    char* end = nullptr;
-    errno = 0;
-    const double number = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || errno != 0) {
-        return flag + " needs a number, not '" + text + "'";
+namespace {
+
+const std::vector<ParameterFlag> kParameterFlags = {
+    {"--weights",
+     RAPS_PARAM_WEIGHTS,
+     true,
+     {{"mvc", RAPS_WEIGHTS_MEAN_VALUE},
+      {"cotan", RAPS_WEIGHTS_COTANGENT},
+      {"uniform", RAPS_WEIGHTS_UNIFORM}}},
+    {"--monitor",
+     RAPS_PARAM_MONITOR,
+     true,
+     {{"none", RAPS_MONITOR_NONE},
+      {"area", RAPS_MONITOR_AREA},
+      {"length", RAPS_MONITOR_EDGE_LENGTH},
+      {"angle", RAPS_MONITOR_ANGLE}}},
+    {"--iteration-mode",
+     RAPS_PARAM_ITERATION_MODE,
+     true,
+     {{"accumulate", RAPS_ITERATION_ACCUMULATE}, {"reapply", RAPS_ITERATION_REAPPLY}}},
+    {"--boundary",
+     RAPS_PARAM_BOUNDARY,
+     false,
+     {{"circle", RAPS_BOUNDARY_CIRCLE}, {"square", RAPS_BOUNDARY_SQUARE}}},
+    {"--sphere-method",
+     RAPS_PARAM_SPHERE_METHOD,
+     false,
+     {{"literal", RAPS_SPHERE_LITERAL}, {"robust", RAPS_SPHERE_ROBUST}}},
+    {"--sphere-uv",
+     RAPS_PARAM_SPHERE_UV,
+     false,
+     {{"none", RAPS_SPHERE_UV_NONE}, {"octahedral", RAPS_SPHERE_UV_OCTAHEDRAL}}},
+    {"--alpha", RAPS_PARAM_ALPHA, true, {}},
+    {"--iterations", RAPS_PARAM_ITERATIONS, true, {}},
+    {"--max-triangles", RAPS_PARAM_MAX_TRIANGLES, true, {}},
+    {"--max-memory-mb", RAPS_PARAM_MAX_MEMORY_MB, true, {}},
+    {"--threads", RAPS_PARAM_THREADS, true, {}},
+    {"--resolution", RAPS_PARAM_ATLAS_RESOLUTION, true, {}},
+    {"--padding", RAPS_PARAM_ATLAS_PADDING, true, {}},
+    {"--weld-tolerance", RAPS_PARAM_WELD_TOLERANCE, true, {}},
+    {"--hard-edge-angle", RAPS_PARAM_HARD_EDGE_ANGLE, true, {}},
+    {"--max-l2-stretch", RAPS_PARAM_ATLAS_MAX_L2_STRETCH, true, {}},
+    {"--max-linf-stretch", RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, true, {}},
+    {"--damping", RAPS_PARAM_SPHERE_DAMPING, false, {}},
+    {"--tolerance", RAPS_PARAM_SPHERE_TOLERANCE, false, {}},
+    {"--max-sweeps", RAPS_PARAM_SPHERE_MAX_SWEEPS, false, {}},
+    {"--alpha-steps", RAPS_PARAM_SPHERE_ALPHA_STEPS, false, {}},
+};
+
+}  // namespace
+
+const ParameterFlag* find_parameter_flag(const std::string& flag) {
+    for (const ParameterFlag& entry : kParameterFlags) {
+        if (flag == entry.flag) return &entry;
     }
-    int32_t is_float = 0;
-    raps_param_info(param, nullptr, &is_float, nullptr, nullptr, nullptr);
+    return nullptr;
+}
+
+std::string set_parameter_from_text(raps_settings* settings, const ParameterFlag& flag,
+                                    const std::string& text) {
+    const std::string name = flag.flag;
     raps_status status;
-    if (is_float) {
-        status = raps_settings_set_float(settings, param, number);
-    } else {
-        if (number != std::floor(number) || std::fabs(number) > 9e18) {
-            return flag + " needs a whole number, not '" + text + "'";
+    if (!flag.choices.empty()) {
+        status = RAPS_ERROR_INVALID_ARGUMENT;
+        for (const auto& choice : flag.choices) {
+            if (text == choice.first)
+                status = raps_settings_set_int(settings, flag.param, choice.second);
         }
-        status = raps_settings_set_int(settings, param, static_cast<int64_t>(number));
+        if (status == RAPS_ERROR_INVALID_ARGUMENT)
+            return "unknown value '" + text + "' for " + name;
+    } else {
+        char* end = nullptr;
+        errno = 0;
+        const double number = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || errno != 0) {
+            return name + " needs a number, not '" + text + "'";
+        }
+        int32_t is_float = 0;
+        raps_param_info(flag.param, nullptr, &is_float, nullptr, nullptr, nullptr);
+        if (is_float) {
+            status = raps_settings_set_float(settings, flag.param, number);
+        } else {
+            if (number != std::floor(number) || std::fabs(number) > 9e18) {
+                return name + " needs a whole number, not '" + text + "'";
+            }
+            status = raps_settings_set_int(settings, flag.param, static_cast<int64_t>(number));
+        }
     }
-    if (status != RAPS_OK) return flag + ": " + raps_settings_last_error(settings);
+    if (status != RAPS_OK) return name + ": " + raps_settings_last_error(settings);
     return "";
+}
+
+const char* choice_name(const ParameterFlag& flag, int64_t value) {
+    for (const auto& choice : flag.choices) {
+        if (choice.second == value) return choice.first;
+    }
+    return "?";
 }
 
 }  // namespace raps_samples

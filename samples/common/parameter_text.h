@@ -1,16 +1,35 @@
-// Command-line text to a library parameter, shared by the samples: a float parameter takes any
-// number, an int parameter a whole one, and the library checks the range.
+// Command-line text to library parameters, shared by the two command-line tools: one table of
+// the flags that set a parameter, and their parsing. A float parameter takes any number, an int
+// parameter a whole one or one of its named choices, and the library checks the range.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "raps.h"
 
 namespace raps_samples {
 
-// Sets `param` from `text`, the value given to `flag`. Returns "" on success, else the message
-// of a usage error (not a number, not whole, or the library's own message naming the range).
-std::string set_parameter_from_text(raps_settings* settings, raps_param param,
-                                    const std::string& flag, const std::string& text);
+// A flag that sets one parameter: to one of `choices` by name, or, when there are none, to a
+// number.
+struct ParameterFlag {
+    const char* flag;
+    raps_param param;
+    bool atlas;  // applies to the atlas domain (raps-gltf offers only these)
+    std::vector<std::pair<const char*, int64_t>> choices;
+};
+
+// The flag's entry, or nullptr when `flag` sets no parameter.
+const ParameterFlag* find_parameter_flag(const std::string& flag);
+
+// Sets the flag's parameter from `text`. Returns "" on success, else the message of a usage
+// error (an unknown choice, not a number, not whole, or the library's message naming the range).
+std::string set_parameter_from_text(raps_settings* settings, const ParameterFlag& flag,
+                                    const std::string& text);
+
+// The name of the choice with `value` ("?" when there is none).
+const char* choice_name(const ParameterFlag& flag, int64_t value);
 
 }  // namespace raps_samples

@@ -84,6 +84,7 @@ atlas (the library's settings; see include/raps.h):
   --max-l2-stretch S         split charts until the L2 stretch is <= S (default 1.008)
   --max-linf-stretch S       split charts stretching a triangle more than S (default 2.9)
   --max-triangles N          refuse larger atlases
+  --max-memory-mb N          refuse atlases estimated to need more memory (default 0: no cap)
   --threads N                threads per atlas, 0 = all cores (default 0; 1 with --jobs > 1);
                              the output is identical for any N
   -h, --help                 this text
@@ -92,39 +93,6 @@ atlas (the library's settings; see include/raps.h):
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
-};
-
-struct Choice {
-    const char* name;
-    int64_t value;
-};
-const std::map<std::string, std::pair<raps_param, std::vector<Choice>>> kChoices = {
-    {"--weights",
-     {RAPS_PARAM_WEIGHTS,
-      {{"mvc", RAPS_WEIGHTS_MEAN_VALUE},
-       {"cotan", RAPS_WEIGHTS_COTANGENT},
-       {"uniform", RAPS_WEIGHTS_UNIFORM}}}},
-    {"--monitor",
-     {RAPS_PARAM_MONITOR,
-      {{"none", RAPS_MONITOR_NONE},
-       {"area", RAPS_MONITOR_AREA},
-       {"length", RAPS_MONITOR_EDGE_LENGTH},
-       {"angle", RAPS_MONITOR_ANGLE}}}},
-    {"--iteration-mode",
-     {RAPS_PARAM_ITERATION_MODE,
-      {{"accumulate", RAPS_ITERATION_ACCUMULATE}, {"reapply", RAPS_ITERATION_REAPPLY}}}},
-};
-const std::map<std::string, raps_param> kNumbers = {
-    {"--alpha", RAPS_PARAM_ALPHA},
-    {"--iterations", RAPS_PARAM_ITERATIONS},
-    {"--max-triangles", RAPS_PARAM_MAX_TRIANGLES},
-    {"--threads", RAPS_PARAM_THREADS},
-    {"--resolution", RAPS_PARAM_ATLAS_RESOLUTION},
-    {"--padding", RAPS_PARAM_ATLAS_PADDING},
-    {"--weld-tolerance", RAPS_PARAM_WELD_TOLERANCE},
-    {"--hard-edge-angle", RAPS_PARAM_HARD_EDGE_ANGLE},
-    {"--max-l2-stretch", RAPS_PARAM_ATLAS_MAX_L2_STRETCH},
-    {"--max-linf-stretch", RAPS_PARAM_ATLAS_MAX_LINF_STRETCH},
 };
 
 struct Options {
@@ -372,20 +340,10 @@ int run(int argc, char** argv) {
             }
         } else if (arg == "--jobs") {
             options.jobs = whole(value(), 1, 256);
-        } else if (kChoices.count(arg)) {
-            const std::string name = value();
-            const auto& entry = kChoices.at(arg);
-            bool found = false;
-            for (const Choice& c : entry.second) {
-                if (name == c.name) {
-                    raps_settings_set_int(h.settings, entry.first, c.value);
-                    found = true;
-                }
-            }
-            if (!found) throw UsageError("unknown value '" + name + "' for " + arg);
-        } else if (kNumbers.count(arg)) {
+        } else if (const raps_samples::ParameterFlag* flag = raps_samples::find_parameter_flag(arg);
+                   flag && flag->atlas) {
             const std::string error =
-                raps_samples::set_parameter_from_text(h.settings, kNumbers.at(arg), arg, value());
+                raps_samples::set_parameter_from_text(h.settings, *flag, value());
             if (!error.empty()) throw UsageError(error);
             if (arg == "--threads") options.threads_set = true;
         } else if (!arg.empty() && arg[0] == '-' && arg != "-") {

@@ -58,6 +58,7 @@ options:
                              how solves combine for K > 1 (default accumulate)
   --boundary circle|square   convex shape the boundary is fixed to (default circle)
   --max-triangles N          refuse meshes with more triangles (default 2^31 - 1)
+  --max-memory-mb N          refuse runs estimated to need more memory (default 0: no cap)
   --threads N                threads, 0 = all cores (default 0); output is identical for any N
 atlas options:
   --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
@@ -81,55 +82,6 @@ sphere options:
   -h, --help                 this text
   --version                  the raps library version
 )";
-
-struct Choice {
-    const char* name;
-    int64_t value;
-};
-
-const std::map<std::string, std::vector<Choice>> kChoices = {
-    {"--weights",
-     {{"mvc", RAPS_WEIGHTS_MEAN_VALUE},
-      {"cotan", RAPS_WEIGHTS_COTANGENT},
-      {"uniform", RAPS_WEIGHTS_UNIFORM}}},
-    {"--monitor",
-     {{"none", RAPS_MONITOR_NONE},
-      {"area", RAPS_MONITOR_AREA},
-      {"length", RAPS_MONITOR_EDGE_LENGTH},
-      {"angle", RAPS_MONITOR_ANGLE}}},
-    {"--iteration-mode",
-     {{"accumulate", RAPS_ITERATION_ACCUMULATE}, {"reapply", RAPS_ITERATION_REAPPLY}}},
-    {"--boundary", {{"circle", RAPS_BOUNDARY_CIRCLE}, {"square", RAPS_BOUNDARY_SQUARE}}},
-    {"--sphere-method", {{"literal", RAPS_SPHERE_LITERAL}, {"robust", RAPS_SPHERE_ROBUST}}},
-    {"--sphere-uv", {{"none", RAPS_SPHERE_UV_NONE}, {"octahedral", RAPS_SPHERE_UV_OCTAHEDRAL}}},
-};
-
-const std::map<std::string, raps_param> kChoiceParams = {
-    {"--weights", RAPS_PARAM_WEIGHTS},
-    {"--monitor", RAPS_PARAM_MONITOR},
-    {"--iteration-mode", RAPS_PARAM_ITERATION_MODE},
-    {"--boundary", RAPS_PARAM_BOUNDARY},
-    {"--sphere-method", RAPS_PARAM_SPHERE_METHOD},
-    {"--sphere-uv", RAPS_PARAM_SPHERE_UV},
-};
-
-// Numeric flags and the parameter each sets.
-const std::map<std::string, raps_param> kNumberParams = {
-    {"--alpha", RAPS_PARAM_ALPHA},
-    {"--iterations", RAPS_PARAM_ITERATIONS},
-    {"--max-triangles", RAPS_PARAM_MAX_TRIANGLES},
-    {"--threads", RAPS_PARAM_THREADS},
-    {"--resolution", RAPS_PARAM_ATLAS_RESOLUTION},
-    {"--padding", RAPS_PARAM_ATLAS_PADDING},
-    {"--weld-tolerance", RAPS_PARAM_WELD_TOLERANCE},
-    {"--hard-edge-angle", RAPS_PARAM_HARD_EDGE_ANGLE},
-    {"--max-l2-stretch", RAPS_PARAM_ATLAS_MAX_L2_STRETCH},
-    {"--max-linf-stretch", RAPS_PARAM_ATLAS_MAX_LINF_STRETCH},
-    {"--damping", RAPS_PARAM_SPHERE_DAMPING},
-    {"--tolerance", RAPS_PARAM_SPHERE_TOLERANCE},
-    {"--max-sweeps", RAPS_PARAM_SPHERE_MAX_SWEEPS},
-    {"--alpha-steps", RAPS_PARAM_SPHERE_ALPHA_STEPS},
-};
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -172,11 +124,8 @@ std::string json_number(double value) {
     return buffer;
 }
 
-const char* choice_name(const std::string& flag, int64_t value) {
-    for (const Choice& c : kChoices.at(flag)) {
-        if (c.value == value) return c.name;
-    }
-    return "?";
+const char* choice_name(const char* flag, int64_t value) {
+    return raps_samples::choice_name(*raps_samples::find_parameter_flag(flag), value);
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
@@ -289,23 +238,13 @@ int run(int argc, char** argv) {
         } else if (arg == "--sphere") {
             check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_SPHERE),
                   [&] { return raps_settings_last_error(h.settings); });
-        } else if (kChoices.count(arg)) {
-            const std::string name = value();
-            bool found = false;
-            for (const Choice& c : kChoices.at(arg)) {
-                if (name == c.name) {
-                    check(raps_settings_set_int(h.settings, kChoiceParams.at(arg), c.value),
-                          [&] { return raps_settings_last_error(h.settings); });
-                    found = true;
-                }
-            }
-            if (!found) throw UsageError("unknown value '" + name + "' for " + arg);
         } else if (arg == "--atlas") {
             check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
                   [&] { return raps_settings_last_error(h.settings); });
-        } else if (kNumberParams.count(arg)) {
-            const std::string error = raps_samples::set_parameter_from_text(
-                h.settings, kNumberParams.at(arg), arg, value());
+        } else if (const raps_samples::ParameterFlag* flag =
+                       raps_samples::find_parameter_flag(arg)) {
+            const std::string error =
+                raps_samples::set_parameter_from_text(h.settings, *flag, value());
             if (!error.empty()) throw UsageError(error);
         } else if (!arg.empty() && arg[0] == '-') {
             throw UsageError("unknown option " + arg);

@@ -148,6 +148,16 @@ class RapsParamTest(unittest.TestCase):
                 self.assertAlmostEqual(ours[key], ref[ref_key], delta=1e-6 * max(1.0, abs(ref[ref_key])),
                                        msg=f'{mesh} {key}')
 
+    def test_memory_cap_refuses_before_any_work_without_output(self):
+        rc, out, err = run(self.mesh('face.obj'), '-o', self.out, '--max-memory-mb', '10')
+        self.assertEqual(rc, 1)
+        d = json.loads(out)
+        self.assertEqual(d['error']['status_name'], 'mesh too large')
+        self.assertIn('RAPS_PARAM_MAX_MEMORY_MB = 10', d['error']['message'])
+        self.assertFalse(os.path.exists(self.out))
+        rc, out, err = run(self.mesh('face.obj'), '-o', self.out, '--max-memory-mb', '1000')
+        self.assertEqual(rc, 0, err)
+
     def test_bad_input_fails_cleanly_without_output(self):
         closed = self.mesh('bunny.off')
         rc, out, err = run(closed, '-o', self.out)
@@ -198,7 +208,8 @@ class RapsParamTest(unittest.TestCase):
         rc, out, _ = run('--help')
         self.assertEqual(rc, 0)
         for flag in ('--output', '--weights', '--monitor', '--alpha', '--iterations',
-                     '--iteration-mode', '--boundary', '--max-triangles', '--version',
+                     '--iteration-mode', '--boundary', '--max-triangles', '--max-memory-mb',
+                     '--version',
                      '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
                      '--tolerance', '--max-sweeps', '--alpha-steps'):
             self.assertIn(flag, out)
