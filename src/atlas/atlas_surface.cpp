@@ -7,17 +7,6 @@
 #include "mesh/mesh_topology.h"
 
 namespace raps {
-namespace {
-
-int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];
-        v = parent[v];
-    }
-    return v;
-}
-
-}  // namespace
 
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded) {
     AtlasSurface surface;
@@ -112,32 +101,15 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     }
 
     // Surface vertices: corners joined across interior edges, one class per fan.
-    std::vector<int32_t> parent(order.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto unite = [&](int32_t a, int32_t b) {
-        a = find_root(parent, a);
-        b = find_root(parent, b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    };
-    for (int32_t h = 0; h < 3 * count; ++h) {
-        const int32_t g = surface.twin[h];
-        if (g < h) continue;
-        // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
-        // the corner after g; the corners at b are the corner after h and g's own corner.
-        unite(h, Halfedges::next(g));
-        unite(Halfedges::next(h), g);
-    }
-    std::vector<int32_t> vertex_of_class(order.size(), -1);
+    const std::vector<int32_t> classes = corner_vertex_classes(surface.twin);
     surface.mesh.triangles.resize(count);
     for (int32_t c = 0; c < 3 * count; ++c) {
-        const int32_t root = find_root(parent, c);
-        if (vertex_of_class[root] < 0) {
-            vertex_of_class[root] = static_cast<int32_t>(surface.welded_vertex.size());
+        if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
             const int32_t w = welded_mesh.triangles[c / 3][c % 3];
             surface.welded_vertex.push_back(w);
             surface.mesh.positions.push_back(input.positions[w]);
         }
-        surface.mesh.triangles[c / 3][c % 3] = vertex_of_class[root];
+        surface.mesh.triangles[c / 3][c % 3] = classes[c];
     }
     surface.input_triangle = std::move(kept);
     return surface;

@@ -1,20 +1,11 @@
 #include "atlas/chart_disk.h"
 
 #include <algorithm>
-#include <numeric>
 
 #include "mesh/mesh_topology.h"
 
 namespace raps {
 namespace {
-
-int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];
-        v = parent[v];
-    }
-    return v;
-}
 
 // Local twins of the chart's triangles: the surface's, kept inside the chart and off seams.
 std::vector<int32_t> local_twins(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
@@ -34,32 +25,17 @@ std::vector<int32_t> local_twins(const AtlasSurface& surface, const std::vector<
 // Chart vertices: corners joined across uncut edges, one vertex per class.
 void build_vertices(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                     const std::vector<int32_t>& twin, ChartDisk& disk) {
-    const int32_t corners = static_cast<int32_t>(twin.size());
-    std::vector<int32_t> parent(corners);
-    std::iota(parent.begin(), parent.end(), 0);
-    for (int32_t h = 0; h < corners; ++h) {
-        const int32_t g = twin[h];
-        if (g < h) continue;
-        for (auto [a, b] :
-             {std::make_pair(h, Halfedges::next(g)), std::make_pair(Halfedges::next(h), g)}) {
-            a = find_root(parent, a);
-            b = find_root(parent, b);
-            if (a != b) parent[std::max(a, b)] = std::min(a, b);
-        }
-    }
-    std::vector<int32_t> vertex_of_class(corners, -1);
+    const std::vector<int32_t> classes = corner_vertex_classes(twin);
     disk.mesh.positions.clear();
     disk.surface_vertex.clear();
     disk.mesh.triangles.assign(triangles.size(), Triangle{});
-    for (int32_t c = 0; c < corners; ++c) {
-        const int32_t root = find_root(parent, c);
-        if (vertex_of_class[root] < 0) {
-            vertex_of_class[root] = static_cast<int32_t>(disk.surface_vertex.size());
+    for (size_t c = 0; c < classes.size(); ++c) {
+        if (classes[c] == static_cast<int32_t>(disk.surface_vertex.size())) {  // a new vertex
             const int32_t v = surface.mesh.triangles[triangles[c / 3]][c % 3];
             disk.surface_vertex.push_back(v);
             disk.mesh.positions.push_back(surface.mesh.positions[v]);
         }
-        disk.mesh.triangles[c / 3][c % 3] = vertex_of_class[root];
+        disk.mesh.triangles[c / 3][c % 3] = classes[c];
     }
 }
 
