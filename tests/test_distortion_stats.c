@@ -248,6 +248,49 @@ static void flipped_triangles_are_counted(void** state) {
     raps_settings_destroy(s);
 }
 
+/* A fan whose cotangent solve puts the centre 0.2 outside the circle (below v = 0): the map is
+ * folded, and it is scaled uniformly back into [0,1]^2 (found by fuzzing: the header promises
+ * [0,1]^2). A similarity: the rim stays on a circle, the centre stays the cotangent average of
+ * the rim, and the map's extent is exactly 1 along its longer axis. */
+static void a_map_folded_outside_is_scaled_into_the_unit_square(void** state) {
+    (void)state;
+    const double xyz[] = {-1.7, -1.8, -1.1, 0, 0.8, 1.7, 0.1, 1.4, 1.7, -0.7, 1.7, 0.5};
+    const uint32_t tri[] = {0, 1, 2, 0, 2, 3, 0, 3, 1};
+    raps_settings* s = make_settings(RAPS_WEIGHTS_COTANGENT, RAPS_MONITOR_NONE, 1, 1);
+    double uv[8];
+    const raps_stats st = run(xyz, 4, tri, 9, s, uv);
+    double low[2] = {1, 1}, high[2] = {0, 0};
+    for (int i = 0; i < 8; ++i) {
+        assert_true(uv[i] >= 0.0 && uv[i] <= 1.0);
+        low[i % 2] = fmin(low[i % 2], uv[i]);
+        high[i % 2] = fmax(high[i % 2], uv[i]);
+    }
+    assert_near(fmax(high[0] - low[0], high[1] - low[1]), 1.0, 1e-12);
+    /* The rim's circumcentre is equidistant from all three rim vertices, radius under 0.5. */
+    const double *a = uv + 2, *b = uv + 4, *c = uv + 6;
+    const double d = 2 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
+    const double aa = a[0] * a[0] + a[1] * a[1], bb = b[0] * b[0] + b[1] * b[1],
+                 cc = c[0] * c[0] + c[1] * c[1];
+    const double centre[2] = {(aa * (b[1] - c[1]) + bb * (c[1] - a[1]) + cc * (a[1] - b[1])) / d,
+                              (aa * (c[0] - b[0]) + bb * (a[0] - c[0]) + cc * (b[0] - a[0])) / d};
+    const double radius = hypot(a[0] - centre[0], a[1] - centre[1]);
+    assert_true(radius < 0.45);
+    double w[3], sum = 0, expected[2] = {0, 0};
+    for (int j = 0; j < 3; ++j) {
+        const double* before = xyz + 3 * (1 + (j + 2) % 3);
+        const double* self = xyz + 3 * (1 + j);
+        const double* after = xyz + 3 * (1 + (j + 1) % 3);
+        w[j] = 0.5 * (cotangent(before, xyz, self) + cotangent(after, xyz, self));
+        sum += w[j];
+        expected[0] += w[j] * uv[2 * (1 + j)];
+        expected[1] += w[j] * uv[2 * (1 + j) + 1];
+    }
+    assert_near(uv[0], expected[0] / sum, 1e-12);
+    assert_near(uv[1], expected[1] / sum, 1e-12);
+    assert_true(st.flipped_triangles > 0);
+    raps_settings_destroy(s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(single_triangle_on_the_circle),
@@ -256,6 +299,7 @@ int main(void) {
         cmocka_unit_test(area_ratios_follow_their_definition),
         cmocka_unit_test(zero_area_uv_triangles_are_counted),
         cmocka_unit_test(flipped_triangles_are_counted),
+        cmocka_unit_test(a_map_folded_outside_is_scaled_into_the_unit_square),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

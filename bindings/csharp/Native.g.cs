@@ -438,7 +438,8 @@ namespace Raps
         public const int RAPS_WEIGHTS_MEAN_VALUE = 0;
         /// <summary>
         /// Discrete harmonic (cotangent) weights; negative on obtuse triangles, so the map may fold
-        /// (the count of negative weights is in raps_stats.negative_weights).
+        /// (the count of negative weights is in raps_stats.negative_weights). A disk map folded out
+        /// past its boundary shape is scaled uniformly about its bounding box back into [0,1]^2.
         /// </summary>
         public const int RAPS_WEIGHTS_COTANGENT = 1;
         /// <summary>

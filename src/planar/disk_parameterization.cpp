@@ -11,6 +11,28 @@
 #include "weights/laplacian_weights.h"
 
 namespace raps {
+namespace {
+
+// Negative (cotangent) weights can fold the map and carry interior vertices outside the convex
+// boundary, hence outside [0,1]^2 (fuzzing found a square-boundary map reaching -1.4). The
+// result promises [0,1]^2, so such a map is scaled uniformly about its bounding box back into
+// the square: a similarity, which keeps the folds (counted in the statistics) and the boundary's
+// shape, and leaves every map that stayed inside untouched.
+void fit_into_unit_square(std::vector<Eigen::Vector2d>& uv) {
+    Eigen::Vector2d low = uv.front(), high = uv.front();
+    for (const Eigen::Vector2d& p : uv) {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+    }
+    if (low.minCoeff() >= 0.0 && high.maxCoeff() <= 1.0) return;
+    const double scale = 1.0 / (high - low).maxCoeff();
+    const Eigen::Vector2d centre = 0.5 * (low + high);
+    for (Eigen::Vector2d& p : uv) {
+        p = ((p - centre) * scale + Eigen::Vector2d(0.5, 0.5)).cwiseMax(0.0).cwiseMin(1.0);
+    }
+}
+
+}  // namespace
 
 DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
                           const Progress& progress, PhaseTimes& times) {
@@ -50,6 +72,7 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
     map.adaptive_solves =
         adapt_map(mesh, adjacency, system, base_weights, settings, map.uv,
                   [&](double fraction) { progress.report(Phase::kAdapt, fraction); });
+    fit_into_unit_square(map.uv);
     adapt_timer.finish();
     return map;
 }

@@ -173,7 +173,8 @@ RAPS_SPHERE_UV_OCTAHEDRAL = 1
 #   Floater's mean value weights (paper section 5): positive, so the map never folds.
 RAPS_WEIGHTS_MEAN_VALUE = 0
 #   Discrete harmonic (cotangent) weights; negative on obtuse triangles, so the map may fold
-#   (the count of negative weights is in raps_stats.negative_weights).
+#   (the count of negative weights is in raps_stats.negative_weights). A disk map folded out
+#   past its boundary shape is scaled uniformly about its bounding box back into [0,1]^2.
 RAPS_WEIGHTS_COTANGENT = 1
 #   Tutte's uniform weights: all 1.
 RAPS_WEIGHTS_UNIFORM = 2

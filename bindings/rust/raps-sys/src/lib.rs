@@ -175,7 +175,8 @@ pub const RAPS_SPHERE_UV_OCTAHEDRAL: i32 = 1;
 /// Floater's mean value weights (paper section 5): positive, so the map never folds.
 pub const RAPS_WEIGHTS_MEAN_VALUE: i32 = 0;
 /// Discrete harmonic (cotangent) weights; negative on obtuse triangles, so the map may fold
-/// (the count of negative weights is in raps_stats.negative_weights).
+/// (the count of negative weights is in raps_stats.negative_weights). A disk map folded out
+/// past its boundary shape is scaled uniformly about its bounding box back into [0,1]^2.
 pub const RAPS_WEIGHTS_COTANGENT: i32 = 1;
 /// Tutte's uniform weights: all 1.
 pub const RAPS_WEIGHTS_UNIFORM: i32 = 2;
