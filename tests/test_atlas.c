@@ -342,6 +342,21 @@ static void an_atlas_of_zero_area_is_refused(void** state) {
     raps_mesh_destroy(m);
     m = to_raps_mesh(&disk);
     assert_status(raps_parameterize(m, s, r), RAPS_OK);
+    /* A weld tolerance past the mesh's size merges it into one point: no triangle keeps an area
+     * (found by fuzzing; the statistics were NaN). A mesh with no area to begin with maps to a
+     * point, with the statistics of a map that distorts nothing. */
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_WELD_TOLERANCE, 1e7), RAPS_OK);
+    assert_status(raps_parameterize(m, s, r), RAPS_ERROR_ZERO_AREA_TRIANGLE);
+    assert_non_null(strstr(raps_result_last_error(r), "RAPS_PARAM_WELD_TOLERANCE = 1e+07"));
+    assert_int_equal(raps_result_vertex_count(r), 0);
+    for (size_t v = 0; v < disk.vertex_count; ++v) disk.positions[3 * v + 2] = 0.0;
+    for (size_t v = 0; v < disk.vertex_count; ++v) disk.positions[3 * v + 1] = 0.0;
+    raps_mesh_destroy(m);
+    m = to_raps_mesh(&disk); /* every triangle on one line */
+    assert_status(raps_parameterize(m, s, r), RAPS_OK);
+    const raps_stats stats = stats_of(r);
+    assert_int_equal(stats.chart_count, 1);
+    assert_true(stats.area_log_mean == 0.0 && stats.stretch_l2 == 1.0);
     raps_result_destroy(r);
     raps_settings_destroy(s);
     raps_mesh_destroy(m);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
+#include <string>
 
 #include "atlas/atlas_charts.h"
 #include "atlas/atlas_surface.h"
@@ -19,8 +21,24 @@ namespace {
 // found a vertex at 1e29 beside a unit-sized patch) leaves every chart thinner than double
 // precision resolves next to its place in the atlas: all uv triangles come out with zero area.
 // That is no map; say so instead of returning it.
-void refuse_collapsed_atlas(const std::vector<AtlasChart>& charts, const PackResult& packed) {
-    if (charts.empty()) return;
+// The weld tolerance can do the same on purpose: merge vertices until no triangle keeps an
+// area, leaving no chart, while the input's triangles had area.
+void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
+                            const std::vector<AtlasChart>& charts, const PackResult& packed) {
+    if (charts.empty()) {
+        for (const Triangle& t : mesh.triangles) {
+            const Eigen::Vector3d& a = mesh.positions[t[0]];
+            if ((mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).squaredNorm() > 0) {
+                char tolerance[32];
+                std::snprintf(tolerance, sizeof(tolerance), "%g", weld_tolerance);
+                throw Error(
+                    ErrorCode::kZeroAreaTriangle,
+                    std::string("welding vertices closer than RAPS_PARAM_WELD_TOLERANCE = ") +
+                        tolerance + " leaves every triangle with zero area: no chart to map");
+            }
+        }
+        return;  // the input has no area either: every triangle maps to one point
+    }
     for (size_t c = 0; c < charts.size(); ++c) {
         const std::vector<Eigen::Vector2d>& uv = packed.uv[c];
         for (const Triangle& t : charts[c].disk.mesh.triangles) {
@@ -92,7 +110,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     pack_settings.padding = settings.atlas_padding;
     pack_settings.threads = settings.threads;
     const PackResult packed = pack_charts(inputs, pack_settings);
-    refuse_collapsed_atlas(charts, packed);
+    refuse_collapsed_atlas(mesh, settings.weld_tolerance, charts, packed);
     pack_timer.finish();
 
     // Output: walk the input triangles in order; each corner becomes the output vertex of its

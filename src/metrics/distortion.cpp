@@ -101,7 +101,9 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
     if (used.empty()) return stats;
     const double zero_uv = 1e-14 * total_uv / static_cast<double>(used.size());
     const double infinity = std::numeric_limits<double>::infinity();
-    const double scale = total_uv > 0 ? std::sqrt(total_3d / total_uv) : infinity;
+    // A map that collapses every triangle (total uv area 0) has infinite distortion, not 0/0:
+    // r_t is 0 and, at scale 1, every singular value is 0.
+    const double scale = total_uv > 0 ? std::sqrt(total_3d / total_uv) : 1.0;
     double angle_sum = 0, stretch_sum = 0;
     stats.area_max = 1;
     stats.stretch_linf = 0;
@@ -111,7 +113,7 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         if (a < -zero_uv) ++stats.flipped_triangles;
         if (std::abs(a) <= zero_uv) ++stats.zero_area_triangles;
         const double weight = area[t] / total_3d;
-        const double r = (std::abs(a) / total_uv) / weight;
+        const double r = total_uv > 0 ? (std::abs(a) / total_uv) / weight : 0.0;
         stats.area_log_mean += weight * std::abs(std::log(r));
         stats.area_max = std::max(stats.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
         for (int k = 0; k < 3; ++k) {
