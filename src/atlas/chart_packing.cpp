@@ -75,10 +75,20 @@ struct BitImage {
     }
     uint64_t* row(int32_t y) { return bits.data() + static_cast<size_t>(y) * words; }
     const uint64_t* row(int32_t y) const { return bits.data() + static_cast<size_t>(y) * words; }
-    bool get(int32_t x, int32_t y) const { return (row(y)[x / 64] >> (x % 64)) & 1; }
-    void set(int32_t x, int32_t y) { row(y)[x / 64] |= uint64_t(1) << (x % 64); }
+    // Cells x0..x1 of row y, a word at a time: rasterising is linear in rows, not in cells.
     void set_span(int32_t y, int32_t x0, int32_t x1) {
-        for (int32_t x = x0; x <= x1; ++x) set(x, y);
+        if (x0 > x1) return;
+        uint64_t* cells = row(y);
+        const int32_t first = x0 / 64, last = x1 / 64;
+        const uint64_t from_x0 = ~uint64_t(0) << (x0 % 64);
+        const uint64_t to_x1 = ~uint64_t(0) >> (63 - x1 % 64);
+        if (first == last) {
+            cells[first] |= from_x0 & to_x1;
+            return;
+        }
+        cells[first] |= from_x0;
+        for (int32_t w = first + 1; w < last; ++w) cells[w] = ~uint64_t(0);
+        cells[last] |= to_x1;
     }
 };
 
@@ -118,17 +128,34 @@ void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Tri
     }
 }
 
-// A quarter turn: cell (x, y) goes to (height - 1 - y, x).
+// Transposes a 64 x 64 bit block in place (word i is row i, bit j column j): swaps of
+// 32 x 32, then 16 x 16, ... sub-blocks across the diagonal (Hacker's Delight, 7-3).
+void transpose_block(uint64_t block[64]) {
+    uint64_t mask = 0x00000000ffffffffull;
+    for (int half = 32; half > 0; half >>= 1, mask ^= mask << half) {
+        for (int k = 0; k < 64; k = ((k | half) + 1) & ~half) {
+            const uint64_t swap = ((block[k] >> half) ^ block[k | half]) & mask;
+            block[k] ^= swap << half;
+            block[k | half] ^= swap;
+        }
+    }
+}
+
+// A quarter turn: cell (x, y) goes to (height - 1 - y, x). The rows turned upside down, then
+// transposed 64 x 64 cells at a time: linear in words, not in cells.
 BitImage rotate_quarter(const BitImage& in) {
     BitImage out;
     out.resize(in.height, in.width);
-    for (int32_t y = 0; y < in.height; ++y) {
-        const uint64_t* row = in.row(y);
-        for (int32_t w = 0; w < in.words; ++w) {
-            for (uint64_t word = row[w]; word; word &= word - 1) {
-                const int32_t x = w * 64 + __builtin_ctzll(word);
-                out.set(in.height - 1 - y, x);
+    uint64_t block[64];
+    for (int32_t by = 0; by < out.words; ++by) {     // 64 rows of `in`: a word of `out`
+        for (int32_t bx = 0; bx < in.words; ++bx) {  // a word of `in`: 64 rows of `out`
+            for (int i = 0; i < 64; ++i) {
+                const int32_t y = in.height - 1 - (by * 64 + i);
+                block[i] = y >= 0 ? in.row(y)[bx] : 0;
             }
+            transpose_block(block);
+            for (int i = 0; i < 64 && bx * 64 + i < out.height; ++i)
+                out.row(bx * 64 + i)[by] = block[i];
         }
     }
     return out;
@@ -191,21 +218,24 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
             for (int32_t w = 0; w < chart.words; ++w) dst[w] |= src[w];
         }
     }
-    auto columns = [&](const std::vector<uint64_t>& bits, auto&& visit) {
-        for (int32_t y = 0; y < chart.height; ++y) {
+    // The first row (from the bottom or from the top) that sets each column: per row only the
+    // columns not seen yet are visited, so this is linear in rows times words plus columns.
+    auto first_rows = [&](const std::vector<uint64_t>& bits, bool from_top,
+                          std::vector<int32_t>& first) {
+        std::vector<uint64_t> seen(chart.words, 0);
+        for (int32_t k = 0; k < chart.height; ++k) {
+            const int32_t y = from_top ? chart.height - 1 - k : k;
             const uint64_t* row = bits.data() + static_cast<size_t>(y) * chart.words;
             for (int32_t w = 0; w < chart.words; ++w) {
-                for (uint64_t word = row[w]; word; word &= word - 1)
-                    visit(w * 64 + __builtin_ctzll(word), y);
+                for (uint64_t word = row[w] & ~seen[w]; word; word &= word - 1)
+                    first[w * 64 + __builtin_ctzll(word)] = y;
+                seen[w] |= row[w];
             }
         }
     };
-    columns(profile.chart_bits, [&](int32_t x, int32_t y) {
-        profile.top[x] = std::max(profile.top[x], y);
-        profile.chart_bottom[x] = std::min(profile.chart_bottom[x], y);
-    });
-    columns(profile.padded_bits,
-            [&](int32_t x, int32_t y) { profile.bottom[x] = std::min(profile.bottom[x], y); });
+    first_rows(profile.chart_bits, true, profile.top);
+    first_rows(profile.chart_bits, false, profile.chart_bottom);
+    first_rows(profile.padded_bits, false, profile.bottom);
     return profile;
 }
 
