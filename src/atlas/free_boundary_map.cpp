@@ -95,7 +95,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
             pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
         }
     }
-    SparseSolver solver(std::move(pattern), coordinates);
+    SparseSolver solver(std::move(pattern), coordinates, 2);  // (u_i, v_i) blocks
     solver.solve(values, rhs.data(), 1, nullptr);
     for (int32_t v = 0; v < n; ++v) {
         if (unknown[v] >= 0) uv[v] = Eigen::Vector2d(rhs[2 * unknown[v]], rhs[2 * unknown[v] + 1]);
