@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "atlas/atlas_surface.h"
+#include "mesh/mesh_topology.h"
 
 namespace raps {
 
@@ -17,6 +18,7 @@ struct ChartDisk {
     std::vector<int32_t> surface_triangle;  // per chart triangle
     std::vector<int32_t> surface_vertex;    // per chart vertex
     std::vector<int32_t> boundary_loop;     // the disk's boundary, mesh on its left
+    VertexAdjacency adjacency;              // of `mesh`, built once for every map of the chart
 };
 
 // The chart made of `triangles` (surface triangle ids). seam[h] marks half-edges of the surface

@@ -30,10 +30,9 @@ void normalise(const ChartDisk& disk, ChartMap& map) {
     centroid /= static_cast<double>(map.uv.size());
     const double scale = uv_area > 0 ? std::sqrt(area / uv_area) : 1.0;
     for (Eigen::Vector2d& p : map.uv) p = (p - centroid) * scale;
-    const DistortionStats stats =
-        measure_distortion(disk.mesh.positions, PlanarMapGeometry(map.uv), disk.mesh.triangles);
-    map.stretch_l2 = stats.stretch_l2;
-    map.stretch_linf = stats.stretch_linf;
+    const Stretch stretch = measure_stretch(disk.mesh.positions, map.uv, disk.mesh.triangles);
+    map.stretch_l2 = stretch.l2;
+    map.stretch_linf = stretch.linf;
 }
 
 bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv) {
@@ -66,8 +65,7 @@ bool adapted(const ChartDisk& disk, const VertexAdjacency& adjacency, const Sett
 }  // namespace
 
 ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
-    const Halfedges halfedges = build_halfedges(disk.mesh);
-    const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    const VertexAdjacency& adjacency = disk.adjacency;
     ChartMap circle;
     circle.method = ChartMethod::kCircle;
     circle.uv.assign(disk.mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
@@ -88,8 +86,7 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
 }
 
 ChartMap free_boundary_chart_map(const ChartDisk& disk) {
-    const Halfedges halfedges = build_halfedges(disk.mesh);
-    const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    const VertexAdjacency& adjacency = disk.adjacency;
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
@@ -107,8 +104,7 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
                      ChartMap& map) {
     // A chart the free boundary already maps (nearly) isometrically gains nothing.
     if (settings.monitor == Monitor::kNone || !map.injective || map.stretch_l2 < 1.0005) return;
-    const Halfedges halfedges = build_halfedges(disk.mesh);
-    const VertexAdjacency adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    const VertexAdjacency& adjacency = disk.adjacency;
     ChartMap candidate;
     candidate.method = map.method == ChartMethod::kCircle ? ChartMethod::kCircleAdapted
                                                           : ChartMethod::kFreeBoundaryAdapted;
