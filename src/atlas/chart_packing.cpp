@@ -469,7 +469,6 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     scale = std::min(scale, (resolution - 2.0 * padding - 2.0) / std::max(longest, 1e-300));
     std::vector<Eigen::Vector2i> placed(count);
     std::vector<int> turn(count);
-    int32_t used_width = 0, used_height = 0;
     const int32_t limit = static_cast<int32_t>(resolution);
     // Charts, strip widths and layouts are independent: each runs on its own thread and writes
     // only its own slot, so the result does not depend on the thread count.
@@ -605,36 +604,11 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             best_area = area;
             placed = candidate.at;
             turn = candidate.quarter;
-            used_width = candidate.width;
-            used_height = candidate.height;
         }
     }
 
-    // The padding matters between charts, not at the atlas's border: crop the layout to the
-    // texels the charts themselves touch.
-    int32_t low_x = std::numeric_limits<int32_t>::max(), low_y = low_x, high_x = 0, high_y = 0;
-    for (size_t c = 0; c < count; ++c) {
-        const Profile& p = prepared[c].profiles[turn[c]];
-        for (int32_t i = 0; i < p.width; ++i) {
-            if (p.top[i] < 0) continue;
-            low_x = std::min(low_x, placed[c].x() + i);
-            high_x = std::max(high_x, placed[c].x() + i + 1);
-            low_y = std::min(low_y, placed[c].y() + p.chart_bottom[i]);
-            high_y = std::max(high_y, placed[c].y() + p.top[i] + 1);
-        }
-    }
-    if (low_x > high_x) low_x = low_y = 0;  // no texel at all (empty charts)
-    used_width = std::max(1, high_x - low_x);
-    used_height = std::max(1, high_y - low_y);
-    for (Eigen::Vector2i& at : placed) at -= Eigen::Vector2i(low_x, low_y);
-    // Final coordinates: the layout is stretched uniformly until its longer side is the
-    // resolution (a factor >= 1, which only widens the gaps between charts), then normalised per
-    // axis to [0, 1].
-    const double grow = resolution / std::max(std::max(used_width, used_height), 1);
-    result.width = std::max(1, static_cast<int32_t>(std::ceil(used_width * grow - 1e-9)));
-    result.height = std::max(1, static_cast<int32_t>(std::ceil(used_height * grow - 1e-9)));
-    result.texels_per_unit = scale * grow;
-    const double to_u = grow / result.width, to_v = grow / result.height;
+    // Positions in the layout, in cells (continuous).
+    Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
     for (size_t c = 0; c < count; ++c) {
         const Eigen::Vector2d r = prepared[c].rotation;
         const Profile& p = prepared[c].profiles[turn[c]];
@@ -657,8 +631,42 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
                 y = ny;
                 std::swap(cur_w, cur_h);
             }
-            result.uv[c][v] =
-                Eigen::Vector2d((placed[c].x() + x) * to_u, (placed[c].y() + y) * to_v);
+            const Eigen::Vector2d at(placed[c].x() + x, placed[c].y() + y);
+            result.uv[c][v] = at;
+            low = low.cwiseMin(at);
+            high = high.cwiseMax(at);
+        }
+    }
+    // The padding matters between charts, not at the atlas's border: the layout is cropped to
+    // the charts themselves. It is stretched uniformly until its longer side is the resolution
+    // (a factor >= 1, which only widens the gaps between charts), then normalised per axis to
+    // the atlas's texels: texel space stays isotropic, and the charts span [0, 1] along the
+    // longer side and all but a fraction of a texel of it along the other.
+    const double span_x = std::max(high.x() - low.x(), 0.0);
+    const double span_y = std::max(high.y() - low.y(), 0.0);
+    const double span = std::max(span_x, span_y);
+    auto texels = [](double length) {
+        return std::max(1, static_cast<int32_t>(std::ceil(length - 1e-9)));
+    };
+    double grow = span > 0 ? resolution / span : 1.0;
+    // The shorter side loses up to a texel to rounding up (0.5% of alligator's 180): shrinking
+    // the layout until that side is a whole number of texels loses less of the longer one.
+    const double shorter = std::min(span_x, span_y);
+    if (shorter > 0) {
+        const double exact = std::floor(shorter * grow) / shorter;
+        auto fill = [&](double g) {
+            return span_x * g / texels(span_x * g) * (span_y * g / texels(span_y * g));
+        };
+        if (exact >= 1.0 && fill(exact) > fill(grow)) grow = exact;
+    }
+    result.width = texels(span_x * grow);
+    result.height = texels(span_y * grow);
+    result.texels_per_unit = scale * grow;
+    const double to_u = grow / result.width, to_v = grow / result.height;
+    for (std::vector<Eigen::Vector2d>& chart_uv : result.uv) {
+        for (Eigen::Vector2d& at : chart_uv) {
+            at = Eigen::Vector2d(std::min(1.0, (at.x() - low.x()) * to_u),
+                                 std::min(1.0, (at.y() - low.y()) * to_v));
         }
     }
     return result;
