@@ -207,16 +207,10 @@ static double cotangent(const double* apex, const double* p, const double* q) {
     return (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / sqrt(x * x + y * y + z * z);
 }
 
-static void flipped_triangles_are_counted(void** state) {
-    (void)state;
-    const double xyz[] = {-0.626, -0.647, -0.84, -1.807, -0.758, 0.887,
-                          -0.789, -0.819, -0.28, 1.061,  -0.124, 0.645};
-    const uint32_t tri[] = {0, 1, 2, 0, 2, 3, 0, 3, 1};
-    raps_settings* s = make_settings(RAPS_WEIGHTS_COTANGENT, RAPS_MONITOR_NONE, 1, 1);
-    double uv[8];
-    const raps_stats st = run(xyz, 4, tri, 9, s, uv);
-    /* The rim: vertices 1, 2, 3 in loop order. */
-    double w[3], sum = 0, expected[2] = {0, 0};
+/* A fan of vertex 0 and the rim 1, 2, 3 (in loop order): uv of vertex 0 is sum w_j uv_j / sum w_j,
+ * with the spoke weights w_j returned. */
+static void centre_is_the_cotangent_average(const double* xyz, const double* uv, double w[3]) {
+    double sum = 0, expected[2] = {0, 0};
     for (int j = 0; j < 3; ++j) {
         const double* before = xyz + 3 * (1 + (j + 2) % 3);
         const double* self = xyz + 3 * (1 + j);
@@ -228,6 +222,18 @@ static void flipped_triangles_are_counted(void** state) {
     }
     assert_near(uv[0], expected[0] / sum, 1e-12);
     assert_near(uv[1], expected[1] / sum, 1e-12);
+}
+
+static void flipped_triangles_are_counted(void** state) {
+    (void)state;
+    const double xyz[] = {-0.626, -0.647, -0.84, -1.807, -0.758, 0.887,
+                          -0.789, -0.819, -0.28, 1.061,  -0.124, 0.645};
+    const uint32_t tri[] = {0, 1, 2, 0, 2, 3, 0, 3, 1};
+    raps_settings* s = make_settings(RAPS_WEIGHTS_COTANGENT, RAPS_MONITOR_NONE, 1, 1);
+    double uv[8];
+    const raps_stats st = run(xyz, 4, tri, 9, s, uv);
+    double w[3];
+    centre_is_the_cotangent_average(xyz, uv, w);
     int flipped = 0;
     for (int t = 0; t < 3; ++t) {
         const double *p = uv + 2 * tri[3 * t], *q = uv + 2 * tri[3 * t + 1],
@@ -250,8 +256,8 @@ static void flipped_triangles_are_counted(void** state) {
 
 /* A fan whose cotangent solve puts the centre 0.2 outside the circle (below v = 0): the map is
  * folded, and it is scaled uniformly back into [0,1]^2 (found by fuzzing: the header promises
- * [0,1]^2). A similarity: the rim stays on a circle, the centre stays the cotangent average of
- * the rim, and the map's extent is exactly 1 along its longer axis. */
+ * [0,1]^2). A similarity: the centre stays the cotangent average of the rim, the map's extent is
+ * exactly 1 along its longer axis, and the rim's circle shrank from the unit circle's 0.5. */
 static void a_map_folded_outside_is_scaled_into_the_unit_square(void** state) {
     (void)state;
     const double xyz[] = {-1.7, -1.8, -1.1, 0, 0.8, 1.7, 0.1, 1.4, 1.7, -0.7, 1.7, 0.5};
@@ -266,7 +272,7 @@ static void a_map_folded_outside_is_scaled_into_the_unit_square(void** state) {
         high[i % 2] = fmax(high[i % 2], uv[i]);
     }
     assert_near(fmax(high[0] - low[0], high[1] - low[1]), 1.0, 1e-12);
-    /* The rim's circumcentre is equidistant from all three rim vertices, radius under 0.5. */
+    /* The circle through the three rim vertices. */
     const double *a = uv + 2, *b = uv + 4, *c = uv + 6;
     const double d = 2 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
     const double aa = a[0] * a[0] + a[1] * a[1], bb = b[0] * b[0] + b[1] * b[1],
@@ -275,18 +281,8 @@ static void a_map_folded_outside_is_scaled_into_the_unit_square(void** state) {
                               (aa * (c[0] - b[0]) + bb * (a[0] - c[0]) + cc * (b[0] - a[0])) / d};
     const double radius = hypot(a[0] - centre[0], a[1] - centre[1]);
     assert_true(radius < 0.45);
-    double w[3], sum = 0, expected[2] = {0, 0};
-    for (int j = 0; j < 3; ++j) {
-        const double* before = xyz + 3 * (1 + (j + 2) % 3);
-        const double* self = xyz + 3 * (1 + j);
-        const double* after = xyz + 3 * (1 + (j + 1) % 3);
-        w[j] = 0.5 * (cotangent(before, xyz, self) + cotangent(after, xyz, self));
-        sum += w[j];
-        expected[0] += w[j] * uv[2 * (1 + j)];
-        expected[1] += w[j] * uv[2 * (1 + j) + 1];
-    }
-    assert_near(uv[0], expected[0] / sum, 1e-12);
-    assert_near(uv[1], expected[1] / sum, 1e-12);
+    double w[3];
+    centre_is_the_cotangent_average(xyz, uv, w);
     assert_true(st.flipped_triangles > 0);
     raps_settings_destroy(s);
 }

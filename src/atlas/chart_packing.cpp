@@ -640,8 +640,8 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     // The padding matters between charts, not at the atlas's border: the layout is cropped to
     // the charts themselves. It is stretched uniformly until its longer side is the resolution
     // (a factor >= 1, which only widens the gaps between charts), then normalised per axis to
-    // the atlas's texels: texel space stays isotropic, and the charts span [0, 1] along the
-    // longer side and all but a fraction of a texel of it along the other.
+    // the atlas's texels: texel space stays isotropic, and the charts span [0, 1] on one axis
+    // and all but a fraction of a texel on the other.
     const double span_x = std::max(high.x() - low.x(), 0.0);
     const double span_y = std::max(high.y() - low.y(), 0.0);
     const double span = std::max(span_x, span_y);
