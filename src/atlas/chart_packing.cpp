@@ -163,11 +163,18 @@ BitImage rotate_quarter(const BitImage& in) {
 
 // Per column: the lowest cell of the padded footprint and the highest and lowest cells of the
 // chart itself; and both footprints as bit rows, for exact fitting into holes.
+// An empty column's resting row: skyline - kNeverRests is below any real resting height.
+constexpr int32_t kNeverRests = 1 << 30;
+
 struct Profile {
     int32_t width = 0, height = 0;
     std::vector<int32_t> bottom;        // lowest padded row, or height if the column is empty
     std::vector<int32_t> top;           // highest chart row, or -1
     std::vector<int32_t> chart_bottom;  // lowest chart row, or height
+    // The skyline search's view of `bottom`, branch-free so that it vectorises: resting rows
+    // (an empty column's is so high it never decides), and 1 for the columns that count.
+    std::vector<int32_t> resting_bottom, occupied;
+    int64_t occupied_count = 0, occupied_bottom_sum = 0;  // and the sum of their bottoms
     int32_t words = 0;
     std::vector<uint64_t> chart_bits, padded_bits;
 };
@@ -236,6 +243,15 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
     first_rows(profile.chart_bits, true, profile.top);
     first_rows(profile.chart_bits, false, profile.chart_bottom);
     first_rows(profile.padded_bits, false, profile.bottom);
+    profile.resting_bottom.resize(chart.width);
+    profile.occupied.resize(chart.width);
+    for (int32_t x = 0; x < chart.width; ++x) {
+        const bool occupied = profile.bottom[x] < chart.height;
+        profile.resting_bottom[x] = occupied ? profile.bottom[x] : kNeverRests;
+        profile.occupied[x] = occupied;
+        profile.occupied_count += occupied;
+        if (occupied) profile.occupied_bottom_sum += profile.bottom[x];
+    }
     return profile;
 }
 
@@ -304,10 +320,10 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
     Occupancy occupancy(strip);
     width = height = 0;
     auto rest_height = [&](const Profile& p, int32_t x) {
+        const int32_t* sky = skyline.data() + x;
+        const int32_t* rest = p.resting_bottom.data();
         int32_t y = 0;
-        for (int32_t i = 0; i < p.width; ++i) {
-            if (p.bottom[i] < p.height) y = std::max(y, skyline[x + i] - p.bottom[i]);
-        }
+        for (int32_t i = 0; i < p.width; ++i) y = std::max(y, sky[i] - rest[i]);
         return y;
     };
     // Lowest top first; or, with count_waste, the texels left empty under the chart plus the
@@ -315,10 +331,12 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
     auto score_of = [&](const Profile& p, int32_t x, int32_t y) -> int64_t {
         const int64_t top = static_cast<int64_t>(y) + p.height;
         if (!count_waste) return top * (int64_t(strip) + 1) + x;
-        int64_t waste = 0;
-        for (int32_t i = 0; i < p.width; ++i) {
-            if (p.bottom[i] < p.height) waste += y + p.bottom[i] - skyline[x + i];
-        }
+        // Sum over occupied columns of y + bottom - skyline.
+        const int32_t* sky = skyline.data() + x;
+        const int32_t* occupied = p.occupied.data();
+        int64_t under = 0;
+        for (int32_t i = 0; i < p.width; ++i) under += occupied[i] * sky[i];
+        const int64_t waste = p.occupied_count * y + p.occupied_bottom_sum - under;
         return (waste + top * p.width) * (int64_t(strip) + 1) + x;
     };
     for (size_t c : order) {
