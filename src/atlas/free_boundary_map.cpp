@@ -58,9 +58,10 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
         struct Block {
             int32_t column_vertex;
             double uu, uv, vu, vv;  // row u_i / v_i times column u_j / v_j
+            bool coupled;           // u and v meet across a boundary edge: uv, vu in the pattern
         };
         std::vector<Block> blocks;
-        blocks.push_back({i, diagonal, 0.0, 0.0, diagonal});
+        blocks.push_back({i, diagonal, 0.0, 0.0, diagonal, false});
         for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
             const int32_t j = adjacency.neighbors[s];
             // -(u_i v_j - u_j v_i) / 2 for edge i -> j; +(u_j v_i - ... ) for edge j -> i.
@@ -73,7 +74,8 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
                 uv_term += 0.5;
                 vu_term -= 0.5;
             }
-            blocks.push_back({j, -cotangent[s], uv_term, vu_term, -cotangent[s]});
+            const bool coupled = next_on_boundary[i] == j || previous_on_boundary[i] == j;
+            blocks.push_back({j, -cotangent[s], uv_term, vu_term, -cotangent[s], coupled});
         }
         for (int row = 0; row < 2; ++row) {
             std::vector<std::pair<int32_t, double>> entries;
@@ -84,8 +86,13 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
                         first * uv[b.column_vertex].x() + second * uv[b.column_vertex].y();
                     continue;
                 }
-                entries.emplace_back(2 * unknown[b.column_vertex], first);
-                entries.emplace_back(2 * unknown[b.column_vertex] + 1, second);
+                // Only boundary edges couple u and v: elsewhere the two coordinates are two
+                // Laplace systems, and leaving the zero cross terms out of the pattern keeps
+                // them apart in the factorization, with less fill than full 2x2 blocks.
+                if (row == 0 || b.coupled)
+                    entries.emplace_back(2 * unknown[b.column_vertex], first);
+                if (row == 1 || b.coupled)
+                    entries.emplace_back(2 * unknown[b.column_vertex] + 1, second);
             }
             std::sort(entries.begin(), entries.end());
             for (const auto& [column, value] : entries) {
@@ -95,7 +102,9 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
             pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
         }
     }
-    SparseSolver solver(std::move(pattern), coordinates, 2);  // (u_i, v_i) blocks
+    // Ordered on the graph of vertices, u_i and v_i together: ordering the 2n unknowns on
+    // their own took 12% of a decimated-max atlas instead of 7%, for the same factorization.
+    SparseSolver solver(std::move(pattern), coordinates, 2);
     solver.solve(values, rhs.data(), 1, nullptr);
     for (int32_t v = 0; v < n; ++v) {
         if (unknown[v] >= 0) uv[v] = Eigen::Vector2d(rhs[2 * unknown[v]], rhs[2 * unknown[v] + 1]);

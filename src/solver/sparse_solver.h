@@ -17,9 +17,9 @@ namespace raps {
 class SparseSolver {
   public:
     // coordinates[i]: a point in space for unknown i, for the fill-reducing order. With
-    // block > 1 the unknowns come in runs of `block` (u and v of one vertex) whose rows and
-    // columns share one pattern of blocks: the order is computed on the graph of blocks, block^2
-    // times fewer entries, and keeps each block's unknowns together.
+    // block > 1 the unknowns come in runs of `block` (u and v of one vertex): the order is
+    // computed on the graph of blocks (two blocks are neighbours when any of their unknowns
+    // couple), which is cheaper to order, and keeps each block's unknowns together.
     SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates,
                  int32_t block = 1);
 
