@@ -1,5 +1,6 @@
 #include "parameter_text.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -69,13 +70,11 @@ std::string set_parameter_from_text(raps_settings* settings, const ParameterFlag
     const std::string name = flag.flag;
     raps_status status;
     if (!flag.choices.empty()) {
-        status = RAPS_ERROR_INVALID_ARGUMENT;
-        for (const auto& choice : flag.choices) {
-            if (text == choice.first)
-                status = raps_settings_set_int(settings, flag.param, choice.second);
-        }
-        if (status == RAPS_ERROR_INVALID_ARGUMENT)
-            return "unknown value '" + text + "' for " + name;
+        const auto choice =
+            std::find_if(flag.choices.begin(), flag.choices.end(),
+                         [&](const std::pair<const char*, int64_t>& c) { return text == c.first; });
+        if (choice == flag.choices.end()) return "unknown value '" + text + "' for " + name;
+        status = raps_settings_set_int(settings, flag.param, choice->second);
     } else {
         char* end = nullptr;
         errno = 0;

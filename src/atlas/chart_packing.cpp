@@ -679,7 +679,6 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     }
     result.width = texels(span_x * grow);
     result.height = texels(span_y * grow);
-    result.texels_per_unit = scale * grow;
     const double to_u = grow / result.width, to_v = grow / result.height;
     for (std::vector<Eigen::Vector2d>& chart_uv : result.uv) {
         for (Eigen::Vector2d& at : chart_uv) {

@@ -33,7 +33,6 @@ struct PackSettings {
 struct PackResult {
     std::vector<std::vector<Eigen::Vector2d>> uv;  // per chart, per chart vertex, in [0,1]^2
     int32_t width = 0, height = 0;                 // the atlas in texels
-    double texels_per_unit = 0;                    // texel density (texels per 3D unit)
 };
 
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings);
