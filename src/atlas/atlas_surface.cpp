@@ -76,28 +76,41 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         const Triangle& v = input.triangles[kept[s]];
         welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
     }
-    std::vector<int32_t> order(3 * static_cast<size_t>(count));
-    std::iota(order.begin(), order.end(), 0);
-    auto key = [&](int32_t h) {
+    // Half-edges bucketed by their smaller vertex (a counting sort), each bucket sorted by the
+    // larger vertex: the groups of one undirected edge in linear time, where one comparison sort
+    // of all half-edges by their vertex pair was most of the atlas's topology phase.
+    const int32_t halfedge_count = 3 * count;
+    std::vector<int32_t> bucket_offset(input.positions.size() + 1, 0);
+    for (int32_t h = 0; h < halfedge_count; ++h) {
         const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
-        return std::make_pair(std::min(a, b), std::max(a, b));
-    };
-    std::sort(order.begin(), order.end(), [&](int32_t x, int32_t y) {
-        const auto kx = key(x), ky = key(y);
-        return kx < ky || (kx == ky && x < y);
-    });
-    surface.twin.assign(order.size(), -1);
-    for (size_t i = 0; i < order.size();) {
-        size_t j = i;
-        while (j < order.size() && key(order[j]) == key(order[i])) ++j;
-        if (j - i == 2) {
-            const int32_t h = order[i], g = order[i + 1];
-            if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g)) {
-                surface.twin[h] = g;
-                surface.twin[g] = h;
-            }
+        ++bucket_offset[std::min(a, b) + 1];
+    }
+    std::partial_sum(bucket_offset.begin(), bucket_offset.end(), bucket_offset.begin());
+    std::vector<std::pair<int32_t, int32_t>> by_edge(halfedge_count);  // (larger vertex, h)
+    {
+        std::vector<int32_t> cursor(bucket_offset.begin(), bucket_offset.end() - 1);
+        for (int32_t h = 0; h < halfedge_count; ++h) {
+            const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
+            by_edge[cursor[std::min(a, b)]++] = {std::max(a, b), h};
         }
-        i = j;
+    }
+    surface.twin.assign(halfedge_count, -1);
+    for (size_t v = 0; v + 1 < bucket_offset.size(); ++v) {
+        const auto begin = by_edge.begin() + bucket_offset[v],
+                   end = by_edge.begin() + bucket_offset[v + 1];
+        std::sort(begin, end);
+        for (auto i = begin; i != end;) {
+            auto j = i;
+            while (j != end && j->first == i->first) ++j;
+            if (j - i == 2) {
+                const int32_t h = i->second, g = (i + 1)->second;
+                if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g)) {
+                    surface.twin[h] = g;
+                    surface.twin[g] = h;
+                }
+            }
+            i = j;
+        }
     }
 
     // Surface vertices: corners joined across interior edges, one class per fan.
