@@ -73,7 +73,6 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     // forced seams only when the caller's hard-edge angle says so.
     segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
     segmentation.max_normal_deviation_deg = 90.0;
-    segmentation.max_curvature = 1e300;
     const std::vector<int32_t> chart_of_surface = segment_charts(surface, segmentation);
     // Hard edges are seams inside charts as well.
     std::vector<char> seam(surface.twin.size(), 0);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <queue>
 
 namespace raps {
@@ -12,8 +11,6 @@ struct Geometry {
     std::vector<Eigen::Vector3d> normal;    // unit normal per triangle
     std::vector<Eigen::Vector3d> centroid;  // per triangle
     std::vector<double> area;               // per triangle
-    std::vector<double> defect;             // |angle defect| per vertex (0 on boundaries)
-    std::vector<int32_t> fan_offsets, fan;  // triangles around each vertex
     std::vector<char> barrier;              // per half-edge: charts may not grow across it
 };
 
@@ -24,8 +21,6 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
     g.normal.resize(count);
     g.centroid.resize(count);
     g.area.resize(count);
-    std::vector<double> angle_sum(mesh.positions.size(), 0.0);
-    std::vector<char> on_boundary(mesh.positions.size(), 0);
     for (int32_t t = 0; t < count; ++t) {
         const Triangle& v = mesh.triangles[t];
         const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
@@ -33,29 +28,6 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
         g.area[t] = 0.5 * n.norm();
         g.normal[t] = n.normalized();
         g.centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
-        for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d a = mesh.positions[v[(k + 1) % 3]] - mesh.positions[v[k]];
-            const Eigen::Vector3d b = mesh.positions[v[(k + 2) % 3]] - mesh.positions[v[k]];
-            angle_sum[v[k]] += std::atan2(a.cross(b).norm(), a.dot(b));
-            if (surface.twin[3 * t + k] < 0) {
-                on_boundary[v[k]] = 1;
-                on_boundary[v[(k + 1) % 3]] = 1;
-            }
-        }
-    }
-    g.defect.resize(mesh.positions.size());
-    for (size_t v = 0; v < g.defect.size(); ++v) {
-        g.defect[v] = on_boundary[v] ? 0.0 : std::abs(2.0 * M_PI - angle_sum[v]);
-    }
-    g.fan_offsets.assign(mesh.positions.size() + 1, 0);
-    for (const Triangle& t : mesh.triangles) {
-        for (int32_t v : t) ++g.fan_offsets[v + 1];
-    }
-    std::partial_sum(g.fan_offsets.begin(), g.fan_offsets.end(), g.fan_offsets.begin());
-    g.fan.resize(g.fan_offsets.back());
-    std::vector<int32_t> fill(g.fan_offsets.begin(), g.fan_offsets.end() - 1);
-    for (int32_t t = 0; t < count; ++t) {
-        for (int32_t v : mesh.triangles[t]) g.fan[fill[v]++] = t;
     }
     const double hard_cosine = std::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
     g.barrier.assign(3 * static_cast<size_t>(count), 0);
@@ -73,14 +45,12 @@ class Grower {
            const SegmentationSettings& settings)
         : surface_(surface),
           g_(geometry),
-          settings_(settings),
           min_cosine_(std::cos(settings.max_normal_deviation_deg * M_PI / 180.0)) {}
 
     // Grows charts from `seeds` until every triangle has one (adding seeds where none can grow).
     std::vector<int32_t> grow(std::vector<int32_t> seeds) {
         const int32_t count = surface_.mesh.triangle_count();
         chart_.assign(count, -1);
-        distance_.assign(count, 0.0);
         charts_.clear();
         queue_ = {};
         for (int32_t seed : seeds) start_chart(seed);
@@ -131,7 +101,6 @@ class Grower {
   private:
     struct Chart {
         Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
-        double curvature = 0;
     };
     struct Candidate {
         double distance;
@@ -150,10 +119,8 @@ class Grower {
 
     void assign(int32_t t, int32_t c, double distance) {
         chart_[t] = c;
-        distance_[t] = distance;
         Chart& chart = charts_[c];
         chart.normal_sum += g_.area[t] * g_.normal[t];
-        chart.curvature += curvature_gain(t, c);
         for (int k = 0; k < 3; ++k) {
             const int32_t o = surface_.twin[3 * t + k];
             if (o < 0 || g_.barrier[3 * t + k] || chart_[o / 3] >= 0) continue;
@@ -162,25 +129,8 @@ class Grower {
         }
     }
 
-    // Curvature that becomes interior to chart c if t joins it: vertices of t whose other
-    // triangles all belong to c already.
-    double curvature_gain(int32_t t, int32_t c) const {
-        double gain = 0;
-        for (int32_t v : surface_.mesh.triangles[t]) {
-            bool enclosed = true;
-            for (int32_t i = g_.fan_offsets[v]; i < g_.fan_offsets[v + 1] && enclosed; ++i) {
-                const int32_t u = g_.fan[i];
-                enclosed = u == t || chart_[u] == c;
-            }
-            if (enclosed) gain += g_.defect[v];
-        }
-        return gain;
-    }
-
     bool accepts(int32_t t, int32_t c) const {
-        const Chart& chart = charts_[c];
-        if (g_.normal[t].dot(chart.normal_sum.normalized()) < min_cosine_) return false;
-        return chart.curvature + curvature_gain(t, c) <= settings_.max_curvature;
+        return g_.normal[t].dot(charts_[c].normal_sum.normalized()) >= min_cosine_;
     }
 
     void drain() {
@@ -195,10 +145,8 @@ class Grower {
 
     const AtlasSurface& surface_;
     const Geometry& g_;
-    const SegmentationSettings& settings_;
     const double min_cosine_;
     std::vector<int32_t> chart_;
-    std::vector<double> distance_;
     std::vector<Chart> charts_;
     std::priority_queue<Candidate> queue_;
 };

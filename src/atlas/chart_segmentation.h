@@ -1,9 +1,8 @@
 // Step 3 of the atlas pipeline: grow charts over the surface. Charts grow from seeds in order of
 // geodesic distance (so they come out compact, a geodesic Voronoi diagram of the seeds) and
 // stop at what would make them hard to flatten: a triangle whose normal deviates too far from
-// the chart's mean normal, Gaussian curvature beyond a budget (the integrated curvature inside a
-// chart is what a flattening must absorb as distortion), a hard edge, a cut. Triangles no chart
-// can take become new seeds. Lloyd iterations then move every seed to its chart's centre and
+// the chart's mean normal, a hard edge, a cut. Triangles no chart can take become new seeds.
+// Charts that still map badly are split later, by their measured stretch (atlas_charts.h). Lloyd iterations then move every seed to its chart's centre and
 // regrow, which evens the charts out (as xatlas and Cohen-Steiner et al. 2004 do).
 #pragma once
 
@@ -16,7 +15,6 @@ namespace raps {
 
 struct SegmentationSettings {
     double max_normal_deviation_deg = 75.0;  // triangle normal vs the chart's mean normal
-    double max_curvature = 1.0;              // sum of |angle defect| of a chart's inner vertices
     double hard_edge_angle_deg = 180.0;      // dihedral angle above which an edge is a seam
     int lloyd_iterations = 3;
 };
