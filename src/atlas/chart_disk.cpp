@@ -123,9 +123,9 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
     }
     std::vector<std::vector<int32_t>> loops = boundary_loops(disk.mesh, halfedges);
     disk.boundary_loop = std::move(loops[0]);
-    // From the chart mesh's own half-edges (its vertices' indices), as the Laplace systems of
-    // the maps see it.
-    disk.adjacency = build_vertex_adjacency(disk.mesh, build_halfedges(disk.mesh));
+    // The chart's own twins are the chart mesh's half-edges: every pair joins the same two
+    // chart vertices (they are classes of corners joined across exactly these pairs).
+    disk.adjacency = build_vertex_adjacency(disk.mesh, halfedges);
     return true;
 }
 
