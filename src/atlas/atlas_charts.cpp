@@ -66,6 +66,17 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     return halves;
 }
 
+// Indices by decreasing cost, ties by index: the threads take work in this order, so the
+// largest charts start first and no thread is left with one big chart at the end of a batch
+// (the slots, hence the output, do not depend on it).
+std::vector<size_t> largest_first(const std::vector<size_t>& cost) {
+    std::vector<size_t> order(cost.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return cost[a] > cost[b]; });
+    return order;
+}
+
 double chart_area(const ChartDisk& disk) {
     double area = 0;
     for (const Triangle& t : disk.mesh.triangles) {
@@ -110,7 +121,11 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         while (!round.empty()) {
             std::vector<AtlasChart> built(round.size());
             std::vector<char> good(round.size(), 0);
-            parallel_for(settings.threads, round.size(), [&](size_t i) {
+            std::vector<size_t> cost(round.size());
+            for (size_t i = 0; i < round.size(); ++i) cost[i] = round[i].size();
+            const std::vector<size_t> order = largest_first(cost);
+            parallel_for(settings.threads, round.size(), [&](size_t k) {
+                const size_t i = order[k];
                 good[i] = try_chart(surface, round[i], seam, settings, limits, built[i]);
                 progress.report(Phase::kInitialMap,
                                 std::min(1.0, done_triangles / total_triangles));
@@ -166,7 +181,11 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     }
     // Every chart's adaptive step before merging, so the budget counts what the charts will
     // really stretch (the free-boundary figures above overstate it).
-    parallel_for(settings.threads, charts.size(), [&](size_t c) {
+    std::vector<size_t> cost(charts.size());
+    for (size_t c = 0; c < charts.size(); ++c) cost[c] = charts[c].disk.surface_triangle.size();
+    const std::vector<size_t> adapt_order = largest_first(cost);
+    parallel_for(settings.threads, charts.size(), [&](size_t k) {
+        const size_t c = adapt_order[k];
         adapt_chart_map(charts[c].disk, settings, limits.max_stretch_linf, charts[c].map);
         progress.report(Phase::kInitialMap, 1.0);
     });
@@ -250,7 +269,14 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                     adapt_chart_map(built[i].disk, settings, limits.max_stretch_linf, built[i].map);
                 mapped[i] = 1;
             };
-            parallel_for(settings.threads, batch.size(), [&](size_t i) {
+            std::vector<size_t> union_size(batch.size());
+            for (size_t i = 0; i < batch.size(); ++i) {
+                union_size[i] = charts[batch[i].a].disk.surface_triangle.size() +
+                                charts[batch[i].b].disk.surface_triangle.size();
+            }
+            const std::vector<size_t> order = largest_first(union_size);
+            parallel_for(settings.threads, batch.size(), [&](size_t k) {
+                const size_t i = order[k];
                 if (rejected.count(key(batch[i].a, batch[i].b)) == 0) map_union(i);
                 progress.report(Phase::kInitialMap, 1.0);
             });
