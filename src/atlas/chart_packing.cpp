@@ -175,6 +175,10 @@ struct Profile {
     // (an empty column's is so high it never decides), and 1 for the columns that count.
     std::vector<int32_t> resting_bottom, occupied;
     int64_t occupied_count = 0, occupied_bottom_sum = 0;  // and the sum of their bottoms
+    // A few occupied columns (its first, its middle, its lowest): the highest the chart must
+    // rest over these alone bounds its resting row from below at a glance. More columns
+    // measured slower: the bound prunes little more and costs more.
+    std::vector<int32_t> probe_columns;
     int32_t words = 0;
     std::vector<uint64_t> chart_bits, padded_bits;
 };
@@ -252,6 +256,14 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
         profile.occupied_count += occupied;
         if (occupied) profile.occupied_bottom_sum += profile.bottom[x];
     }
+    int32_t lowest = -1;
+    const int32_t spacing = std::max(1, chart.width / 2);
+    for (int32_t x = 0; x < chart.width; ++x) {
+        if (!profile.occupied[x]) continue;
+        if (lowest < 0 || profile.bottom[x] < profile.bottom[lowest]) lowest = x;
+        if (x % spacing == 0) profile.probe_columns.push_back(x);
+    }
+    if (lowest >= 0) profile.probe_columns.push_back(lowest);
     return profile;
 }
 
@@ -326,6 +338,11 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         for (int32_t i = 0; i < p.width; ++i) y = std::max(y, sky[i] - rest[i]);
         return y;
     };
+    auto rest_height_at_least = [&](const Profile& p, int32_t x) {
+        int32_t y = 0;
+        for (int32_t i : p.probe_columns) y = std::max(y, skyline[x + i] - p.resting_bottom[i]);
+        return y;
+    };
     // Lowest top first; or, with count_waste, the texels left empty under the chart plus the
     // area up to its top, which favours placements that fit the skyline's dips.
     auto score_of = [&](const Profile& p, int32_t x, int32_t y) -> int64_t {
@@ -339,6 +356,13 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         const int64_t waste = p.occupied_count * y + p.occupied_bottom_sum - under;
         return (waste + top * p.width) * (int64_t(strip) + 1) + x;
     };
+    // A lower bound of score_of(p, x, rest_height(p, x)): both rules grow with y, and the
+    // waste is never negative. Positions whose bound does not beat the best so far are
+    // skipped without the full rest height; the layout is the same.
+    auto score_at_least = [&](const Profile& p, int32_t x) -> int64_t {
+        const int64_t top = static_cast<int64_t>(rest_height_at_least(p, x)) + p.height;
+        return (count_waste ? top * p.width : top) * (int64_t(strip) + 1) + x;
+    };
     for (size_t c : order) {
         int64_t best_score = std::numeric_limits<int64_t>::max();
         int32_t best_x = -1, best_y = 0;
@@ -348,6 +372,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             if (p.width > strip) continue;
             const int32_t last = strip - p.width, step = std::max(1, p.width / 8);
             auto consider = [&](int32_t x) {
+                if (score_at_least(p, x) >= best_score) return;
                 const int32_t y = rest_height(p, x);
                 const int64_t score = score_of(p, x, y);
                 if (score < best_score) {
@@ -360,6 +385,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             int32_t coarse_best = 0;
             int64_t coarse_score = std::numeric_limits<int64_t>::max();
             for (int32_t x = 0; x <= last; x += step) {
+                if (score_at_least(p, x) >= coarse_score) continue;
                 const int64_t score = score_of(p, x, rest_height(p, x));
                 if (score < coarse_score) {
                     coarse_score = score;
