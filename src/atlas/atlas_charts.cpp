@@ -51,12 +51,15 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
         const bool to_b = from_b[i] >= 0 && (from_a[i] < 0 || from_b[i] < from_a[i]);
         side[triangles[i]] = to_b ? 1 : 0;
     }
-    std::vector<char> barrier(seam);
-    for (size_t h = 0; h < barrier.size(); ++h) {
-        const int32_t o = surface.twin[h];
-        if (o >= 0 && (side[h / 3] < 0 || side[o / 3] < 0)) barrier[h] = 1;
+    // Only the chart's own half-edges are read: everything else stays a barrier.
+    std::vector<char> barrier(seam.size(), 1);
+    for (int32_t t : triangles) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t h = 3 * t + k, o = surface.twin[h];
+            barrier[h] = seam[h] || (o >= 0 && side[o / 3] < 0);
+        }
     }
-    smooth_chart_boundaries(surface, barrier, side);
+    smooth_chart_boundaries(surface, barrier, triangles, side);
     for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
     if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
         const size_t half = halves.first.size() / 2;

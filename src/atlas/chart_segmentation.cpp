@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <queue>
 
 namespace raps {
@@ -167,15 +168,14 @@ std::vector<int32_t> compact_ids(std::vector<int32_t> chart) {
 }  // namespace
 
 void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
-                             std::vector<int32_t>& chart) {
+                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart) {
     // Region growing over triangles leaves saw-tooth boundaries (single triangles poking into
     // the neighbour, most visibly on triangulated quad meshes); they lengthen seams and waste
     // packing space. A triangle whose two uncut neighbours share another chart joins it; a
     // few sweeps in index order remove the teeth (the order makes it deterministic).
-    const int32_t count = static_cast<int32_t>(chart.size());
     for (int sweep = 0; sweep < 4; ++sweep) {
         bool changed = false;
-        for (int32_t t = 0; t < count; ++t) {
+        for (int32_t t : triangles) {
             int32_t other[3], found = 0;
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = surface.twin[3 * t + k];
@@ -203,7 +203,9 @@ std::vector<int32_t> segment_charts(const AtlasSurface& surface,
     for (int i = 0; i < settings.lloyd_iterations; ++i) {
         chart = compact_ids(grower.grow(grower.centres(chart)));
     }
-    smooth_chart_boundaries(surface, geometry.barrier, chart);
+    std::vector<int32_t> all(chart.size());
+    std::iota(all.begin(), all.end(), 0);
+    smooth_chart_boundaries(surface, geometry.barrier, all, chart);
     return compact_ids(chart);
 }
 

@@ -2,8 +2,9 @@
 // geodesic distance (so they come out compact, a geodesic Voronoi diagram of the seeds) and
 // stop at what would make them hard to flatten: a triangle whose normal deviates too far from
 // the chart's mean normal, a hard edge, a cut. Triangles no chart can take become new seeds.
-// Charts that still map badly are split later, by their measured stretch (atlas_charts.h). Lloyd iterations then move every seed to its chart's centre and
-// regrow, which evens the charts out (as xatlas and Cohen-Steiner et al. 2004 do).
+// Charts that still map badly are split later, by their measured stretch (atlas_charts.h). Lloyd
+// iterations then move every seed to its chart's centre and regrow, which evens the charts out (as
+// xatlas and Cohen-Steiner et al. 2004 do).
 #pragma once
 
 #include <cstdint>
@@ -20,9 +21,10 @@ struct SegmentationSettings {
 };
 
 // Moves triangles whose two uncut neighbours belong to another chart into that chart, which
-// removes saw-tooth boundaries. barrier[h] marks half-edges that separate charts regardless.
+// removes saw-tooth boundaries. barrier[h] marks half-edges that separate charts regardless;
+// only `triangles` (ascending) are visited and may move.
 void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
-                             std::vector<int32_t>& chart);
+                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart);
 
 // Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
