@@ -306,30 +306,33 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
             }
         }
     }
-    value_source_.clear();
-    value_target_.clear();
-    value_source_.reserve(pattern.nonzeros());
-    value_target_.reserve(pattern.nonzeros());
+    // Every entry of A lands exactly once: within a supernode from its own row, across
+    // supernodes from the earlier row as itself and its mirror (the later row skips both).
+    value_source_.resize(pattern.nonzeros());
+    value_target_.resize(pattern.nonzeros());
     diagonal_source_.assign(n, -1);
+    int64_t next_value = 0;
     for (int32_t s = 0; s < supernode_count; ++s) {
         Supernode& node = supernodes_[s];
         const int32_t f = node.first_column, l = f + node.columns - 1;
         for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
-        node.value_begin = static_cast<int64_t>(value_source_.size());
+        node.value_begin = next_value;
         for (int32_t j = f; j <= l; ++j) {
             const int32_t row = order_[j];
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
                 const int32_t other = position[pattern.columns[p]];
                 if (other < f) continue;
                 if (other == j) diagonal_source_[j] = p;
-                value_source_.push_back(p);
-                value_target_.push_back(local[j] + static_cast<int64_t>(local[other]) * node.rows);
+                value_source_[next_value] = p;
+                value_target_[next_value++] =
+                    local[j] + static_cast<int64_t>(local[other]) * node.rows;
                 if (other <= l) continue;
-                value_source_.push_back(transposed[p]);
-                value_target_.push_back(local[other] + static_cast<int64_t>(local[j]) * node.rows);
+                value_source_[next_value] = transposed[p];
+                value_target_[next_value++] =
+                    local[other] + static_cast<int64_t>(local[j]) * node.rows;
             }
         }
-        node.value_end = static_cast<int64_t>(value_source_.size());
+        node.value_end = next_value;
     }
 
     // Peak of the contribution-block stack, simulated in the factorization's order.
