@@ -439,10 +439,30 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
     for (const Supernode& node : supernodes_)
         most_update = std::max(most_update, node.rows - node.columns);
     Matrix gathered_buffer(most_update, rhs_count);
+    // Supernodes this small are solved with plain loops: Eigen's triangular solves and
+    // products cost more in set-up than in arithmetic at these sizes (as in partial_lu).
+    constexpr int32_t kSmallFront = 64;
     // Forward: L y = b, children before parents.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
         const double* lower = factors_.get() + node.factor_offset;
+        if (m <= kSmallFront) {
+            const int32_t* rows = row_indices_.data() + node.row_offset + k;
+            double* gathered = gathered_buffer.data();
+            for (int c = 0; c < rhs_count; ++c) {
+                double* xc = x.data() + static_cast<int64_t>(c) * n;
+                double* xs = xc + node.first_column;
+                std::fill(gathered, gathered + update, 0.0);
+                for (int32_t j = 0; j < k; ++j) {
+                    const double* column = lower + static_cast<int64_t>(j) * m;
+                    const double v = xs[j];
+                    for (int32_t i = j + 1; i < k; ++i) xs[i] -= column[i] * v;
+                    for (int32_t r = 0; r < update; ++r) gathered[r] += column[k + r] * v;
+                }
+                for (int32_t r = 0; r < update; ++r) xc[rows[r]] -= gathered[r];
+            }
+            continue;
+        }
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
@@ -459,6 +479,26 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
         const double* lower = factors_.get() + node.factor_offset;
+        if (m <= kSmallFront) {
+            const double* upper = lower + static_cast<int64_t>(m) * k;  // k x update
+            const int32_t* rows = row_indices_.data() + node.row_offset + k;
+            for (int c = 0; c < rhs_count; ++c) {
+                double* xc = x.data() + static_cast<int64_t>(c) * n;
+                double* xs = xc + node.first_column;
+                for (int32_t r = 0; r < update; ++r) {
+                    const double v = xc[rows[r]];
+                    const double* column = upper + static_cast<int64_t>(r) * k;
+                    for (int32_t i = 0; i < k; ++i) xs[i] -= column[i] * v;
+                }
+                for (int32_t j = k - 1; j >= 0; --j) {
+                    const double* column = lower + static_cast<int64_t>(j) * m;
+                    xs[j] /= column[j];
+                    const double v = xs[j];
+                    for (int32_t i = 0; i < j; ++i) xs[i] -= column[i] * v;
+                }
+            }
+            continue;
+        }
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         if (update > 0) {
