@@ -1,5 +1,6 @@
 #include "parameterization.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -25,14 +26,16 @@ void identity_output(const TriangleMesh& mesh, Parameterization& out) {
     }
 }
 
-// Total uv area of `triangles`: the fraction of [0,1]^2 the map covers.
+// Total uv area of `triangles`: the fraction of [0,1]^2 the map covers. A map that tiles the
+// whole square (the octahedral unfold) sums to 1 give or take rounding; the fraction covered
+// cannot exceed 1, so neither does the figure.
 double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles) {
     double area = 0;
     for (const Triangle& t : triangles) {
         const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
         area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
     }
-    return area;
+    return std::min(area, 1.0);
 }
 
 }  // namespace
