@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "mesh/mesh_topology.h"
+#include "planar/laplace_system.h"
 
 namespace raps {
 namespace {
@@ -126,6 +127,7 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
     // The chart's own twins are the chart mesh's half-edges: every pair joins the same two
     // chart vertices (they are classes of corners joined across exactly these pairs).
     disk.adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    disk.vertex_order = vertex_elimination_order(disk.mesh, disk.adjacency);
     return true;
 }
 

@@ -19,6 +19,9 @@ struct ChartDisk {
     std::vector<int32_t> surface_vertex;    // per chart vertex
     std::vector<int32_t> boundary_loop;     // the disk's boundary, mesh on its left
     VertexAdjacency adjacency;              // of `mesh`, built once for every map of the chart
+    // A fill-reducing order of the vertices, shared by the chart's sparse systems (the
+    // free-boundary map's and the adaptive step's): ordered once instead of once per system.
+    std::vector<int32_t> vertex_order;
 };
 
 // The chart made of `triangles` (surface triangle ids). seam[h] marks half-edges of the surface

@@ -48,7 +48,7 @@ bool adapted(const ChartDisk& disk, const VertexAdjacency& adjacency, const Sett
              const std::vector<Eigen::Vector2d>& start, ChartMap& out) {
     std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
     for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
-    LaplaceSystem system(disk.mesh, adjacency, on_boundary);
+    LaplaceSystem system(disk.mesh, adjacency, on_boundary, disk.vertex_order);
     if (system.unknown_count() == 0) return false;
     const std::vector<double> base = laplacian_weights(disk.mesh, adjacency, settings.weights);
     out.uv = start;
@@ -75,7 +75,7 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
         circle.uv[disk.boundary_loop[i]] = boundary[i];
     std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
     for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
-    LaplaceSystem system(disk.mesh, adjacency, on_boundary);
+    LaplaceSystem system(disk.mesh, adjacency, on_boundary, disk.vertex_order);
     const std::vector<double> base =
         laplacian_weights(disk.mesh, adjacency, WeightScheme::kMeanValue);
     system.solve(base, circle.uv, nullptr);
@@ -90,7 +90,8 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk) {
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
-        map.uv = free_boundary_conformal_map(disk.mesh, adjacency, disk.boundary_loop);
+        map.uv = free_boundary_conformal_map(disk.mesh, adjacency, disk.boundary_loop,
+                                             disk.vertex_order);
         map.injective = injective(disk, map.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;

@@ -7,9 +7,10 @@
 
 namespace raps {
 
-std::vector<Eigen::Vector2d> free_boundary_conformal_map(
-    const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-    const std::vector<int32_t>& boundary_loop) {
+std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
+                                                         const VertexAdjacency& adjacency,
+                                                         const std::vector<int32_t>& boundary_loop,
+                                                         const std::vector<int32_t>& vertex_order) {
     const int32_t n = mesh.vertex_count();
     // Pins: two boundary vertices far apart (the farthest from the first, then the farthest
     // from that), placed at their 3D distance so the map comes out near the right scale.
@@ -47,7 +48,6 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
     SparsePattern pattern;
     pattern.size = 2 * count;
     std::vector<double> values, rhs(2 * static_cast<size_t>(count), 0.0);
-    std::vector<Eigen::Vector3d> coordinates(2 * static_cast<size_t>(count));
     struct Block {
         int32_t column_vertex;
         double uu, uv, vu, vv;  // row u_i / v_i times column u_j / v_j
@@ -61,7 +61,6 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
     values.reserve(most_entries);
     for (int32_t i = 0; i < n; ++i) {
         if (unknown[i] < 0) continue;
-        coordinates[2 * unknown[i]] = coordinates[2 * unknown[i] + 1] = mesh.positions[i];
         // The row block of vertex i over its neighbours and itself, columns in unknown order.
         double diagonal = 0;
         for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s)
@@ -110,7 +109,14 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(
     }
     // Ordered on the graph of vertices, u_i and v_i together: ordering the 2n unknowns on
     // their own took 12% of a decimated-max atlas instead of 7%, for the same factorization.
-    SparseSolver solver(std::move(pattern), coordinates, 2);
+    std::vector<int32_t> order;
+    order.reserve(2 * static_cast<size_t>(count));
+    for (int32_t v : vertex_order) {
+        if (unknown[v] < 0) continue;
+        order.push_back(2 * unknown[v]);
+        order.push_back(2 * unknown[v] + 1);
+    }
+    SparseSolver solver(std::move(pattern), std::move(order));
     solver.solve(values, rhs.data(), 1, nullptr);
     for (int32_t v = 0; v < n; ++v) {
         if (unknown[v] >= 0) uv[v] = Eigen::Vector2d(rhs[2 * unknown[v]], rhs[2 * unknown[v] + 1]);

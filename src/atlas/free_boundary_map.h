@@ -15,9 +15,12 @@
 namespace raps {
 
 // uv per vertex of the disk `mesh` (with its vertex adjacency) whose boundary is
-// `boundary_loop` (mesh on its left). Throws Error(kSolverFailed) if the system is singular.
+// `boundary_loop` (mesh on its left), eliminating u and v of each vertex together in
+// `vertex_order` (laplace_system.h's vertex_elimination_order). Throws Error(kSolverFailed) if
+// the system is singular.
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
-                                                         const std::vector<int32_t>& boundary_loop);
+                                                         const std::vector<int32_t>& boundary_loop,
+                                                         const std::vector<int32_t>& vertex_order);
 
 }  // namespace raps

@@ -2,13 +2,33 @@
 
 #include <cmath>
 
-
 #include "core/error.h"
 
 namespace raps {
 
+std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
+                                              const VertexAdjacency& adjacency) {
+    SparsePattern pattern;  // the vertex graph with its diagonal, rows sorted
+    pattern.size = mesh.vertex_count();
+    pattern.columns.reserve(adjacency.neighbors.size() + mesh.positions.size());
+    for (int32_t v = 0; v < pattern.size; ++v) {
+        bool diagonal_placed = false;
+        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
+            if (!diagonal_placed && adjacency.neighbors[s] > v) {
+                pattern.columns.push_back(v);
+                diagonal_placed = true;
+            }
+            pattern.columns.push_back(adjacency.neighbors[s]);
+        }
+        if (!diagonal_placed) pattern.columns.push_back(v);
+        pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
+    }
+    return fill_reducing_order(pattern, mesh.positions);
+}
+
 LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                             const std::vector<char>& on_boundary)
+                             const std::vector<char>& on_boundary,
+                             const std::vector<int32_t>& vertex_order)
     : adjacency_(adjacency) {
     const int32_t vertex_count = mesh.vertex_count();
     std::vector<int32_t> unknown_of_vertex(vertex_count, -1);
@@ -45,8 +65,18 @@ LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& ad
         }
         pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
     }
+    if (!vertex_order.empty()) {
+        std::vector<int32_t> order;
+        order.reserve(n);
+        for (int32_t v : vertex_order) {
+            if (unknown_of_vertex[v] >= 0) order.push_back(unknown_of_vertex[v]);
+        }
+        solver_ = std::make_unique<SparseSolver>(std::move(pattern), std::move(order));
+        return;
+    }
     std::vector<Eigen::Vector3d> coordinates(n);
-    for (int32_t row = 0; row < n; ++row) coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
+    for (int32_t row = 0; row < n; ++row)
+        coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
     solver_ = std::make_unique<SparseSolver>(std::move(pattern), coordinates);
 }
 

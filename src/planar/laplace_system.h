@@ -18,10 +18,19 @@
 
 namespace raps {
 
+// A fill-reducing elimination order of the mesh's vertex graph (order[k]: the vertex eliminated
+// k-th). Systems on the same mesh can share it: restricted to their unknowns it stays a good
+// order (eliminating a subgraph in the induced order fills no more than the whole graph does).
+std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
+                                              const VertexAdjacency& adjacency);
+
 class LaplaceSystem {
-public:
+  public:
+    // vertex_order: a vertex_elimination_order() of this mesh to restrict to the interior
+    // vertices, or empty to order the system here.
     LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                  const std::vector<char>& on_boundary);
+                  const std::vector<char>& on_boundary,
+                  const std::vector<int32_t>& vertex_order = {});
 
     // Solves with `weights` (one per adjacency slot; rows of interior vertices must have a
     // nonzero sum) for the interior entries of `uv`, keeping its boundary entries.
@@ -31,7 +40,7 @@ public:
 
     int32_t unknown_count() const { return static_cast<int32_t>(vertex_of_unknown_.size()); }
 
-private:
+  private:
     const VertexAdjacency& adjacency_;
     std::vector<int32_t> vertex_of_unknown_;
     std::vector<int32_t> value_of_slot_;  // per slot of an interior row: its entry, or -1

@@ -34,6 +34,8 @@ std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern) {
                                 permutation.indices().data() + pattern.size);
 }
 
+}  // namespace
+
 std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
                                          const std::vector<Eigen::Vector3d>& coordinates) {
     // Small and medium systems are ordered by minimum degree alone: there the dissection's
@@ -42,46 +44,14 @@ std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
     return nested_dissection_order(pattern, coordinates);
 }
 
-// The pattern of blocks: block b couples with block c when any of b's rows has a column in c.
-SparsePattern block_pattern(const SparsePattern& pattern, int32_t block) {
-    SparsePattern blocks;
-    blocks.size = pattern.size / block;
-    std::vector<int32_t> mark(blocks.size, -1);
-    for (int32_t b = 0; b < blocks.size; ++b) {
-        const size_t row_begin = blocks.columns.size();
-        for (int32_t row = b * block; row < (b + 1) * block; ++row) {
-            for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
-                const int32_t c = pattern.columns[p] / block;
-                if (mark[c] == b) continue;
-                mark[c] = b;
-                blocks.columns.push_back(c);
-            }
-        }
-        std::sort(blocks.columns.begin() + static_cast<std::ptrdiff_t>(row_begin),
-                  blocks.columns.end());
-        blocks.row_offsets.push_back(static_cast<int32_t>(blocks.columns.size()));
-    }
-    return blocks;
+SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates)
+    : pattern_(std::move(pattern)) {
+    order_ = fill_reducing_order(pattern_, coordinates);
+    lu_.analyze(pattern_, order_);
 }
 
-}  // namespace
-
-SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates,
-                           int32_t block)
-    : pattern_(std::move(pattern)) {
-    if (block > 1 && pattern_.size % block == 0) {
-        std::vector<Eigen::Vector3d> block_coordinates(pattern_.size / block);
-        for (size_t b = 0; b < block_coordinates.size(); ++b)
-            block_coordinates[b] = coordinates[b * block];
-        const std::vector<int32_t> block_order =
-            fill_reducing_order(block_pattern(pattern_, block), block_coordinates);
-        order_.reserve(pattern_.size);
-        for (int32_t b : block_order) {
-            for (int32_t k = 0; k < block; ++k) order_.push_back(b * block + k);
-        }
-    } else {
-        order_ = fill_reducing_order(pattern_, coordinates);
-    }
+SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order)
+    : pattern_(std::move(pattern)), order_(std::move(order)) {
     lu_.analyze(pattern_, order_);
 }
 

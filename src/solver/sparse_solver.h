@@ -14,14 +14,17 @@
 
 namespace raps {
 
+// A fill-reducing elimination order of a structurally symmetric pattern (order[k]: the unknown
+// eliminated k-th); coordinates[i] is a point in space for unknown i.
+std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
+                                         const std::vector<Eigen::Vector3d>& coordinates);
+
 class SparseSolver {
   public:
-    // coordinates[i]: a point in space for unknown i, for the fill-reducing order. With
-    // block > 1 the unknowns come in runs of `block` (u and v of one vertex): the order is
-    // computed on the graph of blocks (two blocks are neighbours when any of their unknowns
-    // couple), which is cheaper to order, and keeps each block's unknowns together.
-    SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates,
-                 int32_t block = 1);
+    // coordinates[i]: a point in space for unknown i, for the fill-reducing order.
+    SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates);
+    // With an elimination order the caller already has (order[k]: the unknown eliminated k-th).
+    SparseSolver(SparsePattern pattern, std::vector<int32_t> order);
 
     // Solves A X = B in place: `values` in the pattern's order, `rhs` holds rhs_count columns of
     // size() entries. Throws Error(kSolverFailed) for a singular system.
