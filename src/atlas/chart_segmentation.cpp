@@ -9,10 +9,10 @@ namespace raps {
 namespace {
 
 struct Geometry {
-    std::vector<Eigen::Vector3d> normal;    // unit normal per triangle
-    std::vector<Eigen::Vector3d> centroid;  // per triangle
-    std::vector<double> area;               // per triangle
-    std::vector<char> barrier;              // per half-edge: charts may not grow across it
+    std::vector<Eigen::Vector3d> normal;  // unit normal per triangle
+    std::vector<double> step;             // per half-edge: centroid to centroid across it
+    std::vector<double> area;             // per triangle
+    std::vector<char> barrier;            // per half-edge: charts may not grow across it
 };
 
 Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settings) {
@@ -20,7 +20,7 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
     const int32_t count = mesh.triangle_count();
     Geometry g;
     g.normal.resize(count);
-    g.centroid.resize(count);
+    std::vector<Eigen::Vector3d> centroid(count);
     g.area.resize(count);
     for (int32_t t = 0; t < count; ++t) {
         const Triangle& v = mesh.triangles[t];
@@ -28,12 +28,14 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
                                       .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
         g.area[t] = 0.5 * n.norm();
         g.normal[t] = n.normalized();
-        g.centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
+        centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
     }
     const double hard_cosine = std::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
     g.barrier.assign(3 * static_cast<size_t>(count), 0);
+    g.step.assign(3 * static_cast<size_t>(count), 0.0);  // every grow takes every step
     for (int32_t h = 0; h < 3 * count; ++h) {
         const int32_t o = surface.twin[h];
+        if (o >= 0) g.step[h] = (centroid[o / 3] - centroid[h / 3]).norm();
         g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
                                  g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
     }
@@ -125,8 +127,7 @@ class Grower {
         for (int k = 0; k < 3; ++k) {
             const int32_t o = surface_.twin[3 * t + k];
             if (o < 0 || g_.barrier[3 * t + k] || chart_[o / 3] >= 0) continue;
-            const double step = (g_.centroid[o / 3] - g_.centroid[t]).norm();
-            queue_.push({distance + step, o / 3, c});
+            queue_.push({distance + g_.step[3 * t + k], o / 3, c});
         }
     }
 
