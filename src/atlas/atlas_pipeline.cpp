@@ -121,8 +121,10 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     for (const AtlasChart& chart : charts) out.adaptive_solves += chart.map.adaptive_solves;
     const int32_t triangle_count = mesh.triangle_count();
     std::vector<int32_t> chart_of_input(triangle_count, -1), local_of_input(triangle_count, -1);
-    // (welded vertex, chart) -> chart vertex, for triangles placed beside a chart.
+    // (welded vertex, chart) -> chart vertex, for triangles placed beside a chart; only built
+    // when there are such triangles (most meshes have none, and it was most of this step).
     std::map<std::pair<int32_t, int32_t>, int32_t> chart_vertex_of;
+    const bool any_aside = !surface.aside_triangles.empty();
     std::vector<int32_t> first_chart_of_welded(mesh.positions.size(), -1);
     for (size_t c = 0; c < charts.size(); ++c) {
         const ChartDisk& disk = charts[c].disk;
@@ -133,8 +135,10 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
         }
         for (size_t v = 0; v < disk.surface_vertex.size(); ++v) {
             const int32_t w = surface.welded_vertex[disk.surface_vertex[v]];
-            chart_vertex_of.emplace(std::make_pair(w, static_cast<int32_t>(c)),
-                                    static_cast<int32_t>(v));
+            if (any_aside) {
+                chart_vertex_of.emplace(std::make_pair(w, static_cast<int32_t>(c)),
+                                        static_cast<int32_t>(v));
+            }
             if (first_chart_of_welded[w] < 0) first_chart_of_welded[w] = static_cast<int32_t>(c);
         }
     }
