@@ -40,8 +40,10 @@ void build_vertices(const AtlasSurface& surface, const std::vector<int32_t>& tri
     }
 }
 
-bool is_disk(const ChartDisk& disk, const Halfedges& halfedges) {
-    const std::vector<std::vector<int32_t>> loops = boundary_loops(disk.mesh, halfedges);
+// Whether the chart is a topological disk; `loops` receives its boundary loops.
+bool is_disk(const ChartDisk& disk, const Halfedges& halfedges,
+             std::vector<std::vector<int32_t>>& loops) {
+    loops = boundary_loops(disk.mesh, halfedges);
     const int64_t euler = static_cast<int64_t>(disk.mesh.vertex_count()) - edge_count(halfedges) +
                           disk.mesh.triangle_count();
     return loops.size() == 1 && euler == 1;
@@ -57,7 +59,8 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
     Halfedges halfedges;
     halfedges.twin = local_twins(surface, triangles, local_of, seam);
     build_vertices(surface, triangles, halfedges.twin, disk);
-    if (!is_disk(disk, halfedges)) {
+    std::vector<std::vector<int32_t>> loops;
+    if (!is_disk(disk, halfedges, loops)) {
         // Spanning tree of the triangles (breadth first from triangle 0); every uncut edge it
         // does not cross is a cut candidate.
         const int32_t corners = static_cast<int32_t>(halfedges.twin.size());
@@ -120,9 +123,8 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
             }
         }
         build_vertices(surface, triangles, halfedges.twin, disk);
-        if (!is_disk(disk, halfedges)) return false;
+        if (!is_disk(disk, halfedges, loops)) return false;
     }
-    std::vector<std::vector<int32_t>> loops = boundary_loops(disk.mesh, halfedges);
     disk.boundary_loop = std::move(loops[0]);
     // The chart's own twins are the chart mesh's half-edges: every pair joins the same two
     // chart vertices (they are classes of corners joined across exactly these pairs).
