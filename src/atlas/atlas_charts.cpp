@@ -1,7 +1,7 @@
 #include "atlas/atlas_charts.h"
 
 #include <algorithm>
-#include <deque>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -69,15 +69,16 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     return halves;
 }
 
-// Indices by decreasing cost, ties by index: the threads take work in this order, so the
-// largest charts start first and no thread is left with one big chart at the end of a batch
-// (the slots, hence the output, do not depend on it).
-std::vector<size_t> largest_first(const std::vector<size_t>& cost) {
+// body(i) for every i on the threads, taken in order of decreasing cost (ties by index), so
+// the largest charts start first and no thread is left with one big chart at the end of a
+// batch. Each body writes only its own slot, so the output does not depend on the order.
+void parallel_largest_first(int threads, const std::vector<size_t>& cost,
+                            const std::function<void(size_t)>& body) {
     std::vector<size_t> order(cost.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(),
                      [&](size_t a, size_t b) { return cost[a] > cost[b]; });
-    return order;
+    parallel_for(threads, order.size(), [&](size_t k) { body(order[k]); });
 }
 
 double chart_area(const ChartDisk& disk) {
@@ -126,9 +127,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
             std::vector<char> good(round.size(), 0);
             std::vector<size_t> cost(round.size());
             for (size_t i = 0; i < round.size(); ++i) cost[i] = round[i].size();
-            const std::vector<size_t> order = largest_first(cost);
-            parallel_for(settings.threads, round.size(), [&](size_t k) {
-                const size_t i = order[k];
+            parallel_largest_first(settings.threads, cost, [&](size_t i) {
                 good[i] = try_chart(surface, round[i], seam, settings, limits, built[i]);
                 progress.report(Phase::kInitialMap,
                                 std::min(1.0, done_triangles / total_triangles));
@@ -186,9 +185,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     // really stretch (the free-boundary figures above overstate it).
     std::vector<size_t> cost(charts.size());
     for (size_t c = 0; c < charts.size(); ++c) cost[c] = charts[c].disk.surface_triangle.size();
-    const std::vector<size_t> adapt_order = largest_first(cost);
-    parallel_for(settings.threads, charts.size(), [&](size_t k) {
-        const size_t c = adapt_order[k];
+    parallel_largest_first(settings.threads, cost, [&](size_t c) {
         adapt_chart_map(charts[c].disk, settings, limits.max_stretch_linf, charts[c].map);
         progress.report(Phase::kInitialMap, 1.0);
     });
@@ -287,9 +284,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 union_size[i] = charts[batch[i].a].disk.surface_triangle.size() +
                                 charts[batch[i].b].disk.surface_triangle.size();
             }
-            const std::vector<size_t> order = largest_first(union_size);
-            parallel_for(settings.threads, batch.size(), [&](size_t k) {
-                const size_t i = order[k];
+            parallel_largest_first(settings.threads, union_size, [&](size_t i) {
                 if (rejected.count(key(batch[i].a, batch[i].b)) == 0) map_union(i);
                 progress.report(Phase::kInitialMap, 1.0);
             });
