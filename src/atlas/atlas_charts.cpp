@@ -7,7 +7,6 @@
 
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
-#include "parallel/parallel_for.h"
 
 namespace raps {
 namespace {
@@ -72,13 +71,13 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
 // body(i) for every i on the threads, taken in order of decreasing cost (ties by index), so
 // the largest charts start first and no thread is left with one big chart at the end of a
 // batch. Each body writes only its own slot, so the output does not depend on the order.
-void parallel_largest_first(int threads, const std::vector<size_t>& cost,
+void parallel_largest_first(ThreadPool& pool, const std::vector<size_t>& cost,
                             const std::function<void(size_t)>& body) {
     std::vector<size_t> order(cost.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(),
                      [&](size_t a, size_t b) { return cost[a] > cost[b]; });
-    parallel_for(threads, order.size(), [&](size_t k) { body(order[k]); });
+    parallel_for_each(pool, order.size(), [&](size_t k) { body(order[k]); });
 }
 
 double chart_area(const ChartDisk& disk) {
@@ -110,7 +109,8 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
 std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                                      const std::vector<int32_t>& chart_of,
                                      const std::vector<char>& seam, const Settings& settings,
-                                     const ChartLimits& limits, const Progress& progress) {
+                                     const ChartLimits& limits, const Progress& progress,
+                                     ThreadPool& pool) {
     int32_t count = 0;
     for (int32_t c : chart_of) count = std::max(count, c + 1);
     std::vector<std::vector<int32_t>> pending(count);
@@ -127,7 +127,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
             std::vector<char> good(round.size(), 0);
             std::vector<size_t> cost(round.size());
             for (size_t i = 0; i < round.size(); ++i) cost[i] = round[i].size();
-            parallel_largest_first(settings.threads, cost, [&](size_t i) {
+            parallel_largest_first(pool, cost, [&](size_t i) {
                 good[i] = try_chart(surface, round[i], seam, settings, limits, built[i]);
                 progress.report(Phase::kInitialMap,
                                 std::min(1.0, done_triangles / total_triangles));
@@ -185,7 +185,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     // really stretch (the free-boundary figures above overstate it).
     std::vector<size_t> cost(charts.size());
     for (size_t c = 0; c < charts.size(); ++c) cost[c] = charts[c].disk.surface_triangle.size();
-    parallel_largest_first(settings.threads, cost, [&](size_t c) {
+    parallel_largest_first(pool, cost, [&](size_t c) {
         adapt_chart_map(charts[c].disk, settings, limits.max_stretch_linf, charts[c].map);
         progress.report(Phase::kInitialMap, 1.0);
     });
@@ -207,7 +207,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     // How well each chart fills its bounding box, for the fill rule below: measured once per
     // chart, on the threads, not once per candidate pair in the serial acceptance.
     std::vector<double> fill(charts.size());
-    parallel_for(settings.threads, charts.size(), [&](size_t c) {
+    parallel_for_each(pool, charts.size(), [&](size_t c) {
         fill[c] = bounding_box_fill(charts[c].map.uv, charts[c].disk.mesh.triangles);
     });
     int64_t next_id = static_cast<int64_t>(charts.size());
@@ -284,7 +284,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 union_size[i] = charts[batch[i].a].disk.surface_triangle.size() +
                                 charts[batch[i].b].disk.surface_triangle.size();
             }
-            parallel_largest_first(settings.threads, union_size, [&](size_t i) {
+            parallel_largest_first(pool, union_size, [&](size_t i) {
                 if (rejected.count(key(batch[i].a, batch[i].b)) == 0) map_union(i);
                 progress.report(Phase::kInitialMap, 1.0);
             });

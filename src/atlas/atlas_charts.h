@@ -13,6 +13,7 @@
 #include "atlas/chart_parameterization.h"
 #include "core/progress.h"
 #include "core/settings.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -26,10 +27,11 @@ struct ChartLimits {
     double max_stretch_linf = 2.5;    // for every chart
 };
 
-// Charts in a deterministic order (by smallest surface triangle), whatever settings.threads.
+// Charts in a deterministic order (by smallest surface triangle), whatever the pool's size.
 std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                                      const std::vector<int32_t>& chart_of,
                                      const std::vector<char>& seam, const Settings& settings,
-                                     const ChartLimits& limits, const Progress& progress);
+                                     const ChartLimits& limits, const Progress& progress,
+                                     ThreadPool& pool);
 
 }  // namespace raps

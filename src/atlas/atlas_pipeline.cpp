@@ -95,8 +95,11 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     ChartLimits limits;
     limits.target_stretch_l2 = settings.atlas_target_l2;
     limits.max_stretch_linf = settings.atlas_max_linf;
+    // One pool of threads for the charts and the packing: starting threads for each parallel
+    // loop (17 of them on cheburashka) cost about 2% of the atlas.
+    ThreadPool pool(settings.threads);
     const std::vector<AtlasChart> charts =
-        build_charts(surface, chart_of_surface, seam, settings, limits, progress);
+        build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
     chart_timer.finish();
 
     PhaseTimer pack_timer(Phase::kPack, progress, times);
@@ -107,8 +110,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
     pack_settings.padding = settings.atlas_padding;
-    pack_settings.threads = settings.threads;
-    const PackResult packed = pack_charts(inputs, pack_settings);
+    const PackResult packed = pack_charts(inputs, pack_settings, pool);
     refuse_collapsed_atlas(mesh, settings.weld_tolerance, charts, packed);
     pack_timer.finish();
 

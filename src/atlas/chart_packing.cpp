@@ -5,8 +5,6 @@
 #include <limits>
 #include <numeric>
 
-#include "parallel/parallel_for.h"
-
 namespace raps {
 namespace {
 
@@ -468,7 +466,8 @@ double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
     return box > 0 ? std::min(1.0, area / box) : 1.0;
 }
 
-PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings) {
+PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
+                       ThreadPool& pool) {
     PackResult result;
     const size_t count = charts.size();
     result.uv.resize(count);
@@ -518,7 +517,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     // only its own slot, so the result does not depend on the thread count.
     auto rasterise_all = [&](double at_scale, int32_t& widest) {
         std::vector<int32_t> narrow_side(count);
-        parallel_for(settings.threads, count, [&](size_t c) {
+        parallel_for_each(pool, count, [&](size_t c) {
             BitImage raster;
             raster.resize(
                 static_cast<int32_t>(std::ceil(extent[c].x() * at_scale)) + 1 + 2 * padding,
@@ -567,7 +566,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         const size_t trials = 2 * widths.size();
         std::vector<Layout> tried(trials);
         std::vector<char> fits(trials, 0);
-        parallel_for(settings.threads, trials, [&](size_t trial) {
+        parallel_for_each(pool, trials, [&](size_t trial) {
             std::vector<Eigen::Vector2i> at(count);
             std::vector<int> quarter(count);
             int32_t width = 0, height = 0;
@@ -631,7 +630,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     };
     const size_t finalists = std::min<size_t>(fitted.size(), 2);
     std::vector<Candidate> with_holes(finalists), skyline_only(finalists);
-    parallel_for(settings.threads, 2 * finalists, [&](size_t i) {
+    parallel_for_each(pool, 2 * finalists, [&](size_t i) {
         const Layout& layout = fitted[i / 2];
         Candidate& candidate = i % 2 == 0 ? with_holes[i / 2] : skyline_only[i / 2];
         candidate.at.resize(count);

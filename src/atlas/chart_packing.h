@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "core/triangle_mesh.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -27,7 +28,6 @@ struct PackInput {
 struct PackSettings {
     int32_t resolution = 1024;  // texels per side of the square
     int32_t padding = 2;        // texels between charts
-    int threads = 1;            // for rasterising charts and trying layouts; 0: all cores
 };
 
 struct PackResult {
@@ -35,7 +35,9 @@ struct PackResult {
     int32_t width = 0, height = 0;                 // the atlas in texels
 };
 
-PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings);
+// Charts are rasterised, and layouts tried, on `pool`; the result does not depend on its size.
+PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
+                       ThreadPool& pool);
 
 // How well a chart fills its smallest bounding box: uv area / box area, in (0, 1]. Arches,
 // rings and L-shapes score low and waste packing space around them.

@@ -1,6 +1,7 @@
 #include "parallel/thread_pool.h"
 
 #include <algorithm>
+#include <atomic>
 
 namespace raps {
 
@@ -77,6 +78,19 @@ void ThreadPool::run(int64_t blocks, const std::function<void(int64_t)>& task) {
     error_ = nullptr;
     lock.unlock();
     if (error) std::rethrow_exception(error);
+}
+
+void parallel_for_each(ThreadPool& pool, size_t count, const std::function<void(size_t)>& body) {
+    std::atomic<bool> failed{false};
+    pool.run(static_cast<int64_t>(count), [&](int64_t i) {
+        if (failed.load()) return;
+        try {
+            body(static_cast<size_t>(i));
+        } catch (...) {
+            failed.store(true);
+            throw;
+        }
+    });
 }
 
 int choose_thread_count(int requested, int64_t items, int64_t per_thread) {

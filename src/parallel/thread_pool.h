@@ -64,6 +64,13 @@ void parallel_for(ThreadPool& pool, int64_t count, Body&& body) {
     });
 }
 
+// body(i) once for every i in [0, count), one item per block: items are taken in index order by
+// whichever thread is free, so a caller that lists its largest work first keeps the threads
+// busy to the end. Each body must write only its own slot, so results do not depend on the
+// thread count or the schedule. Once a body has thrown, the items not yet started are skipped
+// and the first exception is rethrown here.
+void parallel_for_each(ThreadPool& pool, size_t count, const std::function<void(size_t)>& body);
+
 // Sum over [0, count) of term(begin, end) per block, added in block order: the same bits for any
 // thread count. T needs T() as zero and operator+=.
 template <typename T, typename Term>
