@@ -159,18 +159,17 @@ BitImage rotate_quarter(const BitImage& in) {
     return out;
 }
 
-// Per column: the lowest cell of the padded footprint and the highest and lowest cells of the
-// chart itself; and both footprints as bit rows, for exact fitting into holes.
+// Per column: the lowest cell of the padded footprint and the highest cell of the chart itself;
+// and both footprints as bit rows, for exact fitting into holes.
 // An empty column's resting row: skyline - kNeverRests is below any real resting height.
 constexpr int32_t kNeverRests = 1 << 30;
 
 struct Profile {
     int32_t width = 0, height = 0;
-    std::vector<int32_t> bottom;        // lowest padded row, or height if the column is empty
-    std::vector<int32_t> top;           // highest chart row, or -1
-    std::vector<int32_t> chart_bottom;  // lowest chart row, or height
-    // The skyline search's view of `bottom`, branch-free so that it vectorises: resting rows
-    // (an empty column's is so high it never decides), and 1 for the columns that count.
+    std::vector<int32_t> top;  // highest chart row, or -1
+    // The lowest padded row of each column, branch-free for the skyline search so that it
+    // vectorises: resting rows (an empty column's is so high it never decides), and 1 for the
+    // columns that count.
     std::vector<int32_t> resting_bottom, occupied;
     int64_t occupied_count = 0, occupied_bottom_sum = 0;  // and the sum of their bottoms
     // A few occupied columns (its first, its middle, its lowest): the highest the chart must
@@ -194,8 +193,6 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
     profile.words = chart.words;
     profile.chart_bits = chart.bits;
     profile.top.assign(chart.width, -1);
-    profile.chart_bottom.assign(chart.width, chart.height);
-    profile.bottom.assign(chart.width, chart.height);
     // Padding by dilation: each row spread sideways by `padding` cells, then rows combined
     // with their `padding` neighbours above and below.
     std::vector<uint64_t> wide(chart.bits.size());
@@ -242,23 +239,21 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
             }
         }
     };
+    std::vector<int32_t> bottom(chart.width, chart.height);  // lowest padded row, or height
     first_rows(profile.chart_bits, true, profile.top);
-    first_rows(profile.chart_bits, false, profile.chart_bottom);
-    first_rows(profile.padded_bits, false, profile.bottom);
+    first_rows(profile.padded_bits, false, bottom);
     profile.resting_bottom.resize(chart.width);
     profile.occupied.resize(chart.width);
-    for (int32_t x = 0; x < chart.width; ++x) {
-        const bool occupied = profile.bottom[x] < chart.height;
-        profile.resting_bottom[x] = occupied ? profile.bottom[x] : kNeverRests;
-        profile.occupied[x] = occupied;
-        profile.occupied_count += occupied;
-        if (occupied) profile.occupied_bottom_sum += profile.bottom[x];
-    }
     int32_t lowest = -1;
     const int32_t spacing = std::max(1, chart.width / 2);
     for (int32_t x = 0; x < chart.width; ++x) {
-        if (!profile.occupied[x]) continue;
-        if (lowest < 0 || profile.bottom[x] < profile.bottom[lowest]) lowest = x;
+        const bool occupied = bottom[x] < chart.height;
+        profile.resting_bottom[x] = occupied ? bottom[x] : kNeverRests;
+        profile.occupied[x] = occupied;
+        if (!occupied) continue;
+        ++profile.occupied_count;
+        profile.occupied_bottom_sum += bottom[x];
+        if (lowest < 0 || bottom[x] < bottom[lowest]) lowest = x;
         if (x % spacing == 0) profile.probe_columns.push_back(x);
     }
     if (lowest >= 0) profile.probe_columns.push_back(lowest);

@@ -43,12 +43,18 @@ bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv) {
            !boundary_self_intersects(uv, disk.boundary_loop);
 }
 
-// The adaptive step on `start` with its boundary held; returns whether it gave a map.
-bool adapted(const ChartDisk& disk, const VertexAdjacency& adjacency, const Settings& settings,
-             const std::vector<Eigen::Vector2d>& start, ChartMap& out) {
+// The chart's Laplace system with its boundary loop held.
+LaplaceSystem boundary_held_system(const ChartDisk& disk) {
     std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
     for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
-    LaplaceSystem system(disk.mesh, adjacency, on_boundary, disk.vertex_order);
+    return LaplaceSystem(disk.mesh, disk.adjacency, on_boundary, disk.vertex_order);
+}
+
+// The adaptive step on `start` with its boundary held; returns whether it gave a map.
+bool adapted(const ChartDisk& disk, const Settings& settings,
+             const std::vector<Eigen::Vector2d>& start, ChartMap& out) {
+    const VertexAdjacency& adjacency = disk.adjacency;
+    LaplaceSystem system = boundary_held_system(disk);
     if (system.unknown_count() == 0) return false;
     const std::vector<double> base = laplacian_weights(disk.mesh, adjacency, settings.weights);
     out.uv = start;
@@ -65,7 +71,6 @@ bool adapted(const ChartDisk& disk, const VertexAdjacency& adjacency, const Sett
 }  // namespace
 
 ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
-    const VertexAdjacency& adjacency = disk.adjacency;
     ChartMap circle;
     circle.method = ChartMethod::kCircle;
     circle.uv.assign(disk.mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
@@ -73,11 +78,9 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
         convex_boundary(disk.mesh, disk.boundary_loop, BoundaryShape::kCircle);
     for (size_t i = 0; i < disk.boundary_loop.size(); ++i)
         circle.uv[disk.boundary_loop[i]] = boundary[i];
-    std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
-    for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
-    LaplaceSystem system(disk.mesh, adjacency, on_boundary, disk.vertex_order);
+    LaplaceSystem system = boundary_held_system(disk);
     const std::vector<double> base =
-        laplacian_weights(disk.mesh, adjacency, WeightScheme::kMeanValue);
+        laplacian_weights(disk.mesh, disk.adjacency, WeightScheme::kMeanValue);
     system.solve(base, circle.uv, nullptr);
     circle.injective = injective(disk, circle.uv);
     normalise(disk, circle);
@@ -86,11 +89,10 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
 }
 
 ChartMap free_boundary_chart_map(const ChartDisk& disk) {
-    const VertexAdjacency& adjacency = disk.adjacency;
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
-        map.uv = free_boundary_conformal_map(disk.mesh, adjacency, disk.boundary_loop,
+        map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.boundary_loop,
                                              disk.vertex_order);
         map.injective = injective(disk, map.uv);
     } catch (const Error& error) {
@@ -105,13 +107,12 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
                      ChartMap& map) {
     // A chart the free boundary already maps (nearly) isometrically gains nothing.
     if (settings.monitor == Monitor::kNone || !map.injective || map.stretch_l2 < 1.0005) return;
-    const VertexAdjacency& adjacency = disk.adjacency;
     ChartMap candidate;
     candidate.method = map.method == ChartMethod::kCircle ? ChartMethod::kCircleAdapted
                                                           : ChartMethod::kFreeBoundaryAdapted;
     Settings chosen = settings;
     if (map.method == ChartMethod::kCircle) chosen.weights = WeightScheme::kMeanValue;
-    if (!adapted(disk, adjacency, chosen, map.uv, candidate)) return;
+    if (!adapted(disk, chosen, map.uv, candidate)) return;
     normalise(disk, candidate);
     // Equalising area can stretch a few triangles more: keep the Linf limit.
     if (candidate.stretch_l2 < map.stretch_l2 &&

@@ -23,8 +23,9 @@ void pin_cache_sizes() {
     (void)pinned;
 }
 
-// Unblocked LU of the columns [first, first + count) of the m-row front, rows from `first`.
-bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count,
+// Unblocked LU of the columns [first, first + count) of the m-row front, rows from `first`:
+// each pivot column updates the columns to its right up to `update_end` (exclusive).
+bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count, int32_t update_end,
                   const double* pivot_scale) {
     for (int32_t j = first; j < first + count; ++j) {
         double* column = front + static_cast<int64_t>(j) * m;
@@ -32,28 +33,7 @@ bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count,
         if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
         const double inverse = 1.0 / pivot;
         for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
-        for (int32_t c = j + 1; c < first + count; ++c) {
-            double* target = front + static_cast<int64_t>(c) * m;
-            const double factor = target[j];
-            if (factor == 0.0) continue;
-            for (int32_t i = j + 1; i < m; ++i) target[i] -= column[i] * factor;
-        }
-    }
-    return true;
-}
-
-// The whole partial LU column by column: each pivot column updates every column to its right,
-// the Schur complement included. On the small fronts of chart-sized systems (m <= 64 covers
-// nearly all of an atlas's) this beats the blocked version, whose triangular solves and
-// matrix products cost more in set-up than in arithmetic at these sizes.
-bool right_looking_lu(double* front, int32_t m, int32_t k, const double* pivot_scale) {
-    for (int32_t j = 0; j < k; ++j) {
-        double* column = front + static_cast<int64_t>(j) * m;
-        const double pivot = column[j];
-        if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
-        const double inverse = 1.0 / pivot;
-        for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
-        for (int32_t c = j + 1; c < m; ++c) {
+        for (int32_t c = j + 1; c < update_end; ++c) {
             double* target = front + static_cast<int64_t>(c) * m;
             const double factor = target[j];
             if (factor == 0.0) continue;
@@ -69,7 +49,8 @@ bool right_looking_lu(double* front, int32_t m, int32_t k, const double* pivot_s
 bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count,
                   const double* pivot_scale) {
     constexpr int32_t kUnblocked = 8;
-    if (count <= kUnblocked) return unblocked_lu(front, m, first, count, pivot_scale);
+    if (count <= kUnblocked)
+        return unblocked_lu(front, m, first, count, first + count, pivot_scale);
     const int32_t left = count / 2, right = count - left, mid = first + left;
     if (!recursive_lu(front, m, first, left, pivot_scale)) return false;
     Block l11(front + first + static_cast<int64_t>(first) * m, left, left, Eigen::OuterStride<>(m));
@@ -85,8 +66,12 @@ bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count,
 }  // namespace
 
 bool RAPS_PARTIAL_LU(double* front, int32_t m, int32_t k, const double* pivot_scale) {
+    // Small fronts (m <= 64 covers nearly all of an atlas's chart-sized systems) column by
+    // column, every pivot column updating all columns to its right, the Schur complement
+    // included: the blocked path's triangular solves and matrix products cost more in set-up
+    // than in arithmetic at these sizes.
     constexpr int32_t kSmallFront = 64;
-    if (m <= kSmallFront) return right_looking_lu(front, m, k, pivot_scale);
+    if (m <= kSmallFront) return unblocked_lu(front, m, 0, k, m, pivot_scale);
     pin_cache_sizes();
     if (!recursive_lu(front, m, 0, k, pivot_scale)) return false;
     const int32_t rest = m - k;
