@@ -10,7 +10,7 @@ foreach(line IN LISTS lines)
   if(line MATCHES "^[0-9a-fA-F]+ [TWVBDR] (.+)$")
     set(name "${CMAKE_MATCH_1}")
     # Mangled names: anything involving the private Eigen is its own instance.
-    if(NOT name MATCHES "raps_eigen_avx2|partial_lu_avx2|^DW\\.ref\\.__gxx_personality_v0$")
+    if(NOT name MATCHES "raps_eigen_avx2|partial_lu_avx2|partial_cholesky_avx2|^DW\\.ref\\.__gxx_personality_v0$")
       message(SEND_ERROR "AVX2 object defines a shareable symbol: ${name}")
     endif()
   endif()

@@ -1,27 +1,7 @@
-// The dense partial LU, included by dense_lu.cpp and dense_lu_avx2.cpp with RAPS_PARTIAL_LU set
-// to the variant's name. Each variant is compiled with its own private copy of Eigen (the
-// build renames Eigen's namespace per file), so the two never share a template instance.
-#include <algorithm>
-#include <cmath>
-
-#include <Eigen/Core>
-
+// The dense partial LU, included after dense_kernels_common.inl by dense_kernels.cpp and
+// dense_kernels_avx2.cpp with RAPS_PARTIAL_LU set to the variant's name.
 namespace raps {
 namespace {
-
-using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
-using Block = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
-
-// Eigen sizes its matrix-product blocks from the processor's cache sizes, which changes the
-// order of summation from one machine to another. Pinned to Eigen's own x86 defaults, the
-// results depend only on the build, not on the machine's caches.
-void pin_cache_sizes() {
-    static const bool pinned = [] {
-        Eigen::setCpuCacheSizes(32 * 1024, 256 * 1024, 2 * 1024 * 1024);
-        return true;
-    }();
-    (void)pinned;
-}
 
 // Unblocked LU of the columns [first, first + count) of the m-row front, rows from `first`:
 // each pivot column updates the columns to its right up to `update_end` (exclusive).

@@ -47,19 +47,19 @@ std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
 SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates)
     : pattern_(std::move(pattern)) {
     order_ = fill_reducing_order(pattern_, coordinates);
-    lu_.analyze(pattern_, order_);
+    factorization_.analyze(pattern_, order_, Factorization::kLU);
 }
 
-SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order)
+SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order, Factorization kind)
     : pattern_(std::move(pattern)), order_(std::move(order)) {
-    lu_.analyze(pattern_, order_);
+    factorization_.analyze(pattern_, order_, kind);
 }
 
 void SparseSolver::solve(const std::vector<double>& values, double* rhs, int rhs_count,
                          const std::function<void(double)>& progress) {
     if (pattern_.size == 0) return;
-    if (lu_.factorize(values.data(), progress)) {
-        lu_.solve(rhs, rhs_count);
+    if (factorization_.factorize(values.data(), progress)) {
+        factorization_.solve(rhs, rhs_count);
     } else {
         solve_with_pivoting(values, rhs, rhs_count);
     }

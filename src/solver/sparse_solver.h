@@ -1,7 +1,8 @@
 // A square sparse system with a fixed, structurally symmetric pattern, solved many times with
-// new values: ordering and symbolic analysis once (nested dissection + multifrontal LU without
-// pivoting), then for each new set of values a numeric factorization and solves for several
-// right-hand sides. Values that need pivoting (a tiny pivot) fall back to Eigen's SparseLU.
+// new values: ordering and symbolic analysis once (nested dissection + multifrontal LU, or
+// Cholesky for symmetric positive definite systems, without pivoting), then for each new set of
+// values a numeric factorization and solves for several right-hand sides. Values that need
+// pivoting (a tiny pivot) fall back to Eigen's SparseLU.
 #pragma once
 
 #include <functional>
@@ -9,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "solver/multifrontal_lu.h"
+#include "solver/multifrontal_factorization.h"
 #include "solver/sparse_pattern.h"
 
 namespace raps {
@@ -24,7 +25,10 @@ class SparseSolver {
     // coordinates[i]: a point in space for unknown i, for the fill-reducing order.
     SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates);
     // With an elimination order the caller already has (order[k]: the unknown eliminated k-th).
-    SparseSolver(SparsePattern pattern, std::vector<int32_t> order);
+    // kCholesky promises values that are symmetric positive definite (a system that turns out
+    // not to be is still solved, by the pivoting fallback).
+    SparseSolver(SparsePattern pattern, std::vector<int32_t> order,
+                 Factorization kind = Factorization::kLU);
 
     // Solves A X = B in place: `values` in the pattern's order, `rhs` holds rhs_count columns of
     // size() entries. Throws Error(kSolverFailed) for a singular system.
@@ -39,7 +43,7 @@ class SparseSolver {
 
     SparsePattern pattern_;
     std::vector<int32_t> order_;
-    MultifrontalLU lu_;
+    MultifrontalFactorization factorization_;
 };
 
 }  // namespace raps

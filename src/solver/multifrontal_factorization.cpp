@@ -1,6 +1,6 @@
-#include "solver/multifrontal_lu.h"
+#include "solver/multifrontal_factorization.h"
 
-#include "solver/dense_lu.h"
+#include "solver/dense_kernels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,10 +24,12 @@ bool worth_merging(int64_t columns, double zero_fraction) {
 
 }  // namespace
 
-void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int32_t>& order) {
+void MultifrontalFactorization::analyze(const SparsePattern& pattern,
+                                        const std::vector<int32_t>& order, Factorization kind) {
     const int32_t n = pattern.size;
     size_ = n;
-    partial_lu_ = fastest_partial_lu();
+    cholesky_ = kind == Factorization::kCholesky;
+    partial_factorization_ = cholesky_ ? fastest_partial_cholesky() : fastest_partial_lu();
 
     // Elimination tree of the permuted matrix (Liu's algorithm with path compression).
     std::vector<int32_t> position(n);
@@ -274,10 +276,12 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
         Supernode& node = supernodes_[s];
         node.factor_offset = factor_size;
         const int64_t m = node.rows, k = node.columns;
-        factor_size += m * k + k * (m - k);
+        factor_size += cholesky_ ? m * k : m * k + k * (m - k);
         max_front = std::max(max_front, m * m);
-        // Flops of the partial LU: 2 k^2 (m - k) for the panels + 2 k (m - k)^2 for the update.
-        total_flops_ += static_cast<double>(k) * static_cast<double>(m) * static_cast<double>(m);
+        // Flops of the partial LU: 2 k^2 (m - k) for the panels + 2 k (m - k)^2 for the update;
+        // about half that for Cholesky.
+        total_flops_ += static_cast<double>(k) * static_cast<double>(m) * static_cast<double>(m) *
+                        (cholesky_ ? 0.5 : 1.0);
     }
     for (int32_t s = 0; s < supernode_count; ++s) {
         const Supernode& node = supernodes_[s];
@@ -308,6 +312,8 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
     }
     // Every entry of A lands exactly once: within a supernode from its own row, across
     // supernodes from the earlier row as itself and its mirror (the later row skips both).
+    // Cholesky keeps only the lower triangle: each row j gives its entries (other >= j) at
+    // (other, j), and the upper ones are never placed.
     value_source_.resize(pattern.nonzeros());
     value_target_.resize(pattern.nonzeros());
     diagonal_source_.assign(n, -1);
@@ -323,6 +329,13 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
                 const int32_t other = position[pattern.columns[p]];
                 if (other < f) continue;
                 if (other == j) diagonal_source_[j] = p;
+                if (cholesky_) {
+                    if (other < j) continue;
+                    value_source_[next_value] = p;
+                    value_target_[next_value++] =
+                        local[other] + static_cast<int64_t>(local[j]) * node.rows;
+                    continue;
+                }
                 value_source_[next_value] = p;
                 value_target_[next_value++] =
                     local[j] + static_cast<int64_t>(local[other]) * node.rows;
@@ -360,7 +373,8 @@ void MultifrontalLU::analyze(const SparsePattern& pattern, const std::vector<int
     stack_ = allocate(stack_peak_);
 }
 
-bool MultifrontalLU::factorize(const double* values, const std::function<void(double)>& progress) {
+bool MultifrontalFactorization::factorize(const double* values,
+                                          const std::function<void(double)>& progress) {
     std::vector<double> pivot_scale(size_);
     for (int32_t j = 0; j < size_; ++j) {
         pivot_scale[j] = diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
@@ -372,7 +386,11 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
         double* front = front_.get();
-        std::fill(front, front + static_cast<int64_t>(m) * m, 0.0);
+        // Cholesky reads and writes only the lower triangle: the rest is never cleared.
+        for (int32_t c = 0; c < m; ++c) {
+            const int64_t begin = static_cast<int64_t>(c) * m;
+            std::fill(front + begin + (cholesky_ ? c : 0), front + begin + m, 0.0);
+        }
         for (int64_t e = node.value_begin; e < node.value_end; ++e) {
             front[value_target_[e]] += values[value_source_[e]];
         }
@@ -384,38 +402,47 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
             const int32_t update = child.rows - child.columns;
             const int32_t* relative = relative_rows_.data() + child.relative_offset;
             const double* block = stack_.get() + start;
+            // Update rows are sorted, so a lower entry of the block lands in the lower triangle.
             for (int32_t jj = 0; jj < update; ++jj) {
                 double* target = front + static_cast<int64_t>(relative[jj]) * m;
                 const double* source = block + static_cast<int64_t>(jj) * update;
-                for (int32_t ii = 0; ii < update; ++ii) target[relative[ii]] += source[ii];
+                for (int32_t ii = cholesky_ ? jj : 0; ii < update; ++ii)
+                    target[relative[ii]] += source[ii];
             }
         }
         if (child_total > 0) {
             stack_top = block_starts[block_starts.size() - child_total];
             block_starts.resize(block_starts.size() - child_total);
         }
-        if (!partial_lu_(front, m, k, pivot_scale.data() + node.first_column)) return false;
+        if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column))
+            return false;
+        const int32_t skip_upper = cholesky_ ? 1 : 0;  // Cholesky: copy from the diagonal down
         double* lower = factors_.get() + node.factor_offset;
         for (int32_t c = 0; c < k; ++c) {
-            std::copy(front + static_cast<int64_t>(c) * m, front + static_cast<int64_t>(c + 1) * m,
-                      lower + static_cast<int64_t>(c) * m);
+            const int64_t begin = static_cast<int64_t>(c) * m + c * skip_upper;
+            std::copy(front + begin, front + static_cast<int64_t>(c + 1) * m, lower + begin);
         }
-        double* upper = lower + static_cast<int64_t>(m) * k;  // k x (m - k), column-major
-        for (int32_t c = k; c < m; ++c) {
-            std::copy(front + static_cast<int64_t>(c) * m, front + static_cast<int64_t>(c) * m + k,
-                      upper + static_cast<int64_t>(c - k) * k);
+        if (!cholesky_) {
+            double* upper = lower + static_cast<int64_t>(m) * k;  // k x (m - k), column-major
+            for (int32_t c = k; c < m; ++c) {
+                std::copy(front + static_cast<int64_t>(c) * m,
+                          front + static_cast<int64_t>(c) * m + k,
+                          upper + static_cast<int64_t>(c - k) * k);
+            }
         }
         const int32_t update = m - k;
         if (update > 0) {
             block_starts.push_back(stack_top);
             double* block = stack_.get() + stack_top;
             for (int32_t c = 0; c < update; ++c) {
+                const int32_t from = c * skip_upper;
                 const double* source = front + static_cast<int64_t>(k + c) * m + k;
-                std::copy(source, source + update, block + static_cast<int64_t>(c) * update);
+                std::copy(source + from, source + update,
+                          block + static_cast<int64_t>(c) * update + from);
             }
             stack_top += static_cast<int64_t>(update) * update;
         }
-        flops_done += static_cast<double>(k) * m * m;
+        flops_done += static_cast<double>(k) * m * m * (cholesky_ ? 0.5 : 1.0);
         if (progress && flops_done >= next_report) {
             progress(flops_done / total_flops_);
             next_report = flops_done + 0.01 * total_flops_;
@@ -424,7 +451,7 @@ bool MultifrontalLU::factorize(const double* values, const std::function<void(do
     return true;
 }
 
-void MultifrontalLU::solve(double* b, int rhs_count) const {
+void MultifrontalFactorization::solve(double* b, int rhs_count) const {
     const int32_t n = size_;
     // Permute into elimination order.
     Matrix x(n, rhs_count);
@@ -442,7 +469,8 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
     // Supernodes this small are solved with plain loops: Eigen's triangular solves and
     // products cost more in set-up than in arithmetic at these sizes (as in partial_lu).
     constexpr int32_t kSmallFront = 64;
-    // Forward: L y = b, children before parents.
+    // Forward: L y = b, children before parents. L is unit lower for LU; Cholesky's holds its
+    // diagonal.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
         const double* lower = factors_.get() + node.factor_offset;
@@ -455,6 +483,7 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
                 std::fill(gathered, gathered + update, 0.0);
                 for (int32_t j = 0; j < k; ++j) {
                     const double* column = lower + static_cast<int64_t>(j) * m;
+                    if (cholesky_) xs[j] /= column[j];
                     const double v = xs[j];
                     for (int32_t i = j + 1; i < k; ++i) xs[i] -= column[i] * v;
                     for (int32_t r = 0; r < update; ++r) gathered[r] += column[k + r] * v;
@@ -465,7 +494,11 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
         }
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
-        panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
+        if (cholesky_) {
+            panel.topRows(k).triangularView<Eigen::Lower>().solveInPlace(xs);
+        } else {
+            panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
+        }
         if (update == 0) continue;
         auto gathered = gathered_buffer.topRows(update);
         gathered.noalias() = panel.bottomRows(update) * xs;
@@ -474,14 +507,28 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
             for (int32_t r = 0; r < update; ++r) x(rows[r], c) -= gathered(r, c);
         }
     }
-    // Backward: U x = y, parents before children.
+    // Backward: U x = y (LU) or L^T x = y (Cholesky), parents before children.
     for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
         const double* lower = factors_.get() + node.factor_offset;
+        const int32_t* rows = row_indices_.data() + node.row_offset + k;
+        if (m <= kSmallFront && cholesky_) {
+            for (int c = 0; c < rhs_count; ++c) {
+                double* xc = x.data() + static_cast<int64_t>(c) * n;
+                double* xs = xc + node.first_column;
+                for (int32_t j = k - 1; j >= 0; --j) {
+                    const double* column = lower + static_cast<int64_t>(j) * m;
+                    double sum = xs[j];
+                    for (int32_t r = 0; r < update; ++r) sum -= column[k + r] * xc[rows[r]];
+                    for (int32_t i = j + 1; i < k; ++i) sum -= column[i] * xs[i];
+                    xs[j] = sum / column[j];
+                }
+            }
+            continue;
+        }
         if (m <= kSmallFront) {
             const double* upper = lower + static_cast<int64_t>(m) * k;  // k x update
-            const int32_t* rows = row_indices_.data() + node.row_offset + k;
             for (int c = 0; c < rhs_count; ++c) {
                 double* xc = x.data() + static_cast<int64_t>(c) * n;
                 double* xs = xc + node.first_column;
@@ -502,15 +549,22 @@ void MultifrontalLU::solve(double* b, int rhs_count) const {
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         if (update > 0) {
-            Eigen::Map<const Matrix> upper(lower + static_cast<int64_t>(m) * k, k, update);
-            const int32_t* rows = row_indices_.data() + node.row_offset + k;
             auto gathered = gathered_buffer.topRows(update);
             for (int c = 0; c < rhs_count; ++c) {
                 for (int32_t r = 0; r < update; ++r) gathered(r, c) = x(rows[r], c);
             }
-            xs.noalias() -= upper * gathered;
+            if (cholesky_) {
+                xs.noalias() -= panel.bottomRows(update).transpose() * gathered;
+            } else {
+                Eigen::Map<const Matrix> upper(lower + static_cast<int64_t>(m) * k, k, update);
+                xs.noalias() -= upper * gathered;
+            }
         }
-        panel.topRows(k).triangularView<Eigen::Upper>().solveInPlace(xs);
+        if (cholesky_) {
+            panel.topRows(k).transpose().triangularView<Eigen::Upper>().solveInPlace(xs);
+        } else {
+            panel.topRows(k).triangularView<Eigen::Upper>().solveInPlace(xs);
+        }
     }
     for (int c = 0; c < rhs_count; ++c) {
         for (int32_t k = 0; k < n; ++k) b[static_cast<int64_t>(c) * n + order_[k]] = x(k, c);

@@ -1,10 +1,12 @@
-// Sparse LU factorization without pivoting for structurally symmetric matrices, by the
-// multifrontal method (Duff & Reid 1983; Liu 1992) with relaxed supernodes (Ashcraft & Grimes
-// 1989). The Laplace systems of section 3 with positive weights are M-matrices (row diagonally
-// dominant, irreducible, boundary rows strictly dominant), for which elimination without pivoting
-// is stable in any order, so the symbolic analysis - ordering, elimination tree, supernodes,
-// front structures - is done once and reused by every numeric factorization (the initial map and
-// each adaptive step). Matrices that need pivoting are reported by factorize() returning false.
+// Sparse factorization without pivoting of structurally symmetric matrices, by the multifrontal
+// method (Duff & Reid 1983; Liu 1992) with relaxed supernodes (Ashcraft & Grimes 1989): LU for
+// any such matrix, or Cholesky, with half the work and storage, for symmetric positive definite
+// ones (the free-boundary conformal energy). The Laplace systems of section 3 with positive
+// weights are M-matrices (row diagonally dominant, irreducible, boundary rows strictly dominant),
+// for which elimination without pivoting is stable in any order, so the symbolic analysis -
+// ordering, elimination tree, supernodes, front structures - is done once and reused by every
+// numeric factorization (the initial map and each adaptive step). Matrices that need pivoting
+// are reported by factorize() returning false.
 #pragma once
 
 #include <algorithm>
@@ -18,13 +20,21 @@
 
 namespace raps {
 
-class MultifrontalLU {
+enum class Factorization {
+    kLU,        // any values in the pattern
+    kCholesky,  // symmetric positive definite values: only the lower triangle is used
+};
+
+class MultifrontalFactorization {
   public:
-    // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated).
-    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order);
+    // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated),
+    // for factorizations of the given kind.
+    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order,
+                 Factorization kind);
 
     // Numeric factorization of the values of `pattern` (in its column order). Returns false when
-    // a pivot is zero or tiny against its row's original diagonal (the matrix needs pivoting).
+    // a pivot is zero or tiny against its row's original diagonal (the matrix needs pivoting),
+    // or, for Cholesky, not positive.
     // `progress` receives the fraction of the work done (by flops), about every 1%.
     bool factorize(const double* values, const std::function<void(double)>& progress);
 
@@ -41,7 +51,7 @@ class MultifrontalLU {
         int32_t columns;
         int32_t rows;           // front size: the supernode's columns plus its update rows
         int64_t row_offset;     // into row_indices_: the front's rows, its columns first
-        int64_t factor_offset;  // into factors_: L panel (rows x columns), then U panel
+        int64_t factor_offset;  // into factors_: L panel (rows x columns), then U panel (LU)
         int32_t child_begin;    // children are child_list_[child_begin .. child_end)
         int32_t child_end;
         int64_t relative_offset;  // into relative_rows_: this front's update rows in its parent
@@ -50,7 +60,8 @@ class MultifrontalLU {
     };
 
     int32_t size_ = 0;
-    bool (*partial_lu_)(double*, int32_t, int32_t, const double*) = nullptr;
+    bool cholesky_ = false;
+    bool (*partial_factorization_)(double*, int32_t, int32_t, const double*) = nullptr;
     std::vector<int32_t> order_;         // elimination position -> unknown
     std::vector<Supernode> supernodes_;  // in postorder: children before parents
     std::vector<int32_t> child_list_;
@@ -70,7 +81,7 @@ class MultifrontalLU {
         const size_t bytes = static_cast<size_t>(std::max<int64_t>(count, 1)) * sizeof(double);
         return Buffer(static_cast<double*>(::operator new[](bytes, std::align_val_t(64))));
     }
-    Buffer factors_;  // per supernode: L panel, then U panel
+    Buffer factors_;  // per supernode: L panel, then U panel (LU)
     int64_t factor_size_ = 0;
     Buffer front_;  // workspace: the largest front
     Buffer stack_;  // contribution blocks waiting for their parent

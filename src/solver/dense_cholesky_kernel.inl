@@ -1,0 +1,69 @@
+// The dense partial Cholesky, included after dense_kernels_common.inl by dense_kernels.cpp and
+// dense_kernels_avx2.cpp with RAPS_PARTIAL_CHOLESKY set to the variant's name. Only the lower
+// triangle of the front is read or written.
+namespace raps {
+namespace {
+
+// Unblocked Cholesky of the columns [first, first + count) of the m-row front: each pivot
+// column updates the lower part of the columns to its right up to `update_end` (exclusive).
+bool unblocked_cholesky(double* front, int32_t m, int32_t first, int32_t count, int32_t update_end,
+                        const double* pivot_scale) {
+    for (int32_t j = first; j < first + count; ++j) {
+        double* column = front + static_cast<int64_t>(j) * m;
+        // The same test as the LU's: for a symmetric matrix the squared Cholesky pivot is the
+        // LU's pivot, so both give up on the same matrices, and on any that is not positive.
+        const double pivot = column[j];
+        if (!(pivot > 1e-13 * pivot_scale[j])) return false;
+        const double root = std::sqrt(pivot);
+        column[j] = root;
+        const double inverse = 1.0 / root;
+        for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
+        for (int32_t c = j + 1; c < update_end; ++c) {
+            double* target = front + static_cast<int64_t>(c) * m;
+            const double factor = column[c];
+            if (factor == 0.0) continue;
+            for (int32_t i = c; i < m; ++i) target[i] -= column[i] * factor;
+        }
+    }
+    return true;
+}
+
+// Recursive Cholesky of a column panel, as recursive_lu: factor the left half, update the
+// right half's lower part by one symmetric rank update and one matrix product, factor it.
+bool recursive_cholesky(double* front, int32_t m, int32_t first, int32_t count,
+                        const double* pivot_scale) {
+    constexpr int32_t kUnblocked = 8;
+    if (count <= kUnblocked)
+        return unblocked_cholesky(front, m, first, count, first + count, pivot_scale);
+    const int32_t left = count / 2, right = count - left, mid = first + left;
+    if (!recursive_cholesky(front, m, first, left, pivot_scale)) return false;
+    const int32_t below = m - mid - right;
+    Block l_top(front + mid + static_cast<int64_t>(first) * m, right, left,
+                Eigen::OuterStride<>(m));
+    Block l_below(front + mid + right + static_cast<int64_t>(first) * m, below, left,
+                  Eigen::OuterStride<>(m));
+    Block a_top(front + mid + static_cast<int64_t>(mid) * m, right, right, Eigen::OuterStride<>(m));
+    Block a_below(front + mid + right + static_cast<int64_t>(mid) * m, below, right,
+                  Eigen::OuterStride<>(m));
+    a_top.selfadjointView<Eigen::Lower>().rankUpdate(l_top, -1.0);
+    a_below.noalias() -= l_below * l_top.transpose();
+    return recursive_cholesky(front, m, mid, right, pivot_scale);
+}
+
+}  // namespace
+
+bool RAPS_PARTIAL_CHOLESKY(double* front, int32_t m, int32_t k, const double* pivot_scale) {
+    // Small fronts column by column, the Schur complement included (as in the LU).
+    constexpr int32_t kSmallFront = 64;
+    if (m <= kSmallFront) return unblocked_cholesky(front, m, 0, k, m, pivot_scale);
+    pin_cache_sizes();
+    if (!recursive_cholesky(front, m, 0, k, pivot_scale)) return false;
+    const int32_t rest = m - k;
+    if (rest == 0) return true;
+    Block l21(front + k, rest, k, Eigen::OuterStride<>(m));
+    Block f22(front + k + static_cast<int64_t>(k) * m, rest, rest, Eigen::OuterStride<>(m));
+    f22.selfadjointView<Eigen::Lower>().rankUpdate(l21, -1.0);
+    return true;
+}
+
+}  // namespace raps

@@ -1,0 +1,31 @@
+// Dense partial factorizations of a multifrontal front, the kernels where the sparse
+// factorization spends most of its time. Built twice from dense_lu_kernel.inl and
+// dense_cholesky_kernel.inl: for the baseline instruction set and for AVX2 + FMA; the fastest_*
+// functions pick the variant the processor runs, once. The two variants round differently, so
+// results are bit-identical for a given build on processors of the same kind, not across the two
+// kinds.
+#pragma once
+
+#include <cstdint>
+
+namespace raps {
+
+// Both eliminate the first k columns of the m x m column-major front F = [F11 F12; F21 F22],
+// F11 k x k, and return false when a pivot is not larger than 1e-13 times pivot_scale[j].
+using PartialFactorization = bool (*)(double* front, int32_t m, int32_t k,
+                                      const double* pivot_scale);
+
+// LU without pivoting: F11 = L11 U11 (L11 unit lower), L21 = F21 U11^-1, U12 = L11^-1 F12, and
+// F22 -= L21 U12.
+bool partial_lu_baseline(double* front, int32_t m, int32_t k, const double* pivot_scale);
+bool partial_lu_avx2(double* front, int32_t m, int32_t k, const double* pivot_scale);
+PartialFactorization fastest_partial_lu();
+
+// Cholesky of a symmetric front, reading and writing only its lower triangle (the upper one may
+// hold anything): F11 = L11 L11^T, L21 = F21 L11^-T, and F22 -= L21 L21^T. Half the work of the
+// LU; a pivot that is not positive (the matrix is not positive definite) also returns false.
+bool partial_cholesky_baseline(double* front, int32_t m, int32_t k, const double* pivot_scale);
+bool partial_cholesky_avx2(double* front, int32_t m, int32_t k, const double* pivot_scale);
+PartialFactorization fastest_partial_cholesky();
+
+}  // namespace raps
