@@ -300,9 +300,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     // From the rows of the supernode's columns we see the entries (j, other) with other at or
     // after its first column, and take the transposed entry (other, j) when other lies beyond.
     // transposed[p] is the index of the entry mirroring entry p; rows are sorted, so visiting
-    // rows in order meets each row's entries in order.
-    std::vector<int64_t> transposed(pattern.nonzeros());
-    {
+    // rows in order meets each row's entries in order. (Cholesky places no mirrors.)
+    std::vector<int64_t> transposed(cholesky_ ? 0 : pattern.nonzeros());
+    if (!cholesky_) {
         std::vector<int64_t> cursor(pattern.row_offsets.begin(), pattern.row_offsets.end() - 1);
         for (int32_t row = 0; row < n; ++row) {
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
