@@ -316,26 +316,58 @@ class Occupancy {
 
 // The skyline search's two inner loops, nearly a sixth of an atlas's instructions. They are
 // integer arithmetic, exact in any instruction set, so they are also built for AVX2 (where
-// its 32-bit max and widening sums are single instructions) and the processor picks the
-// variant when the library loads: the layouts stay the same on every processor.
-#if defined(__x86_64__) && defined(__ELF__) && (defined(__GNUC__) || defined(__clang__))
-#define RAPS_ALSO_AVX2 __attribute__((target_clones("avx2", "default")))
-#else
-#define RAPS_ALSO_AVX2
+// its 32-bit max and widening sums are single instructions) and the variant the processor runs
+// is picked once: the layouts stay the same on every processor. (Picked by hand, not by
+// target_clones: its load-time resolvers crash under ThreadSanitizer.)
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define RAPS_SKYLINE_AVX2 1
 #endif
 
 // The row a chart with resting rows `rest` comes to rest on over the skyline `sky`.
-RAPS_ALSO_AVX2 int32_t resting_row(const int32_t* sky, const int32_t* rest, int32_t width) {
+inline __attribute__((always_inline)) int32_t resting_row_loop(const int32_t* sky,
+                                                               const int32_t* rest, int32_t width) {
     int32_t y = 0;
     for (int32_t i = 0; i < width; ++i) y = std::max(y, sky[i] - rest[i]);
     return y;
 }
 
 // The skyline's height summed over the columns a chart occupies (occupied[i] is 0 or 1).
-RAPS_ALSO_AVX2 int64_t skyline_under(const int32_t* sky, const int32_t* occupied, int32_t width) {
+inline __attribute__((always_inline)) int64_t skyline_under_loop(const int32_t* sky,
+                                                                 const int32_t* occupied,
+                                                                 int32_t width) {
     int64_t under = 0;
     for (int32_t i = 0; i < width; ++i) under += occupied[i] * sky[i];
     return under;
+}
+
+struct SkylineKernels {
+    int32_t (*resting_row)(const int32_t* sky, const int32_t* rest, int32_t width);
+    int64_t (*skyline_under)(const int32_t* sky, const int32_t* occupied, int32_t width);
+};
+
+int32_t resting_row_baseline(const int32_t* sky, const int32_t* rest, int32_t width) {
+    return resting_row_loop(sky, rest, width);
+}
+int64_t skyline_under_baseline(const int32_t* sky, const int32_t* occupied, int32_t width) {
+    return skyline_under_loop(sky, occupied, width);
+}
+#ifdef RAPS_SKYLINE_AVX2
+__attribute__((target("avx2"))) int32_t resting_row_avx2(const int32_t* sky, const int32_t* rest,
+                                                         int32_t width) {
+    return resting_row_loop(sky, rest, width);
+}
+__attribute__((target("avx2"))) int64_t skyline_under_avx2(const int32_t* sky,
+                                                           const int32_t* occupied, int32_t width) {
+    return skyline_under_loop(sky, occupied, width);
+}
+#endif
+
+SkylineKernels skyline_kernels() {
+#ifdef RAPS_SKYLINE_AVX2
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return {resting_row_avx2, skyline_under_avx2};
+#endif
+    return {resting_row_baseline, skyline_under_baseline};
 }
 
 // Places the charts (in `order`) into a strip `strip` texels wide: each lands, in its best
@@ -347,9 +379,10 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
                 std::vector<int>& quarter, int32_t& width, int32_t& height) {
     std::vector<int32_t> skyline(static_cast<size_t>(strip), 0);
     Occupancy occupancy(strip);
+    const SkylineKernels kernels = skyline_kernels();
     width = height = 0;
     auto rest_height = [&](const Profile& p, int32_t x) {
-        return resting_row(skyline.data() + x, p.resting_bottom.data(), p.width);
+        return kernels.resting_row(skyline.data() + x, p.resting_bottom.data(), p.width);
     };
     auto rest_height_at_least = [&](const Profile& p, int32_t x) {
         int32_t y = 0;
@@ -363,7 +396,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         if (!count_waste) return top * (int64_t(strip) + 1) + x;
         // Sum over occupied columns of y + bottom - skyline.
         const int64_t waste = p.occupied_count * y + p.occupied_bottom_sum -
-                              skyline_under(skyline.data() + x, p.occupied.data(), p.width);
+                              kernels.skyline_under(skyline.data() + x, p.occupied.data(), p.width);
         return (waste + top * p.width) * (int64_t(strip) + 1) + x;
     };
     // A lower bound of score_of(p, x, rest_height(p, x)): both rules grow with y, and the
