@@ -7,18 +7,17 @@
 #include "solver/dense_cholesky_kernel.inl"
 
 namespace raps {
+
+#if defined(RAPS_HAVE_AVX2_KERNEL)  // built with GCC or clang, which have the -mavx2 flag
 namespace {
 
 bool processor_has_avx2() {
-#if defined(RAPS_HAVE_AVX2_KERNEL) && (defined(__GNUC__) || defined(__clang__))
     static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     return avx2;
-#else
-    return false;
-#endif
 }
 
 }  // namespace
+#endif
 
 PartialFactorization fastest_partial_lu() {
 #if defined(RAPS_HAVE_AVX2_KERNEL)

@@ -278,10 +278,7 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
         const int64_t m = node.rows, k = node.columns;
         factor_size += cholesky_ ? m * k : m * k + k * (m - k);
         max_front = std::max(max_front, m * m);
-        // Flops of the partial LU: 2 k^2 (m - k) for the panels + 2 k (m - k)^2 for the update;
-        // about half that for Cholesky.
-        total_flops_ += static_cast<double>(k) * static_cast<double>(m) * static_cast<double>(m) *
-                        (cholesky_ ? 0.5 : 1.0);
+        total_flops_ += front_flops(node);
     }
     for (int32_t s = 0; s < supernode_count; ++s) {
         const Supernode& node = supernodes_[s];
@@ -347,6 +344,8 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
         }
         node.value_end = next_value;
     }
+    value_source_.resize(next_value);  // Cholesky placed only about half of the entries
+    value_target_.resize(next_value);
 
     // Peak of the contribution-block stack, simulated in the factorization's order.
     {
@@ -371,6 +370,13 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     factor_size_ = factor_size;
     front_ = allocate(max_front);
     stack_ = allocate(stack_peak_);
+}
+
+double MultifrontalFactorization::front_flops(const Supernode& node) const {
+    // The partial LU: 2 k^2 (m - k) for the panels + 2 k (m - k)^2 for the update, about k m^2;
+    // about half that for Cholesky.
+    const double m = node.rows, k = node.columns;
+    return k * m * m * (cholesky_ ? 0.5 : 1.0);
 }
 
 bool MultifrontalFactorization::factorize(const double* values,
@@ -442,7 +448,7 @@ bool MultifrontalFactorization::factorize(const double* values,
             }
             stack_top += static_cast<int64_t>(update) * update;
         }
-        flops_done += static_cast<double>(k) * m * m * (cholesky_ ? 0.5 : 1.0);
+        flops_done += front_flops(node);
         if (progress && flops_done >= next_report) {
             progress(flops_done / total_flops_);
             next_report = flops_done + 0.01 * total_flops_;

@@ -16,6 +16,7 @@
 #include <new>
 #include <vector>
 
+#include "solver/dense_kernels.h"
 #include "solver/sparse_pattern.h"
 
 namespace raps {
@@ -59,9 +60,12 @@ class MultifrontalFactorization {
         int64_t value_end;
     };
 
+    // Work of one front's partial factorization (progress reports, factor_flops()).
+    double front_flops(const Supernode& node) const;
+
     int32_t size_ = 0;
     bool cholesky_ = false;
-    bool (*partial_factorization_)(double*, int32_t, int32_t, const double*) = nullptr;
+    PartialFactorization partial_factorization_ = nullptr;
     std::vector<int32_t> order_;         // elimination position -> unknown
     std::vector<Supernode> supernodes_;  // in postorder: children before parents
     std::vector<int32_t> child_list_;
