@@ -584,10 +584,16 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         });
         widest = std::max(1, *std::max_element(narrow_side.begin(), narrow_side.end()));
     };
+    struct Packed {
+        std::vector<Eigen::Vector2i> at;
+        std::vector<int> quarter;
+        int32_t width = 0, height = 0;
+    };
     struct Layout {
         double area;
         int32_t strip;
         bool waste;
+        Packed skyline;  // kept: the fallback of a finalist whose holes overflow
     };
     // Every strip width under both scoring rules on the skyline alone, best first.
     auto skyline_layouts = [&](int32_t widest) {
@@ -612,19 +618,20 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         std::vector<Layout> tried(trials);
         std::vector<char> fits(trials, 0);
         parallel_for_each(pool, trials, [&](size_t trial) {
-            std::vector<Eigen::Vector2i> at(count);
-            std::vector<int> quarter(count);
-            int32_t width = 0, height = 0;
-            const int32_t strip = widths[trial / 2];
-            const bool waste = trial % 2 == 1;
-            fits[trial] =
-                pack_strip(prepared, order, strip, waste, false, at, quarter, width, height) &&
-                std::max(width, height) <= limit;
-            tried[trial] = {static_cast<double>(width) * height, strip, waste};
+            Layout& layout = tried[trial];
+            layout.strip = widths[trial / 2];
+            layout.waste = trial % 2 == 1;
+            Packed& packed = layout.skyline;
+            packed.at.resize(count);
+            packed.quarter.resize(count);
+            fits[trial] = pack_strip(prepared, order, layout.strip, layout.waste, false, packed.at,
+                                     packed.quarter, packed.width, packed.height) &&
+                          std::max(packed.width, packed.height) <= limit;
+            layout.area = static_cast<double>(packed.width) * packed.height;
         });
         std::vector<Layout> layouts;
         for (size_t trial = 0; trial < trials; ++trial) {
-            if (fits[trial]) layouts.push_back(tried[trial]);
+            if (fits[trial]) layouts.push_back(std::move(tried[trial]));
         }
         std::sort(layouts.begin(), layouts.end(), [](const Layout& x, const Layout& y) {
             return x.area < y.area || (x.area == y.area && x.strip < y.strip);
@@ -667,26 +674,21 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     scale = fitted_scale;
     const std::vector<Layout> fitted = skyline_layouts(widest);
     // Holes under overhangs, for the two best layouts only (it is the slow part); the
-    // skyline-only layout of the same strip is the fallback when filling holes overflows.
-    struct Candidate {
-        std::vector<Eigen::Vector2i> at;
-        std::vector<int> quarter;
-        int32_t width = 0, height = 0;
-    };
+    // skyline-only layout of the same strip, kept from the trials, is the fallback when filling
+    // holes overflows.
     const size_t finalists = std::min<size_t>(fitted.size(), 2);
-    std::vector<Candidate> with_holes(finalists), skyline_only(finalists);
-    parallel_for_each(pool, 2 * finalists, [&](size_t i) {
-        const Layout& layout = fitted[i / 2];
-        Candidate& candidate = i % 2 == 0 ? with_holes[i / 2] : skyline_only[i / 2];
-        candidate.at.resize(count);
-        candidate.quarter.resize(count);
-        pack_strip(prepared, order, layout.strip, layout.waste, i % 2 == 0, candidate.at,
-                   candidate.quarter, candidate.width, candidate.height);
+    std::vector<Packed> with_holes(finalists);
+    parallel_for_each(pool, finalists, [&](size_t k) {
+        Packed& packed = with_holes[k];
+        packed.at.resize(count);
+        packed.quarter.resize(count);
+        pack_strip(prepared, order, fitted[k].strip, fitted[k].waste, true, packed.at,
+                   packed.quarter, packed.width, packed.height);
     });
     double best_area = std::numeric_limits<double>::max();
     for (size_t k = 0; k < finalists; ++k) {
         const bool holes_fit = std::max(with_holes[k].width, with_holes[k].height) <= limit;
-        const Candidate& candidate = holes_fit ? with_holes[k] : skyline_only[k];
+        const Packed& candidate = holes_fit ? with_holes[k] : fitted[k].skyline;
         const double area = static_cast<double>(candidate.width) * candidate.height;
         if (std::max(candidate.width, candidate.height) <= limit && area < best_area) {
             best_area = area;
