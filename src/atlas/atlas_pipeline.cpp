@@ -39,11 +39,13 @@ void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
         }
         return;  // the input has no area either: every triangle maps to one point
     }
+    // Rounding uvs in [0, 1] to doubles leaves collapsed triangles with areas up to about
+    // 1e-16 (an ulp times an edge); any real triangle of an atlas is many orders larger.
     for (size_t c = 0; c < charts.size(); ++c) {
         const std::vector<Eigen::Vector2d>& uv = packed.uv[c];
         for (const Triangle& t : charts[c].disk.mesh.triangles) {
             const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
-            if (a.x() * b.y() - a.y() * b.x() != 0) return;
+            if (std::abs(a.x() * b.y() - a.y() * b.x()) > 2e-14) return;
         }
     }
     throw Error(ErrorCode::kZeroAreaTriangle,

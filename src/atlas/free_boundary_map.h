@@ -1,8 +1,11 @@
-// Step 4a: a free-boundary conformal map of a disk chart, the least squares conformal map
-// (Lévy, Petitjean, Ray & Maillot 2002; in the form of Desbrun, Meyer & Alliez 2002 and Mullen
-// et al. 2008): minimise the conformal energy E_D(u) - A(u), the Dirichlet energy (cotangent
-// weights) minus the uv area, with two boundary vertices pinned. A developable chart comes out
-// isometric, so charts keep their natural shape instead of being forced onto a circle.
+// Step 4a: a free-boundary conformal map of a disk chart by boundary first flattening (Sawhney
+// & Crane 2017) with the boundary's scale held at 1, the conformal flattening of least area
+// distortion: the log scale factor that flattens the interior (one Poisson solve with the
+// cotangent Laplacian), the boundary curve it implies (the chart's own edge lengths, turning
+// angles moved by the scale), then the interior as the harmonic extension of that curve, with
+// the same factorization. A developable chart comes out isometric, so charts keep their natural
+// shape instead of being forced onto a circle. All solves are on the interior vertices alone,
+// the pattern of the adaptive step's system.
 #pragma once
 
 #include <vector>
@@ -15,9 +18,9 @@
 namespace raps {
 
 // uv per vertex of the disk `mesh` (with its vertex adjacency) whose boundary is
-// `boundary_loop` (mesh on its left), eliminating u and v of each vertex together in
-// `vertex_order` (laplace_system.h's vertex_elimination_order). Throws Error(kSolverFailed) if
-// the system is singular.
+// `boundary_loop` (mesh on its left), eliminating vertices in `vertex_order`
+// (laplace_system.h's vertex_elimination_order). Throws Error(kSolverFailed) if the system is
+// singular.
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
                                                          const std::vector<int32_t>& boundary_loop,

@@ -26,58 +26,71 @@ std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
     return fill_reducing_order(pattern, mesh.positions);
 }
 
-LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                             const std::vector<char>& on_boundary,
-                             const std::vector<int32_t>& vertex_order)
-    : adjacency_(adjacency) {
-    const int32_t vertex_count = mesh.vertex_count();
-    std::vector<int32_t> unknown_of_vertex(vertex_count, -1);
+InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
+                                 const std::vector<char>& on_boundary,
+                                 const std::vector<int32_t>& vertex_order) {
+    InteriorPattern interior;
+    const int32_t vertex_count = static_cast<int32_t>(on_boundary.size());
+    interior.unknown_of_vertex.assign(vertex_count, -1);
     for (int32_t v = 0; v < vertex_count; ++v) {
         if (!on_boundary[v]) {
-            unknown_of_vertex[v] = static_cast<int32_t>(vertex_of_unknown_.size());
-            vertex_of_unknown_.push_back(v);
+            interior.unknown_of_vertex[v] = static_cast<int32_t>(interior.vertex_of_unknown.size());
+            interior.vertex_of_unknown.push_back(v);
         }
     }
-    const int32_t n = static_cast<int32_t>(vertex_of_unknown_.size());
-    SparsePattern pattern;
+    const int32_t n = static_cast<int32_t>(interior.vertex_of_unknown.size());
+    SparsePattern& pattern = interior.pattern;
     pattern.size = n;
-    value_of_slot_.assign(adjacency.neighbors.size(), -1);
-    diagonal_of_unknown_.resize(n);
+    interior.value_of_slot.assign(adjacency.neighbors.size(), -1);
+    interior.diagonal_of_unknown.resize(n);
     for (int32_t row = 0; row < n; ++row) {
-        const int32_t v = vertex_of_unknown_[row];
+        const int32_t v = interior.vertex_of_unknown[row];
         bool diagonal_placed = false;
         // Neighbours are sorted by vertex and unknowns are numbered in vertex order, so the
         // columns come out sorted once the diagonal is slotted in.
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
-            const int32_t column = unknown_of_vertex[adjacency.neighbors[s]];
+            const int32_t column = interior.unknown_of_vertex[adjacency.neighbors[s]];
             if (column < 0) continue;
             if (!diagonal_placed && column > row) {
-                diagonal_of_unknown_[row] = static_cast<int32_t>(pattern.columns.size());
+                interior.diagonal_of_unknown[row] = static_cast<int32_t>(pattern.columns.size());
                 pattern.columns.push_back(row);
                 diagonal_placed = true;
             }
-            value_of_slot_[s] = static_cast<int32_t>(pattern.columns.size());
+            interior.value_of_slot[s] = static_cast<int32_t>(pattern.columns.size());
             pattern.columns.push_back(column);
         }
         if (!diagonal_placed) {
-            diagonal_of_unknown_[row] = static_cast<int32_t>(pattern.columns.size());
+            interior.diagonal_of_unknown[row] = static_cast<int32_t>(pattern.columns.size());
             pattern.columns.push_back(row);
         }
         pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
     }
+    interior.order.reserve(vertex_order.size());
+    for (int32_t v : vertex_order) {
+        if (interior.unknown_of_vertex[v] >= 0)
+            interior.order.push_back(interior.unknown_of_vertex[v]);
+    }
+    return interior;
+}
+
+LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+                             const std::vector<char>& on_boundary,
+                             const std::vector<int32_t>& vertex_order)
+    : adjacency_(adjacency) {
+    InteriorPattern interior = interior_pattern(adjacency, on_boundary, vertex_order);
+    vertex_of_unknown_ = std::move(interior.vertex_of_unknown);
+    value_of_slot_ = std::move(interior.value_of_slot);
+    diagonal_of_unknown_ = std::move(interior.diagonal_of_unknown);
     if (!vertex_order.empty()) {
-        std::vector<int32_t> order;
-        order.reserve(n);
-        for (int32_t v : vertex_order) {
-            if (unknown_of_vertex[v] >= 0) order.push_back(unknown_of_vertex[v]);
-        }
-        solver_ = std::make_unique<SparseSolver>(std::move(pattern), std::move(order));
+        solver_ =
+            std::make_unique<SparseSolver>(std::move(interior.pattern), std::move(interior.order));
         return;
     }
+    const int32_t n = unknown_count();
     std::vector<Eigen::Vector3d> coordinates(n);
     for (int32_t row = 0; row < n; ++row)
         coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
-    solver_ = std::make_unique<SparseSolver>(std::move(pattern), coordinates);
+    solver_ = std::make_unique<SparseSolver>(std::move(interior.pattern), coordinates);
 }
 
 void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,

@@ -24,6 +24,22 @@ namespace raps {
 std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
                                               const VertexAdjacency& adjacency);
 
+// The pattern of a Laplace system over the vertices not on the boundary, one unknown each
+// (numbered in vertex order), rows sorted with the diagonal included, and where each adjacency
+// slot of an unknown's row lands. vertex_order (a vertex_elimination_order(), or empty) is
+// restricted to the unknowns.
+struct InteriorPattern {
+    SparsePattern pattern;
+    std::vector<int32_t> vertex_of_unknown;
+    std::vector<int32_t> unknown_of_vertex;    // -1 on the boundary
+    std::vector<int32_t> value_of_slot;        // per slot of an unknown's row: its entry, or -1
+    std::vector<int32_t> diagonal_of_unknown;  // its diagonal entry
+    std::vector<int32_t> order;                // order[k]: the unknown eliminated k-th
+};
+InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
+                                 const std::vector<char>& on_boundary,
+                                 const std::vector<int32_t>& vertex_order);
+
 class LaplaceSystem {
   public:
     // vertex_order: a vertex_elimination_order() of this mesh to restrict to the interior

@@ -1,11 +1,11 @@
 // Sparse factorization without pivoting of structurally symmetric matrices, by the multifrontal
 // method (Duff & Reid 1983; Liu 1992) with relaxed supernodes (Ashcraft & Grimes 1989): LU for
 // any such matrix, or Cholesky, with half the work and storage, for symmetric positive definite
-// ones (the free-boundary conformal energy). The Laplace systems of section 3 with positive
-// weights are M-matrices (row diagonally dominant, irreducible, boundary rows strictly dominant),
-// for which elimination without pivoting is stable in any order, so the symbolic analysis -
-// ordering, elimination tree, supernodes, front structures - is done once and reused by every
-// numeric factorization (the initial map and each adaptive step). Matrices that need pivoting
+// ones (the cotangent Laplacian of the free-boundary maps). The Laplace systems of section 3 with
+// positive weights are M-matrices (row diagonally dominant, irreducible, boundary rows strictly
+// dominant), for which elimination without pivoting is stable in any order, so the symbolic
+// analysis - ordering, elimination tree, supernodes, front structures - is done once and reused by
+// every numeric factorization (the initial map and each adaptive step). Matrices that need pivoting
 // are reported by factorize() returning false.
 #pragma once
 

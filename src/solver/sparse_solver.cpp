@@ -58,11 +58,27 @@ SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order, Fa
 void SparseSolver::solve(const std::vector<double>& values, double* rhs, int rhs_count,
                          const std::function<void(double)>& progress) {
     if (pattern_.size == 0) return;
+    pivoting_values_.clear();
     if (factorization_.factorize(values.data(), progress)) {
         factorization_.solve(rhs, rhs_count);
     } else {
+        pivoting_values_ = values;
         solve_with_pivoting(values, rhs, rhs_count);
     }
+    check_finite(rhs, rhs_count);
+}
+
+void SparseSolver::solve_more(double* rhs, int rhs_count) const {
+    if (pattern_.size == 0) return;
+    if (pivoting_values_.empty()) {
+        factorization_.solve(rhs, rhs_count);
+    } else {
+        solve_with_pivoting(pivoting_values_, rhs, rhs_count);
+    }
+    check_finite(rhs, rhs_count);
+}
+
+void SparseSolver::check_finite(const double* rhs, int rhs_count) const {
     for (int64_t i = 0; i < static_cast<int64_t>(pattern_.size) * rhs_count; ++i) {
         if (!std::isfinite(rhs[i])) {
             throw Error(ErrorCode::kSolverFailed,

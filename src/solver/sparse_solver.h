@@ -35,15 +35,21 @@ class SparseSolver {
     void solve(const std::vector<double>& values, double* rhs, int rhs_count,
                const std::function<void(double)>& progress);
 
+    // Solves A X = B in place for more right-hand sides, with the values of the last solve()
+    // (not factored again).
+    void solve_more(double* rhs, int rhs_count) const;
+
     const SparsePattern& pattern() const { return pattern_; }
     int32_t size() const { return pattern_.size; }
 
   private:
     void solve_with_pivoting(const std::vector<double>& values, double* rhs, int rhs_count) const;
+    void check_finite(const double* rhs, int rhs_count) const;
 
     SparsePattern pattern_;
     std::vector<int32_t> order_;
     MultifrontalFactorization factorization_;
+    std::vector<double> pivoting_values_;  // the last values, when they needed pivoting
 };
 
 }  // namespace raps
