@@ -313,10 +313,14 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                     rejected[key(a, b)] = change;
                     continue;
                 }
-                // A union that fills its bounding box much worse than its parts (an arch, a
-                // ring, an L) saves a chart but costs more packing space than it saves
-                // (measured: spot 0.657 -> 0.685).
-                if (built_fill[i] < 0.8 * std::min(facts[a].fill, facts[b].fill)) {
+                // A union whose bounding box is much larger than its parts' boxes together (an
+                // arch, a ring, an L) saves a chart but costs more packing space than it
+                // saves. Allowed: 1 / 0.9 times their area (measured with free-boundary maps by
+                // boundary first flattening: lion's coverage 0.606 -> 0.687 and suzanne's
+                // 0.636 -> 0.674, against a rule of 0.8 times the worse part's fill).
+                const double parts_box =
+                    facts[a].area / facts[a].fill + facts[b].area / facts[b].fill;
+                if (union_area / built_fill[i] > parts_box / 0.9) {
                     rejected[key(a, b)] = kNever;
                     continue;
                 }
