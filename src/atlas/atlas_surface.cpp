@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <numeric>
 
 #include "mesh/mesh_topology.h"
@@ -123,6 +124,14 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             surface.mesh.positions.push_back(input.positions[w]);
         }
         surface.mesh.triangles[c / 3][c % 3] = classes[c];
+    }
+    surface.corner_angle.resize(3 * static_cast<size_t>(count));
+    for (int32_t c = 0; c < 3 * count; ++c) {
+        const Triangle& t = surface.mesh.triangles[c / 3];
+        const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];
+        const Eigen::Vector3d a = surface.mesh.positions[t[(c + 1) % 3]] - at;
+        const Eigen::Vector3d b = surface.mesh.positions[t[(c + 2) % 3]] - at;
+        surface.corner_angle[c] = std::atan2(a.cross(b).norm(), a.dot(b));
     }
     surface.input_triangle = std::move(kept);
     return surface;

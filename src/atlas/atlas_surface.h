@@ -20,6 +20,9 @@ struct AtlasSurface {
     std::vector<int32_t> twin;            // per half-edge 3t+k (as in mesh_topology.h); -1: cut
     std::vector<int32_t> input_triangle;  // per surface triangle
     std::vector<int32_t> welded_vertex;   // per surface vertex: its welded input vertex
+    // Per corner 3t+k: the triangle's angle there, in radians. Every chart and every union
+    // tried while merging sums them (each triangle is mapped several times): measured once.
+    std::vector<double> corner_angle;
     // Input triangles that are not surface triangles, each with the surface triangle whose uvs
     // it shares (duplicates) or -1 (degenerate: placed by the atlas on a neighbouring chart).
     std::vector<int32_t> aside_triangles;

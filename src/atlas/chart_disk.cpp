@@ -56,6 +56,11 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
     std::vector<int32_t> local_of(surface.mesh.triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) local_of[triangles[i]] = static_cast<int32_t>(i);
     disk.surface_triangle = triangles;
+    disk.corner_angle.resize(3 * triangles.size());
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            disk.corner_angle[3 * i + k] = surface.corner_angle[3 * triangles[i] + k];
+    }
     Halfedges halfedges;
     halfedges.twin = local_twins(surface, triangles, local_of, seam);
     build_vertices(surface, triangles, halfedges.twin, disk);

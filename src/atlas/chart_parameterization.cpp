@@ -92,8 +92,8 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk) {
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
-        map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.boundary_loop,
-                                             disk.vertex_order);
+        map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.corner_angle,
+                                             disk.boundary_loop, disk.vertex_order);
         map.injective = injective(disk, map.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;

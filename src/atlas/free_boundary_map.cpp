@@ -10,18 +10,14 @@ namespace raps {
 
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
+                                                         const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
                                                          const std::vector<int32_t>& vertex_order) {
     const int32_t n = mesh.vertex_count();
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
     std::vector<double> angle_sum(n, 0.0);
-    for (const Triangle& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d a = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
-            const Eigen::Vector3d b = mesh.positions[t[(k + 2) % 3]] - mesh.positions[t[k]];
-            angle_sum[t[k]] += std::atan2(a.cross(b).norm(), a.dot(b));
-        }
-    }
+    for (size_t c = 0; c < corner_angle.size(); ++c)
+        angle_sum[mesh.triangles[c / 3][c % 3]] += corner_angle[c];
     std::vector<char> on_boundary(n, 0);
     for (int32_t v : boundary_loop) on_boundary[v] = 1;
     // The cotangent Laplacian L (the Dirichlet energy's matrix, positive definite on the

@@ -17,12 +17,14 @@
 
 namespace raps {
 
-// uv per vertex of the disk `mesh` (with its vertex adjacency) whose boundary is
+// uv per vertex of the disk `mesh` (with its vertex adjacency and the angle at each corner 3t+k,
+// in radians) whose boundary is
 // `boundary_loop` (mesh on its left), eliminating vertices in `vertex_order`
 // (laplace_system.h's vertex_elimination_order). Throws Error(kSolverFailed) if the system is
 // singular.
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
+                                                         const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
                                                          const std::vector<int32_t>& vertex_order);
 
