@@ -90,35 +90,46 @@ struct BitImage {
     }
 };
 
-// Marks every cell that a triangle touches (conservative): per row band, the x-range of the
-// triangle clipped to the band.
+// Marks every cell that a triangle touches (conservative). With the corners sorted by height,
+// the triangle's cross-section at height y runs between the long edge (lowest to highest
+// corner) and one of the two short edges; both ends move linearly in y except at the middle
+// corner, so over a row band the x-range is the hull of the sections at the band's two ends
+// (clipped to the triangle) and the middle corner when it lies inside the band.
 void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Triangle>& triangles,
                BitImage& image) {
     for (const Triangle& t : triangles) {
-        const Eigen::Vector2d p[3] = {points[t[0]], points[t[1]], points[t[2]]};
-        const double y_lo = std::min({p[0].y(), p[1].y(), p[2].y()});
-        const double y_hi = std::max({p[0].y(), p[1].y(), p[2].y()});
-        const int32_t row_lo = std::max(0, static_cast<int32_t>(std::floor(y_lo)));
-        const int32_t row_hi = std::min(image.height - 1, static_cast<int32_t>(std::floor(y_hi)));
+        Eigen::Vector2d p[3] = {points[t[0]], points[t[1]], points[t[2]]};
+        if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
+        if (p[2].y() < p[1].y()) std::swap(p[1], p[2]);
+        if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
+        const double y0 = p[0].y(), y1 = p[1].y(), y2 = p[2].y();
+        const int32_t row_lo = std::max(0, static_cast<int32_t>(std::floor(y0)));
+        const int32_t row_hi = std::min(image.height - 1, static_cast<int32_t>(std::floor(y2)));
+        const double long_slope = y2 > y0 ? (p[2].x() - p[0].x()) / (y2 - y0) : 0.0;
+        const double low_slope = y1 > y0 ? (p[1].x() - p[0].x()) / (y1 - y0) : 0.0;
+        const double high_slope = y2 > y1 ? (p[2].x() - p[1].x()) / (y2 - y1) : 0.0;
+        double x_lo = 0, x_hi = 0;
+        auto add = [&](double x) {
+            x_lo = std::min(x_lo, x);
+            x_hi = std::max(x_hi, x);
+        };
+        // The section at height y (y0 <= y <= y2); the corners exactly at their own heights.
+        auto add_section = [&](double y) {
+            if (y == y0) add(p[0].x());
+            if (y == y1) add(p[1].x());
+            if (y == y2) add(p[2].x());
+            if (y == y0 || y == y2) return;
+            add(p[0].x() + (y - y0) * long_slope);
+            add(y < y1 ? p[0].x() + (y - y0) * low_slope : p[1].x() + (y - y1) * high_slope);
+        };
         for (int32_t row = row_lo; row <= row_hi; ++row) {
-            const double band_lo = row, band_hi = row + 1.0;
-            double x_lo = 1e300, x_hi = -1e300;
-            for (int e = 0; e < 3; ++e) {
-                const Eigen::Vector2d& a = p[e];
-                const Eigen::Vector2d& b = p[(e + 1) % 3];
-                if (a.y() >= band_lo && a.y() <= band_hi) {
-                    x_lo = std::min(x_lo, a.x());
-                    x_hi = std::max(x_hi, a.x());
-                }
-                for (double y : {band_lo, band_hi}) {
-                    if ((a.y() - y) * (b.y() - y) < 0) {
-                        const double x = a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
-                        x_lo = std::min(x_lo, x);
-                        x_hi = std::max(x_hi, x);
-                    }
-                }
-            }
-            if (x_lo > x_hi) continue;
+            const double band_lo = std::max(static_cast<double>(row), y0);
+            const double band_hi = std::min(row + 1.0, y2);
+            x_lo = 1e300;
+            x_hi = -1e300;
+            add_section(band_lo);
+            add_section(band_hi);
+            if (y1 > band_lo && y1 < band_hi) add(p[1].x());
             const int32_t c_lo = std::max(0, static_cast<int32_t>(std::floor(x_lo)));
             const int32_t c_hi = std::min(image.width - 1, static_cast<int32_t>(std::floor(x_hi)));
             image.set_span(row, c_lo, c_hi);
