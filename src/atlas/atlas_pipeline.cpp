@@ -62,9 +62,12 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
         check_indices_in_range(mesh);  // everything else an atlas takes as it comes
         timer.finish();
     }
+    // One pool of threads for the whole atlas: starting threads for each parallel loop (17 of
+    // them on cheburashka) cost about 2% of the atlas.
+    ThreadPool pool(settings.threads);
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
     const std::vector<int32_t> welded = weld_vertices(mesh.positions, settings.weld_tolerance);
-    const AtlasSurface surface = build_atlas_surface(mesh, welded);
+    const AtlasSurface surface = build_atlas_surface(mesh, welded, pool);
     topology_timer.finish();
 
     PhaseTimer segment_timer(Phase::kSegment, progress, times);
@@ -97,9 +100,6 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     ChartLimits limits;
     limits.target_stretch_l2 = settings.atlas_target_l2;
     limits.max_stretch_linf = settings.atlas_max_linf;
-    // One pool of threads for the charts and the packing: starting threads for each parallel
-    // loop (17 of them on cheburashka) cost about 2% of the atlas.
-    ThreadPool pool(settings.threads);
     const std::vector<AtlasChart> charts =
         build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
     chart_timer.finish();

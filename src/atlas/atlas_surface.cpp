@@ -9,7 +9,8 @@
 
 namespace raps {
 
-AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded) {
+AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
+                                 ThreadPool& pool) {
     AtlasSurface surface;
     const int32_t input_count = input.triangle_count();
 
@@ -126,13 +127,15 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         surface.mesh.triangles[c / 3][c % 3] = classes[c];
     }
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
-    for (int32_t c = 0; c < 3 * count; ++c) {
-        const Triangle& t = surface.mesh.triangles[c / 3];
-        const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];
-        const Eigen::Vector3d a = surface.mesh.positions[t[(c + 1) % 3]] - at;
-        const Eigen::Vector3d b = surface.mesh.positions[t[(c + 2) % 3]] - at;
-        surface.corner_angle[c] = std::atan2(a.cross(b).norm(), a.dot(b));
-    }
+    parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
+        for (int64_t c = begin; c < end; ++c) {
+            const Triangle& t = surface.mesh.triangles[c / 3];
+            const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];
+            const Eigen::Vector3d a = surface.mesh.positions[t[(c + 1) % 3]] - at;
+            const Eigen::Vector3d b = surface.mesh.positions[t[(c + 2) % 3]] - at;
+            surface.corner_angle[c] = std::atan2(a.cross(b).norm(), a.dot(b));
+        }
+    });
     surface.input_triangle = std::move(kept);
     return surface;
 }

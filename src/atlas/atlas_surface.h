@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "core/triangle_mesh.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -29,7 +30,9 @@ struct AtlasSurface {
     std::vector<int32_t> aside_primary;
 };
 
-// `welded[v]`: the representative of input vertex v (vertex_welding.h).
-AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded);
+// `welded[v]`: the representative of input vertex v (vertex_welding.h). Corner angles are
+// measured on `pool`.
+AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
+                                 ThreadPool& pool);
 
 }  // namespace raps
