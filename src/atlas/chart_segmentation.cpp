@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
-#include <queue>
 
 namespace raps {
 namespace {
@@ -42,6 +42,79 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
     return g;
 }
 
+struct Candidate {
+    double distance;
+    int32_t triangle, chart;
+};
+
+// Candidates taken in order of (distance, triangle, chart), where no distance pushed is below
+// the last one taken while any are waiting (each is a taken one plus a step across an edge): a
+// radix heap (Ahuja, Mehlhorn, Orlin & Tarjan 1990) over the distance's bits, which for
+// non-negative doubles order as the numbers do. Each candidate moves down a few of the 65 buckets
+// instead of through the levels of a binary heap, whose mispredicted comparisons were most of the
+// segmentation (2 ms per growth on cheburashka).
+class CandidateQueue {
+  public:
+    void clear() {
+        for (std::vector<Candidate>& bucket : buckets_) bucket.clear();
+        last_ = 0;
+        size_ = 0;
+        filled_ = 0;
+    }
+    bool empty() const { return size_ == 0; }
+    void push(const Candidate& c) {
+        if (size_ == 0) last_ = 0;  // a new chart's seed starts again from distance 0
+        const size_t bucket = bucket_of(key(c.distance));
+        buckets_[bucket].push_back(c);
+        if (bucket > 0) filled_ |= uint64_t(1) << (bucket - 1);
+        ++size_;
+    }
+    Candidate pop() {
+        if (buckets_[0].empty()) {
+            // The lowest non-empty bucket holds the next distance: it becomes the last, and
+            // the bucket's candidates fall into lower buckets relative to it.
+            const size_t i = 1 + __builtin_ctzll(filled_);
+            uint64_t lowest = key(buckets_[i][0].distance);
+            for (const Candidate& c : buckets_[i]) lowest = std::min(lowest, key(c.distance));
+            last_ = lowest;
+            for (const Candidate& c : buckets_[i]) {
+                const size_t bucket = bucket_of(key(c.distance));
+                buckets_[bucket].push_back(c);
+                if (bucket > 0) filled_ |= uint64_t(1) << (bucket - 1);
+            }
+            buckets_[i].clear();
+            filled_ &= ~(uint64_t(1) << (i - 1));
+        }
+        // Bucket 0 holds the candidates at exactly the last distance (usually one).
+        std::vector<Candidate>& ties = buckets_[0];
+        size_t first = 0;
+        for (size_t k = 1; k < ties.size(); ++k) {
+            if (std::make_pair(ties[k].triangle, ties[k].chart) <
+                std::make_pair(ties[first].triangle, ties[first].chart)) {
+                first = k;
+            }
+        }
+        const Candidate taken = ties[first];
+        ties[first] = ties.back();
+        ties.pop_back();
+        --size_;
+        return taken;
+    }
+
+  private:
+    static uint64_t key(double distance) {
+        uint64_t bits;
+        std::memcpy(&bits, &distance, sizeof(bits));
+        return bits;
+    }
+    size_t bucket_of(uint64_t k) const { return k == last_ ? 0 : 64 - __builtin_clzll(k ^ last_); }
+
+    std::vector<Candidate> buckets_[65];
+    uint64_t last_ = 0;
+    size_t size_ = 0;
+    uint64_t filled_ = 0;  // bit i - 1: bucket i (1 .. 64) holds candidates
+};
+
 class Grower {
   public:
     Grower(const AtlasSurface& surface, const Geometry& geometry,
@@ -55,7 +128,7 @@ class Grower {
         const int32_t count = surface_.mesh.triangle_count();
         chart_.assign(count, -1);
         charts_.clear();
-        queue_ = {};
+        queue_.clear();
         for (int32_t seed : seeds) start_chart(seed);
         int32_t next_unassigned = 0;
         for (;;) {
@@ -105,13 +178,6 @@ class Grower {
     struct Chart {
         Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
     };
-    struct Candidate {
-        double distance;
-        int32_t triangle, chart;
-        bool operator<(const Candidate& o) const {  // min-heap on distance, then triangle
-            return distance > o.distance || (distance == o.distance && triangle > o.triangle);
-        }
-    };
 
     void start_chart(int32_t seed) {
         const int32_t c = static_cast<int32_t>(charts_.size());
@@ -137,8 +203,7 @@ class Grower {
 
     void drain() {
         while (!queue_.empty()) {
-            const Candidate next = queue_.top();
-            queue_.pop();
+            const Candidate next = queue_.pop();
             if (chart_[next.triangle] >= 0) continue;
             if (accepts(next.triangle, next.chart))
                 assign(next.triangle, next.chart, next.distance);
@@ -150,7 +215,7 @@ class Grower {
     const double min_cosine_;
     std::vector<int32_t> chart_;
     std::vector<Chart> charts_;
-    std::priority_queue<Candidate> queue_;
+    CandidateQueue queue_;
 };
 
 // Renumbers charts 0.. in order of their first triangle, dropping empty ids.
