@@ -280,7 +280,7 @@ class Occupancy {
     // an occupied cell.
     bool collides(const Profile& p, const std::vector<uint64_t>& bits, int32_t x, int32_t y) const {
         const int32_t shift = x % 64, offset = x / 64;
-        for (int32_t r = 0; r < p.height; ++r) {
+        auto row_collides = [&](int32_t r) {
             const int32_t row = y + r;
             if (row >= rows()) return false;  // above everything placed
             const uint64_t* target = row_ptr(row) + offset;
@@ -292,7 +292,15 @@ class Occupancy {
                 carry = shift ? word >> (64 - shift) : 0;
                 if (low & target[w]) return true;
             }
-            if (carry && (carry & target[p.words])) return true;
+            return carry && (carry & target[p.words]);
+        };
+        // The middle row first: a chart's widest rows are near its middle, and a position in
+        // a full region is rejected there at once (rounded charts barely touch their first
+        // and last rows).
+        const int32_t middle = p.height / 2;
+        if (row_collides(middle)) return true;
+        for (int32_t r = 0; r < p.height && y + r < rows(); ++r) {
+            if (r != middle && row_collides(r)) return true;
         }
         return false;
     }
@@ -334,11 +342,18 @@ class Occupancy {
 #define RAPS_SKYLINE_AVX2 1
 #endif
 
-// The row a chart with resting rows `rest` comes to rest on over the skyline `sky`.
+// The row a chart with resting rows `rest` comes to rest on over the skyline `sky`, or any row
+// at or above `limit` once it is clear the row reaches it: the caller rejects such positions
+// anyway, and most positions of a search are rejected within their first columns.
 inline __attribute__((always_inline)) int32_t resting_row_loop(const int32_t* sky,
-                                                               const int32_t* rest, int32_t width) {
+                                                               const int32_t* rest, int32_t width,
+                                                               int32_t limit) {
+    constexpr int32_t kChunk = 64;
     int32_t y = 0;
-    for (int32_t i = 0; i < width; ++i) y = std::max(y, sky[i] - rest[i]);
+    for (int32_t begin = 0; begin < width && y < limit; begin += kChunk) {
+        const int32_t end = std::min(width, begin + kChunk);
+        for (int32_t i = begin; i < end; ++i) y = std::max(y, sky[i] - rest[i]);
+    }
     return y;
 }
 
@@ -352,20 +367,21 @@ inline __attribute__((always_inline)) int64_t skyline_under_loop(const int32_t* 
 }
 
 struct SkylineKernels {
-    int32_t (*resting_row)(const int32_t* sky, const int32_t* rest, int32_t width);
+    int32_t (*resting_row)(const int32_t* sky, const int32_t* rest, int32_t width, int32_t limit);
     int64_t (*skyline_under)(const int32_t* sky, const int32_t* occupied, int32_t width);
 };
 
-int32_t resting_row_baseline(const int32_t* sky, const int32_t* rest, int32_t width) {
-    return resting_row_loop(sky, rest, width);
+int32_t resting_row_baseline(const int32_t* sky, const int32_t* rest, int32_t width,
+                             int32_t limit) {
+    return resting_row_loop(sky, rest, width, limit);
 }
 int64_t skyline_under_baseline(const int32_t* sky, const int32_t* occupied, int32_t width) {
     return skyline_under_loop(sky, occupied, width);
 }
 #ifdef RAPS_SKYLINE_AVX2
 __attribute__((target("avx2"))) int32_t resting_row_avx2(const int32_t* sky, const int32_t* rest,
-                                                         int32_t width) {
-    return resting_row_loop(sky, rest, width);
+                                                         int32_t width, int32_t limit) {
+    return resting_row_loop(sky, rest, width, limit);
 }
 __attribute__((target("avx2"))) int64_t skyline_under_avx2(const int32_t* sky,
                                                            const int32_t* occupied, int32_t width) {
@@ -392,8 +408,8 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
     Occupancy occupancy(strip);
     const SkylineKernels kernels = skyline_kernels();
     width = height = 0;
-    auto rest_height = [&](const Profile& p, int32_t x) {
-        return kernels.resting_row(skyline.data() + x, p.resting_bottom.data(), p.width);
+    auto rest_height = [&](const Profile& p, int32_t x, int32_t limit) {
+        return kernels.resting_row(skyline.data() + x, p.resting_bottom.data(), p.width, limit);
     };
     auto rest_height_at_least = [&](const Profile& p, int32_t x) {
         int32_t y = 0;
@@ -417,6 +433,16 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         const int64_t top = static_cast<int64_t>(rest_height_at_least(p, x)) + p.height;
         return (count_waste ? top * p.width : top) * (int64_t(strip) + 1) + x;
     };
+    // The lowest resting row at x whose score, by the same bound, is no better than `score`:
+    // the full rest height may stop once it gets there.
+    auto row_limit = [&](const Profile& p, int32_t x, int64_t score) -> int32_t {
+        if (score == std::numeric_limits<int64_t>::max())
+            return std::numeric_limits<int32_t>::max();
+        const int64_t per_row = (int64_t(strip) + 1) * (count_waste ? p.width : 1);
+        const int64_t top = (score - x + per_row - 1) / per_row;  // ceil; score > x here
+        return static_cast<int32_t>(
+            std::clamp<int64_t>(top - p.height, 0, std::numeric_limits<int32_t>::max()));
+    };
     for (size_t c : order) {
         int64_t best_score = std::numeric_limits<int64_t>::max();
         int32_t best_x = -1, best_y = 0;
@@ -427,7 +453,9 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             const int32_t last = strip - p.width, step = std::max(1, p.width / 8);
             auto consider = [&](int32_t x) {
                 if (score_at_least(p, x) >= best_score) return;
-                const int32_t y = rest_height(p, x);
+                const int32_t limit = row_limit(p, x, best_score);
+                const int32_t y = rest_height(p, x, limit);
+                if (y >= limit) return;
                 const int64_t score = score_of(p, x, y);
                 if (score < best_score) {
                     best_score = score;
@@ -440,7 +468,10 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             int64_t coarse_score = std::numeric_limits<int64_t>::max();
             for (int32_t x = 0; x <= last; x += step) {
                 if (score_at_least(p, x) >= coarse_score) continue;
-                const int64_t score = score_of(p, x, rest_height(p, x));
+                const int32_t limit = row_limit(p, x, coarse_score);
+                const int32_t y = rest_height(p, x, limit);
+                if (y >= limit) continue;
+                const int64_t score = score_of(p, x, y);
                 if (score < coarse_score) {
                     coarse_score = score;
                     coarse_best = x;
