@@ -5,6 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include "core/error.h"
+
 namespace raps {
 namespace {
 
@@ -400,10 +402,12 @@ SkylineKernels skyline_kernels() {
 // Places the charts (in `order`) into a strip `strip` texels wide: each lands, in its best
 // quarter turn, as low as the skyline lets it, then as far left. x is searched with a step of
 // an eighth of the chart's width and refined around the best step, which keeps the search
-// linear in the strip width. Returns false if a chart is wider than the strip in every turn.
+// linear in the strip width. Returns false if a chart is wider than the strip in every turn,
+// or as soon as the layout grows past `max_side` texels on either side.
 bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                int32_t strip, bool count_waste, bool fill_holes, std::vector<Eigen::Vector2i>& at,
-                std::vector<int>& quarter, int32_t& width, int32_t& height) {
+                int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
+                std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
+                int32_t& height) {
     std::vector<int32_t> skyline(static_cast<size_t>(strip), 0);
     Occupancy occupancy(strip);
     const SkylineKernels kernels = skyline_kernels();
@@ -529,9 +533,13 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         quarter[c] = best_q;
         width = std::max(width, best_x + p.width);
         height = std::max(height, best_y + p.height);
+        if (std::max(width, height) > max_side) return false;
     }
     return true;
 }
+
+// Atlases of up to this many charts get the thorough search of layouts (pack_charts).
+constexpr size_t kFewCharts = 100;
 
 }  // namespace
 
@@ -583,12 +591,26 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             total_area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
         }
     }
-    // Largest charts first (by the longer side of their box), ties by index.
-    std::vector<size_t> order(count);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return std::max(extent[a].x(), extent[a].y()) > std::max(extent[b].x(), extent[b].y());
-    });
+    // Three orders to place the charts in, largest first by the longer side of their box, by
+    // its area and by its shorter side (ties by index): which packs best varies from mesh to
+    // mesh (measured: lion, suzanne and teapot each best in a different one).
+    auto largest_first = [&](auto size_of) {
+        std::vector<size_t> order(count);
+        std::iota(order.begin(), order.end(), 0);
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return size_of(a) > size_of(b); });
+        return order;
+    };
+    std::vector<std::vector<size_t>> orders = {
+        largest_first([&](size_t c) { return std::max(extent[c].x(), extent[c].y()); }),
+        largest_first([&](size_t c) { return extent[c].x() * extent[c].y(); }),
+        largest_first([&](size_t c) { return std::min(extent[c].x(), extent[c].y()); })};
+    // Charts of one size (thousands of equal quads) come in the same order every way.
+    for (size_t k = orders.size(); k-- > 1;) {
+        if (std::find(orders.begin(), orders.begin() + k, orders[k]) != orders.begin() + k)
+            orders.erase(orders.begin() + k);
+    }
+    const std::vector<size_t>& order = orders[0];
 
     // Pack at a trial density, then raise it by the room left and pack again, so the final
     // layout is packed at (nearly) its final texel size and the padding is not inflated.
@@ -597,8 +619,6 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     double longest = 0;
     for (const Eigen::Vector2d& e : extent) longest = std::max({longest, e.x(), e.y()});
     scale = std::min(scale, (resolution - 2.0 * padding - 2.0) / std::max(longest, 1e-300));
-    std::vector<Eigen::Vector2i> placed(count);
-    std::vector<int> turn(count);
     const int32_t limit = static_cast<int32_t>(resolution);
     // Charts, strip widths and layouts are independent: each runs on its own thread and writes
     // only its own slot, so the result does not depend on the thread count.
@@ -631,77 +651,100 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         std::vector<int> quarter;
         int32_t width = 0, height = 0;
     };
-    struct Layout {
-        double area;
-        int32_t strip;
-        bool waste;
-        Packed skyline;  // kept: the fallback of a finalist whose holes overflow
-    };
-    // Every strip width under both scoring rules on the skyline alone, best first.
-    auto skyline_layouts = [&](int32_t widest) {
+    // Every order, strip width and scoring rule, each packed with holes filled, or on the
+    // skyline alone where filling holes overflows the atlas; the smallest rectangle wins (ties:
+    // the earlier trial). `density_strip` is among the widths: its skyline packing is the one
+    // the density was fitted to, so some trial always fits.
+    auto best_layout = [&](int32_t widest, int32_t density_strip) {
         double area_cells = 0;
         for (size_t c = 0; c < count; ++c) {
             area_cells +=
                 static_cast<double>(prepared[c].profiles[0].width) * prepared[c].profiles[0].height;
         }
-        std::vector<int32_t> widths;
+        std::vector<int32_t> widths = {density_strip};
         const int32_t square = static_cast<int32_t>(std::sqrt(area_cells));
-        // Twelve strip widths, geometrically spaced from 0.7 to 1.8 times the square's side.
-        for (int k = 0; k < 12; ++k) {
+        // Strip widths geometrically spaced from 0.83 to 1.8 times the square's side (k = 2 ..
+        // 11 of a series from 0.7). The density is fitted to the square strip, so narrower
+        // strips grow too tall: 0.7 and 0.76 fitted none of the 16 shared meshes.
+        for (int k = 2; k < 12 && count > 1; ++k) {
             const double f = 0.7 * std::pow(1.8 / 0.7, k / 11.0);
             widths.push_back(std::clamp(static_cast<int32_t>(square * f), widest, limit));
         }
-        if (count == 1) {
-            widths = {std::max(prepared[0].profiles[0].width, prepared[0].profiles[0].height)};
-        }
         std::sort(widths.begin(), widths.end());
         widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
-        const size_t trials = 2 * widths.size();
-        std::vector<Layout> tried(trials);
+        // Up to kFewCharts charts, where each chart's place matters and a packing is cheap,
+        // every order is tried and every trial fills holes (on the skyline alone where that
+        // overflows the atlas). With more, one order on the skyline alone, and holes filled in
+        // the two best layouts: for 2,000 separate triangles the rest took three times as long
+        // and found no better layout.
+        const bool few = count <= kFewCharts;
+        const size_t per_order = 2 * widths.size();
+        const size_t trials = (few ? orders.size() : 1) * per_order;
+        std::vector<Packed> packed(trials);
         std::vector<char> fits(trials, 0);
+        auto pack_trial = [&](size_t trial, bool holes, Packed& p) {
+            p.at.resize(count);
+            p.quarter.resize(count);
+            return pack_strip(prepared, orders[trial / per_order], widths[trial % per_order / 2],
+                              trial % 2 == 1, holes, limit, p.at, p.quarter, p.width, p.height);
+        };
         parallel_for_each(pool, trials, [&](size_t trial) {
-            Layout& layout = tried[trial];
-            layout.strip = widths[trial / 2];
-            layout.waste = trial % 2 == 1;
-            Packed& packed = layout.skyline;
-            packed.at.resize(count);
-            packed.quarter.resize(count);
-            fits[trial] = pack_strip(prepared, order, layout.strip, layout.waste, false, packed.at,
-                                     packed.quarter, packed.width, packed.height) &&
-                          std::max(packed.width, packed.height) <= limit;
-            layout.area = static_cast<double>(packed.width) * packed.height;
+            fits[trial] = (few && pack_trial(trial, true, packed[trial])) ||
+                          pack_trial(trial, false, packed[trial]);
         });
-        std::vector<Layout> layouts;
-        for (size_t trial = 0; trial < trials; ++trial) {
-            if (fits[trial]) layouts.push_back(std::move(tried[trial]));
+        auto area_of = [&](size_t trial) {
+            return static_cast<double>(packed[trial].width) * packed[trial].height;
+        };
+        if (!few) {
+            std::vector<size_t> ranked;
+            for (size_t trial = 0; trial < trials; ++trial) {
+                if (fits[trial]) ranked.push_back(trial);
+            }
+            std::stable_sort(ranked.begin(), ranked.end(),
+                             [&](size_t a, size_t b) { return area_of(a) < area_of(b); });
+            ranked.resize(std::min<size_t>(ranked.size(), 2));
+            std::vector<Packed> with_holes(ranked.size());
+            std::vector<char> holes_fit(ranked.size(), 0);
+            parallel_for_each(pool, ranked.size(), [&](size_t k) {
+                holes_fit[k] = pack_trial(ranked[k], true, with_holes[k]);
+            });
+            for (size_t k = 0; k < ranked.size(); ++k) {
+                if (holes_fit[k]) packed[ranked[k]] = std::move(with_holes[k]);
+            }
         }
-        std::sort(layouts.begin(), layouts.end(), [](const Layout& x, const Layout& y) {
-            return x.area < y.area || (x.area == y.area && x.strip < y.strip);
-        });
-        return layouts;
+        size_t best = trials;
+        for (size_t trial = 0; trial < trials; ++trial) {
+            if (fits[trial] && (best == trials || area_of(trial) < area_of(best))) best = trial;
+        }
+        if (best == trials) throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
+        return std::move(packed[best]);
     };
 
+    // The strip the density is fitted in: as wide as the square of the charts' box areas (a
+    // single chart: its longer side).
+    auto density_strip = [&](int32_t widest) {
+        if (count == 1)
+            return std::max(prepared[0].profiles[0].width, prepared[0].profiles[0].height);
+        double area_cells = 0;
+        for (size_t c = 0; c < count; ++c) {
+            area_cells +=
+                static_cast<double>(prepared[c].profiles[0].width) * prepared[c].profiles[0].height;
+        }
+        return std::clamp(static_cast<int32_t>(std::sqrt(area_cells)), widest, limit);
+    };
     // The density: the largest for which a skyline packing into a strip of the square's width
     // fits, found in a few steps (each scales by the room the last layout left). Only then are
-    // all strip widths and rules tried, at that density.
+    // all orders, strip widths and rules tried, at that density.
     double fitted_scale = -1;
     int32_t widest = 1;
     for (int attempt = 0; attempt < 24; ++attempt) {
         rasterise_all(scale, widest);
-        double area_cells = 0;
-        for (size_t c = 0; c < count; ++c) {
-            area_cells +=
-                static_cast<double>(prepared[c].profiles[0].width) * prepared[c].profiles[0].height;
-        }
-        const int32_t strip =
-            count == 1 ? std::max(prepared[0].profiles[0].width, prepared[0].profiles[0].height)
-                       : std::clamp(static_cast<int32_t>(std::sqrt(area_cells)), widest, limit);
+        const int32_t strip = density_strip(widest);
         std::vector<Eigen::Vector2i> at(count);
         std::vector<int> quarter(count);
         int32_t width = 0, height = 0;
         const bool fits =
-            pack_strip(prepared, order, strip, false, false, at, quarter, width, height) &&
-            std::max(width, height) <= limit;
+            pack_strip(prepared, order, strip, false, false, limit, at, quarter, width, height);
         if (!fits) {
             if (fitted_scale > 0) break;
             scale *= 0.85;  // nothing fitted yet: lower the density
@@ -714,30 +757,9 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     }
     if (fitted_scale != scale) rasterise_all(fitted_scale, widest);
     scale = fitted_scale;
-    const std::vector<Layout> fitted = skyline_layouts(widest);
-    // Holes under overhangs, for the two best layouts only (it is the slow part); the
-    // skyline-only layout of the same strip, kept from the trials, is the fallback when filling
-    // holes overflows.
-    const size_t finalists = std::min<size_t>(fitted.size(), 2);
-    std::vector<Packed> with_holes(finalists);
-    parallel_for_each(pool, finalists, [&](size_t k) {
-        Packed& packed = with_holes[k];
-        packed.at.resize(count);
-        packed.quarter.resize(count);
-        pack_strip(prepared, order, fitted[k].strip, fitted[k].waste, true, packed.at,
-                   packed.quarter, packed.width, packed.height);
-    });
-    double best_area = std::numeric_limits<double>::max();
-    for (size_t k = 0; k < finalists; ++k) {
-        const bool holes_fit = std::max(with_holes[k].width, with_holes[k].height) <= limit;
-        const Packed& candidate = holes_fit ? with_holes[k] : fitted[k].skyline;
-        const double area = static_cast<double>(candidate.width) * candidate.height;
-        if (std::max(candidate.width, candidate.height) <= limit && area < best_area) {
-            best_area = area;
-            placed = candidate.at;
-            turn = candidate.quarter;
-        }
-    }
+    const Packed best = best_layout(widest, density_strip(widest));
+    const std::vector<Eigen::Vector2i>& placed = best.at;
+    const std::vector<int>& turn = best.quarter;
 
     // Positions in the layout, in cells (continuous).
     Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
