@@ -317,9 +317,15 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     adjacency.forward_slot.resize(halfedge_count);
     adjacency.backward_slot.resize(halfedge_count);
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        const int32_t g = halfedges.twin[h];
+        if (g >= 0 && g < h) continue;  // set with its twin, which runs the other way
         const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
         adjacency.forward_slot[h] = slot(a, b);
         adjacency.backward_slot[h] = slot(b, a);
+        if (g >= 0) {
+            adjacency.forward_slot[g] = adjacency.backward_slot[h];
+            adjacency.backward_slot[g] = adjacency.forward_slot[h];
+        }
     }
     return adjacency;
 }
