@@ -469,6 +469,53 @@ static void hard_edges_become_seams(void** state) {
     raps_mesh_destroy(m);
 }
 
+static raps_stats atlas_stats(const test_mesh* mesh) {
+    raps_mesh* m = to_raps_mesh(mesh);
+    raps_settings* s = NULL;
+    assert_status(raps_settings_create(&s), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS), RAPS_OK);
+    raps_result* r = parameterize_ok(m, s);
+    const raps_stats stats = stats_of(r);
+    raps_result_destroy(r);
+    raps_settings_destroy(s);
+    raps_mesh_destroy(m);
+    return stats;
+}
+
+static double spherical_cap(double x, double y) { /* radius 2 sphere over the unit disk */
+    return sqrt(4.0 - x * x - y * y) - sqrt(3.0);
+}
+
+/* The free-boundary map keeps a developable chart isometric and flattens a curved one with
+ * little distortion, so neither is cut: a grid rolled into a half cylinder (every quad planar,
+ * every interior angle sum 2 pi) comes out as one chart with no stretch, and a spherical cap of
+ * 60 degrees as one chart with L2 1.0005 and Linf 1.041 (measured). With the sign of the
+ * flattening's curvature term flipped, the cap came out as 2 charts with Linf 1.20. */
+static void developable_and_curved_patches_stay_one_chart(void** state) {
+    (void)state;
+    test_mesh sheet = make_grid(24, 12, 1.0, 1.0);
+    for (size_t v = 0; v < sheet.vertex_count; ++v) {
+        double* p = sheet.positions + 3 * v;
+        const double angle = M_PI * p[0]; /* x in [0, 1] around half a circle of radius 1 */
+        p[0] = cos(angle);
+        p[2] = sin(angle);
+    }
+    const raps_stats rolled = atlas_stats(&sheet);
+    assert_int_equal(rolled.chart_count, 1);
+    assert_int_equal(rolled.flipped_triangles, 0);
+    assert_true(rolled.stretch_l2 < 1.0 + 1e-6);
+    assert_true(rolled.stretch_linf < 1.0 + 1e-5);
+    test_mesh_free(&sheet);
+
+    test_mesh cap = make_lifted_disk(12, 6, spherical_cap);
+    const raps_stats curved = atlas_stats(&cap);
+    assert_int_equal(curved.chart_count, 1);
+    assert_int_equal(curved.flipped_triangles, 0);
+    assert_true(curved.stretch_l2 < 1.001);
+    assert_true(curved.stretch_linf < 1.06);
+    test_mesh_free(&cap);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_shared_mesh_gets_a_valid_atlas),
@@ -478,6 +525,7 @@ int main(void) {
         cmocka_unit_test(atlas_progress_and_cancellation),
         cmocka_unit_test(progress_calls_never_overlap),
         cmocka_unit_test(hard_edges_become_seams),
+        cmocka_unit_test(developable_and_curved_patches_stay_one_chart),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
