@@ -368,9 +368,28 @@ inline __attribute__((always_inline)) int64_t skyline_under_loop(const int32_t* 
     return under;
 }
 
+// The probe columns' lower bound of the resting row (pack_strip's rest_height_at_least) at
+// `count` consecutive positions: out[k] for the chart's left column at k. One pass per probe
+// over the skyline, where position by position the probes were most of the packing of
+// thousands of small charts.
+inline __attribute__((always_inline)) void probe_bounds_loop(const int32_t* sky,
+                                                             const int32_t* rest,
+                                                             const int32_t* probes,
+                                                             int32_t probe_count, int32_t count,
+                                                             int32_t* out) {
+    for (int32_t k = 0; k < count; ++k) out[k] = 0;
+    for (int32_t j = 0; j < probe_count; ++j) {
+        const int32_t* column = sky + probes[j];
+        const int32_t below = rest[probes[j]];
+        for (int32_t k = 0; k < count; ++k) out[k] = std::max(out[k], column[k] - below);
+    }
+}
+
 struct SkylineKernels {
     int32_t (*resting_row)(const int32_t* sky, const int32_t* rest, int32_t width, int32_t limit);
     int64_t (*skyline_under)(const int32_t* sky, const int32_t* occupied, int32_t width);
+    void (*probe_bounds)(const int32_t* sky, const int32_t* rest, const int32_t* probes,
+                         int32_t probe_count, int32_t count, int32_t* out);
 };
 
 int32_t resting_row_baseline(const int32_t* sky, const int32_t* rest, int32_t width,
@@ -379,6 +398,10 @@ int32_t resting_row_baseline(const int32_t* sky, const int32_t* rest, int32_t wi
 }
 int64_t skyline_under_baseline(const int32_t* sky, const int32_t* occupied, int32_t width) {
     return skyline_under_loop(sky, occupied, width);
+}
+void probe_bounds_baseline(const int32_t* sky, const int32_t* rest, const int32_t* probes,
+                           int32_t probe_count, int32_t count, int32_t* out) {
+    probe_bounds_loop(sky, rest, probes, probe_count, count, out);
 }
 #ifdef RAPS_SKYLINE_AVX2
 __attribute__((target("avx2"))) int32_t resting_row_avx2(const int32_t* sky, const int32_t* rest,
@@ -389,14 +412,19 @@ __attribute__((target("avx2"))) int64_t skyline_under_avx2(const int32_t* sky,
                                                            const int32_t* occupied, int32_t width) {
     return skyline_under_loop(sky, occupied, width);
 }
+__attribute__((target("avx2"))) void probe_bounds_avx2(const int32_t* sky, const int32_t* rest,
+                                                       const int32_t* probes, int32_t probe_count,
+                                                       int32_t count, int32_t* out) {
+    probe_bounds_loop(sky, rest, probes, probe_count, count, out);
+}
 #endif
 
 SkylineKernels skyline_kernels() {
 #ifdef RAPS_SKYLINE_AVX2
     static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return {resting_row_avx2, skyline_under_avx2};
+    if (avx2) return {resting_row_avx2, skyline_under_avx2, probe_bounds_avx2};
 #endif
-    return {resting_row_baseline, skyline_under_baseline};
+    return {resting_row_baseline, skyline_under_baseline, probe_bounds_baseline};
 }
 
 // Places the charts (in `order`) into a strip `strip` texels wide: each lands, in its best
@@ -420,6 +448,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         for (int32_t i : p.probe_columns) y = std::max(y, skyline[x + i] - p.resting_bottom[i]);
         return y;
     };
+    std::vector<int32_t> bounds(static_cast<size_t>(strip));  // of every position, narrow charts
     // Lowest top first; or, with count_waste, the texels left empty under the chart plus the
     // area up to its top, which favours placements that fit the skyline's dips.
     auto score_of = [&](const Profile& p, int32_t x, int32_t y) -> int64_t {
@@ -433,9 +462,12 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
     // A lower bound of score_of(p, x, rest_height(p, x)): both rules grow with y, and the
     // waste is never negative. Positions whose bound does not beat the best so far are
     // skipped without the full rest height; the layout is the same.
-    auto score_at_least = [&](const Profile& p, int32_t x) -> int64_t {
-        const int64_t top = static_cast<int64_t>(rest_height_at_least(p, x)) + p.height;
+    auto score_from_bound = [&](const Profile& p, int32_t x, int32_t bound) -> int64_t {
+        const int64_t top = static_cast<int64_t>(bound) + p.height;
         return (count_waste ? top * p.width : top) * (int64_t(strip) + 1) + x;
+    };
+    auto score_at_least = [&](const Profile& p, int32_t x) -> int64_t {
+        return score_from_bound(p, x, rest_height_at_least(p, x));
     };
     // The lowest resting row at x whose score, by the same bound, is no better than `score`:
     // the full rest height may stop once it gets there.
@@ -470,8 +502,20 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             };
             int32_t coarse_best = 0;
             int64_t coarse_score = std::numeric_limits<int64_t>::max();
+            // A chart narrower than 16 columns tries every position: their bounds in one pass.
+            if (step == 1) {
+                kernels.probe_bounds(
+                    skyline.data(), p.resting_bottom.data(), p.probe_columns.data(),
+                    static_cast<int32_t>(p.probe_columns.size()), last + 1, bounds.data());
+            }
+            // row_limit falls with x, so a bound at or above its value at x = 0 rules a
+            // position out with one comparison.
+            int32_t first_limit = row_limit(p, 0, coarse_score);
             for (int32_t x = 0; x <= last; x += step) {
-                if (score_at_least(p, x) >= coarse_score) continue;
+                if (step == 1 && bounds[x] >= first_limit) continue;
+                const int64_t at_least =
+                    step == 1 ? score_from_bound(p, x, bounds[x]) : score_at_least(p, x);
+                if (at_least >= coarse_score) continue;
                 const int32_t limit = row_limit(p, x, coarse_score);
                 const int32_t y = rest_height(p, x, limit);
                 if (y >= limit) continue;
@@ -479,6 +523,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
                 if (score < coarse_score) {
                     coarse_score = score;
                     coarse_best = x;
+                    first_limit = row_limit(p, 0, coarse_score);
                 }
             }
             for (int32_t x = std::max(0, coarse_best - step + 1);
