@@ -369,8 +369,8 @@ inline __attribute__((always_inline)) int64_t skyline_under_loop(const int32_t* 
     return under;
 }
 
-// The probe columns' lower bound of the resting row (pack_strip's rest_height_at_least) at
-// `count` consecutive positions: out[k] for the chart's left column at k. One pass per probe
+// The probe columns' lower bound of the resting row at `count` consecutive positions: out[k]
+// for the chart's left column at k. One pass per probe
 // over the skyline, where position by position the probes were most of the packing of
 // thousands of small charts.
 inline __attribute__((always_inline)) void probe_bounds_loop(const int32_t* sky,
@@ -445,8 +445,9 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         return kernels.resting_row(skyline.data() + x, p.resting_bottom.data(), p.width, limit);
     };
     auto rest_height_at_least = [&](const Profile& p, int32_t x) {
-        int32_t y = 0;
-        for (int32_t i : p.probe_columns) y = std::max(y, skyline[x + i] - p.resting_bottom[i]);
+        int32_t y;
+        probe_bounds_loop(skyline.data() + x, p.resting_bottom.data(), p.probe_columns.data(),
+                          static_cast<int32_t>(p.probe_columns.size()), 1, &y);
         return y;
     };
     std::vector<int32_t> bounds(static_cast<size_t>(strip));  // of every position, narrow charts
@@ -701,14 +702,18 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     // skyline alone where filling holes overflows the atlas; the smallest rectangle wins (ties:
     // the earlier trial). `density_strip` is among the widths: its skyline packing is the one
     // the density was fitted to, so some trial always fits.
-    auto best_layout = [&](int32_t widest, int32_t density_strip) {
+    // The side of the square as large as the charts' padded boxes together, in cells.
+    auto square_side = [&] {
         double area_cells = 0;
         for (size_t c = 0; c < count; ++c) {
             area_cells +=
                 static_cast<double>(prepared[c].profiles[0].width) * prepared[c].profiles[0].height;
         }
+        return static_cast<int32_t>(std::sqrt(area_cells));
+    };
+    auto best_layout = [&](int32_t widest, int32_t density_strip) {
         std::vector<int32_t> widths = {density_strip};
-        const int32_t square = static_cast<int32_t>(std::sqrt(area_cells));
+        const int32_t square = square_side();
         // Strip widths geometrically spaced from 0.83 to 1.8 times the square's side (k = 2 ..
         // 11 of a series from 0.7). The density is fitted to the square strip, so narrower
         // strips grow too tall: 0.7 and 0.76 fitted none of the 16 shared meshes.
@@ -771,12 +776,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     auto density_strip = [&](int32_t widest) {
         if (count == 1)
             return std::max(prepared[0].profiles[0].width, prepared[0].profiles[0].height);
-        double area_cells = 0;
-        for (size_t c = 0; c < count; ++c) {
-            area_cells +=
-                static_cast<double>(prepared[c].profiles[0].width) * prepared[c].profiles[0].height;
-        }
-        return std::clamp(static_cast<int32_t>(std::sqrt(area_cells)), widest, limit);
+        return std::clamp(square_side(), widest, limit);
     };
     // The density: the largest for which a skyline packing into a strip of the square's width
     // fits, found in a few steps (each scales by the room the last layout left). Only then are

@@ -31,10 +31,10 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
                                  const std::vector<int32_t>& vertex_order) {
     InteriorPattern interior;
     const int32_t vertex_count = static_cast<int32_t>(on_boundary.size());
-    interior.unknown_of_vertex.assign(vertex_count, -1);
+    std::vector<int32_t> unknown_of_vertex(vertex_count, -1);
     for (int32_t v = 0; v < vertex_count; ++v) {
         if (!on_boundary[v]) {
-            interior.unknown_of_vertex[v] = static_cast<int32_t>(interior.vertex_of_unknown.size());
+            unknown_of_vertex[v] = static_cast<int32_t>(interior.vertex_of_unknown.size());
             interior.vertex_of_unknown.push_back(v);
         }
     }
@@ -49,7 +49,7 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
         // Neighbours are sorted by vertex and unknowns are numbered in vertex order, so the
         // columns come out sorted once the diagonal is slotted in.
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
-            const int32_t column = interior.unknown_of_vertex[adjacency.neighbors[s]];
+            const int32_t column = unknown_of_vertex[adjacency.neighbors[s]];
             if (column < 0) continue;
             if (!diagonal_placed && column > row) {
                 interior.diagonal_of_unknown[row] = static_cast<int32_t>(pattern.columns.size());
@@ -67,8 +67,7 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
     }
     interior.order.reserve(vertex_order.size());
     for (int32_t v : vertex_order) {
-        if (interior.unknown_of_vertex[v] >= 0)
-            interior.order.push_back(interior.unknown_of_vertex[v]);
+        if (unknown_of_vertex[v] >= 0) interior.order.push_back(unknown_of_vertex[v]);
     }
     return interior;
 }

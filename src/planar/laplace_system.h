@@ -31,7 +31,6 @@ std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
 struct InteriorPattern {
     SparsePattern pattern;
     std::vector<int32_t> vertex_of_unknown;
-    std::vector<int32_t> unknown_of_vertex;    // -1 on the boundary
     std::vector<int32_t> value_of_slot;        // per slot of an unknown's row: its entry, or -1
     std::vector<int32_t> diagonal_of_unknown;  // its diagonal entry
     std::vector<int32_t> order;                // order[k]: the unknown eliminated k-th
