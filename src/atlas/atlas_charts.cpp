@@ -90,17 +90,22 @@ double chart_area(const ChartDisk& disk) {
     return area;
 }
 
-// One chart from its triangles: the disk and its map, or false when it must be split.
+// One chart from its triangles: the disk and its adapted map, or false when it must be split.
+// unadapted_l2: the map's L2 stretch before its adaptive step.
 bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
-               AtlasChart& chart) {
+               AtlasChart& chart, double& unadapted_l2) {
     bool good = make_chart_disk(surface, triangles, seam, chart.disk);
+    if (!good && triangles.size() > 1) return false;
+    LaplaceSystem system = chart_laplace_system(chart.disk);
     if (good) {
-        chart.map = free_boundary_chart_map(chart.disk);
+        chart.map = free_boundary_chart_map(chart.disk, system);
         good = chart.map.injective && chart.map.stretch_linf <= limits.max_stretch_linf;
     }
-    if (good || triangles.size() > 1) return good;
-    if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings);
+    if (!good && triangles.size() > 1) return false;
+    if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system);
+    unadapted_l2 = chart.map.stretch_l2;
+    adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system);
     return true;
 }
 
@@ -117,6 +122,9 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     for (size_t t = 0; t < chart_of.size(); ++t)
         pending[chart_of[t]].push_back(static_cast<int32_t>(t));
     std::vector<AtlasChart> charts;
+    // Per chart, its L2 stretch before the adaptive step: the budget below splits charts by
+    // it, while merging judges by the adapted maps.
+    std::vector<double> unadapted_l2;
     const double total_triangles = static_cast<double>(chart_of.size());
     double done_triangles = 0;
     // Rounds: every pending chart in parallel; the ones that fail are split into the next round.
@@ -125,10 +133,12 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         while (!round.empty()) {
             std::vector<AtlasChart> built(round.size());
             std::vector<char> good(round.size(), 0);
+            std::vector<double> built_l2(round.size(), 0.0);
             std::vector<size_t> cost(round.size());
             for (size_t i = 0; i < round.size(); ++i) cost[i] = round[i].size();
             parallel_largest_first(pool, cost, [&](size_t i) {
-                good[i] = try_chart(surface, round[i], seam, settings, limits, built[i]);
+                good[i] =
+                    try_chart(surface, round[i], seam, settings, limits, built[i], built_l2[i]);
                 progress.report(Phase::kInitialMap,
                                 std::min(1.0, done_triangles / total_triangles));
             });
@@ -137,6 +147,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 if (good[i]) {
                     done_triangles += static_cast<double>(round[i].size());
                     charts.push_back(std::move(built[i]));
+                    unadapted_l2.push_back(built_l2[i]);
                 } else {
                     auto halves = split_chart(surface, round[i], seam);
                     next.push_back(std::move(halves.first));
@@ -154,15 +165,14 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     for (size_t c = 0; c < charts.size(); ++c) {
         area[c] = chart_area(charts[c].disk);
         total_area += area[c];
-        weighted += area[c] * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
+        weighted += area[c] * unadapted_l2[c] * unadapted_l2[c];
     }
     const double target = limits.target_stretch_l2 * limits.target_stretch_l2 * total_area;
     while (weighted > target) {
         size_t worst = charts.size();
         double worst_excess = 0;
         for (size_t c = 0; c < charts.size(); ++c) {
-            const double excess =
-                area[c] * (charts[c].map.stretch_l2 * charts[c].map.stretch_l2 - 1.0);
+            const double excess = area[c] * (unadapted_l2[c] * unadapted_l2[c] - 1.0);
             if (excess > worst_excess && charts[c].disk.surface_triangle.size() > 1) {
                 worst = c;
                 worst_excess = excess;
@@ -170,51 +180,45 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         }
         if (worst == charts.size()) break;
         const std::vector<int32_t> triangles = charts[worst].disk.surface_triangle;
-        weighted -= area[worst] * charts[worst].map.stretch_l2 * charts[worst].map.stretch_l2;
+        weighted -= area[worst] * unadapted_l2[worst] * unadapted_l2[worst];
         charts.erase(charts.begin() + static_cast<std::ptrdiff_t>(worst));
         area.erase(area.begin() + static_cast<std::ptrdiff_t>(worst));
+        unadapted_l2.erase(unadapted_l2.begin() + static_cast<std::ptrdiff_t>(worst));
         const size_t before = charts.size();
         auto halves = split_chart(surface, triangles, seam);
         process({std::move(halves.first), std::move(halves.second)});
         for (size_t c = before; c < charts.size(); ++c) {
             area.push_back(chart_area(charts[c].disk));
-            weighted += area.back() * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
+            weighted += area.back() * unadapted_l2[c] * unadapted_l2[c];
         }
     }
-    // Every chart's adaptive step before merging, so the budget counts what the charts will
-    // really stretch (the free-boundary figures above overstate it). Only the acceptance of
-    // merges reads it, not the union maps, so these steps run in the same parallel batch as the
-    // first union maps instead of a batch of their own (fandisk: one 3,697-triangle chart's step
-    // alone on the threads was 2.3 of the atlas's 33 ms).
-    // Per chart, beside it: its 3D area, how well its adapted map fills its bounding box (for
-    // the fill rule below: measured once per chart, on the threads, not per candidate pair in
-    // the serial acceptance) and its id.
+    // Merging judges the charts by their adapted maps: the budget counts what they will really
+    // stretch (the free-boundary figures above overstate it).
+    weighted = 0;
+    for (size_t c = 0; c < charts.size(); ++c) {
+        weighted += area[c] * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
+    }
+    // Merging: splits and the segmentation's limits leave more charts than needed. Adjacent
+    // charts whose union is a valid chart are merged while the atlas's L2 stays within its
+    // target, smallest charts first (they cost the most in packing and seams). Candidate pairs
+    // are tried in parallel batches of disjoint pairs and accepted in a fixed order, so the
+    // result does not depend on the thread count.
+    // A union that failed stays failed while both charts live (their maps do not change), and
+    // one over the L2 budget by `change` stays over it until the budget has that much room: the
+    // later passes skip them instead of mapping them again (lion: the last pass, which merged
+    // nothing, was a quarter of the atlas's time). Charts keep ids across passes for this.
+    // Per chart, beside it: its 3D area, how well it fills its bounding box (for the fill rule
+    // below: measured once per chart, on the threads, not per candidate pair in the serial
+    // acceptance) and its id.
     struct Facts {
         double area, fill;
         int64_t id;
     };
     std::vector<Facts> facts(charts.size());
-    std::vector<size_t> unadapted(charts.size());
-    for (size_t c = 0; c < charts.size(); ++c) {
-        facts[c] = {area[c], 0.0, static_cast<int64_t>(c)};
-        unadapted[c] = c;
-    }
-    auto adapt = [&](size_t c) {
-        adapt_chart_map(charts[c].disk, settings, limits.max_stretch_linf, charts[c].map);
-        facts[c].fill = bounding_box_fill(charts[c].map.uv, charts[c].disk.mesh.triangles);
-        progress.report(Phase::kInitialMap, 1.0);
-    };
-    // The unadapted charts' costs, appended to a batch's.
-    auto add_adapt_costs = [&](std::vector<size_t>& cost) {
-        for (size_t c : unadapted) cost.push_back(charts[c].disk.surface_triangle.size());
-    };
-    auto count_adapted = [&] {
-        unadapted.clear();
-        weighted = 0;
-        for (size_t c = 0; c < charts.size(); ++c) {
-            weighted += area[c] * charts[c].map.stretch_l2 * charts[c].map.stretch_l2;
-        }
-    };
+    parallel_for_each(pool, charts.size(), [&](size_t c) {
+        facts[c] = {area[c], bounding_box_fill(charts[c].map.uv, charts[c].disk.mesh.triangles),
+                    static_cast<int64_t>(c)};
+    });
     int64_t next_id = static_cast<int64_t>(charts.size());
     constexpr double kNever = std::numeric_limits<double>::infinity();
     std::map<std::pair<int64_t, int64_t>, double> rejected;  // id pair -> change in L2 budget
@@ -274,11 +278,12 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 const std::vector<int32_t>& more = charts[batch[i].b].disk.surface_triangle;
                 triangles.insert(triangles.end(), more.begin(), more.end());
                 std::sort(triangles.begin(), triangles.end());
-                good[i] = try_chart(surface, triangles, seam, settings, limits, built[i]);
-                // Judge a union by its adapted map: the step lowers stretch most on exactly the
-                // larger, more curved charts that merging makes.
+                // A union is judged by its adapted map: the step lowers stretch most on exactly
+                // the larger, more curved charts that merging makes.
+                double unadapted;
+                good[i] =
+                    try_chart(surface, triangles, seam, settings, limits, built[i], unadapted);
                 if (good[i]) {
-                    adapt_chart_map(built[i].disk, settings, limits.max_stretch_linf, built[i].map);
                     built_fill[i] =
                         bounding_box_fill(built[i].map.uv, built[i].disk.mesh.triangles);
                 }
@@ -289,14 +294,10 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 union_size[i] = charts[batch[i].a].disk.surface_triangle.size() +
                                 charts[batch[i].b].disk.surface_triangle.size();
             }
-            const bool adapting = !unadapted.empty();
-            add_adapt_costs(union_size);
             parallel_largest_first(pool, union_size, [&](size_t i) {
-                if (i >= batch.size()) return adapt(unadapted[i - batch.size()]);
                 if (rejected.count(key(batch[i].a, batch[i].b)) == 0) map_union(i);
                 progress.report(Phase::kInitialMap, 1.0);
             });
-            if (adapting) count_adapted();
             for (size_t i = 0; i < batch.size(); ++i) {
                 const int32_t a = batch[i].a, b = batch[i].b;
                 if (!mapped[i]) {
@@ -350,11 +351,6 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         }
         charts = std::move(kept);
         facts = std::move(kept_facts);
-    }
-    if (!unadapted.empty()) {  // no candidate pair at all
-        std::vector<size_t> cost;
-        add_adapt_costs(cost);
-        parallel_largest_first(pool, cost, [&](size_t k) { adapt(unadapted[k]); });
     }
     std::sort(charts.begin(), charts.end(), [](const AtlasChart& x, const AtlasChart& y) {
         return *std::min_element(x.disk.surface_triangle.begin(), x.disk.surface_triangle.end()) <

@@ -43,18 +43,10 @@ bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv) {
            !boundary_self_intersects(uv, disk.boundary_loop);
 }
 
-// The chart's Laplace system with its boundary loop held.
-LaplaceSystem boundary_held_system(const ChartDisk& disk) {
-    std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
-    for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
-    return LaplaceSystem(disk.mesh, disk.adjacency, on_boundary, disk.vertex_order);
-}
-
 // The adaptive step on `start` with its boundary held; returns whether it gave a map.
 bool adapted(const ChartDisk& disk, const Settings& settings,
-             const std::vector<Eigen::Vector2d>& start, ChartMap& out) {
+             const std::vector<Eigen::Vector2d>& start, ChartMap& out, LaplaceSystem& system) {
     const VertexAdjacency& adjacency = disk.adjacency;
-    LaplaceSystem system = boundary_held_system(disk);
     if (system.unknown_count() == 0) return false;
     const std::vector<double> base = laplacian_weights(disk.mesh, adjacency, settings.weights);
     out.uv = start;
@@ -70,7 +62,13 @@ bool adapted(const ChartDisk& disk, const Settings& settings,
 
 }  // namespace
 
-ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
+LaplaceSystem chart_laplace_system(const ChartDisk& disk) {
+    std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
+    for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
+    return LaplaceSystem(disk.mesh, disk.adjacency, on_boundary, disk.vertex_order);
+}
+
+ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, LaplaceSystem& system) {
     ChartMap circle;
     circle.method = ChartMethod::kCircle;
     circle.uv.assign(disk.mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
@@ -78,22 +76,21 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings) {
         convex_boundary(disk.mesh, disk.boundary_loop, BoundaryShape::kCircle);
     for (size_t i = 0; i < disk.boundary_loop.size(); ++i)
         circle.uv[disk.boundary_loop[i]] = boundary[i];
-    LaplaceSystem system = boundary_held_system(disk);
     const std::vector<double> base =
         laplacian_weights(disk.mesh, disk.adjacency, WeightScheme::kMeanValue);
     system.solve(base, circle.uv, nullptr);
     circle.injective = injective(disk, circle.uv);
     normalise(disk, circle);
-    adapt_chart_map(disk, settings, 1e300, circle);
+    adapt_chart_map(disk, settings, 1e300, circle, system);
     return circle;
 }
 
-ChartMap free_boundary_chart_map(const ChartDisk& disk) {
+ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system) {
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
         map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.corner_angle,
-                                             disk.boundary_loop, disk.vertex_order);
+                                             disk.boundary_loop, system);
         map.injective = injective(disk, map.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;
@@ -104,7 +101,7 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk) {
 }
 
 void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max_linf,
-                     ChartMap& map) {
+                     ChartMap& map, LaplaceSystem& system) {
     // A chart the free boundary already maps (nearly) isometrically gains nothing.
     if (settings.monitor == Monitor::kNone || !map.injective || map.stretch_l2 < 1.0005) return;
     ChartMap candidate;
@@ -112,7 +109,7 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
                                                           : ChartMethod::kFreeBoundaryAdapted;
     Settings chosen = settings;
     if (map.method == ChartMethod::kCircle) chosen.weights = WeightScheme::kMeanValue;
-    if (!adapted(disk, chosen, map.uv, candidate)) return;
+    if (!adapted(disk, chosen, map.uv, candidate, system)) return;
     normalise(disk, candidate);
     // Equalising area can stretch a few triangles more: keep the Linf limit.
     if (candidate.stretch_l2 < map.stretch_l2 &&

@@ -12,7 +12,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                                                          const VertexAdjacency& adjacency,
                                                          const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
-                                                         const std::vector<int32_t>& vertex_order) {
+                                                         LaplaceSystem& system) {
     const int32_t n = mesh.vertex_count();
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
     std::vector<double> angle_sum(n, 0.0);
@@ -21,24 +21,23 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
     std::vector<char> on_boundary(n, 0);
     for (int32_t v : boundary_loop) on_boundary[v] = 1;
     // The cotangent Laplacian L (the Dirichlet energy's matrix, positive definite on the
-    // interior vertices) with the boundary held: Cholesky.
+    // interior vertices) with the boundary held: Cholesky, on the system's pattern.
     const std::vector<double> cotangent =
         laplacian_weights(mesh, adjacency, WeightScheme::kCotangent);
-    InteriorPattern interior = interior_pattern(adjacency, on_boundary, vertex_order);
-    const int32_t unknowns = interior.pattern.size;
-    std::vector<double> values(interior.pattern.columns.size(), 0.0);
+    SparseSolver& solver = system.solver();
+    const std::vector<int32_t>& vertex_of = system.vertex_of_unknown();
+    const std::vector<int32_t>& value_of_slot = system.value_of_slot();
+    const int32_t unknowns = system.unknown_count();
+    std::vector<double> values(solver.pattern().columns.size(), 0.0);
     for (int32_t row = 0; row < unknowns; ++row) {
-        const int32_t v = interior.vertex_of_unknown[row];
+        const int32_t v = vertex_of[row];
         double diagonal = 0;
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
             diagonal += cotangent[s];
-            if (interior.value_of_slot[s] >= 0) values[interior.value_of_slot[s]] = -cotangent[s];
+            if (value_of_slot[s] >= 0) values[value_of_slot[s]] = -cotangent[s];
         }
-        values[interior.diagonal_of_unknown[row]] = diagonal;
+        values[system.diagonal_of_unknown()[row]] = diagonal;
     }
-    const std::vector<int32_t>& vertex_of = interior.vertex_of_unknown;
-    SparseSolver solver(std::move(interior.pattern), std::move(interior.order),
-                        Factorization::kCholesky);
 
     // The log scale factor u that flattens the interior while keeping the boundary's lengths
     // (u = 0 there: the conformal flattening of least area distortion). A conformal change of
@@ -48,7 +47,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
         std::vector<double> rhs(unknowns);
         for (int32_t row = 0; row < unknowns; ++row)
             rhs[row] = angle_sum[vertex_of[row]] - 2 * M_PI;
-        solver.solve(values, rhs.data(), 1, nullptr);
+        solver.solve(values, rhs.data(), 1, nullptr, Factorization::kCholesky);
         for (int32_t row = 0; row < unknowns; ++row) log_scale[vertex_of[row]] = rhs[row];
     }
 

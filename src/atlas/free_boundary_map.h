@@ -14,18 +14,19 @@
 
 #include "core/triangle_mesh.h"
 #include "mesh/mesh_topology.h"
+#include "planar/laplace_system.h"
 
 namespace raps {
 
 // uv per vertex of the disk `mesh` (with its vertex adjacency and the angle at each corner 3t+k,
-// in radians) whose boundary is
-// `boundary_loop` (mesh on its left), eliminating vertices in `vertex_order`
-// (laplace_system.h's vertex_elimination_order). Throws Error(kSolverFailed) if the system is
-// singular.
+// in radians) whose boundary is `boundary_loop` (mesh on its left). `system` is the mesh's
+// Laplace system with that loop held: its pattern, ordering and symbolic analysis are used
+// here and stay shared with its later solves (the adaptive step). Throws Error(kSolverFailed)
+// if the system is singular.
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
                                                          const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
-                                                         const std::vector<int32_t>& vertex_order);
+                                                         LaplaceSystem& system);
 
 }  // namespace raps

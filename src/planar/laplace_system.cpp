@@ -26,6 +26,19 @@ std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
     return fill_reducing_order(pattern, mesh.positions);
 }
 
+namespace {
+
+// The pattern of a Laplace system over the vertices not on the boundary, one unknown each
+// (numbered in vertex order), rows sorted with the diagonal included, and where each adjacency
+// slot of an unknown's row lands. vertex_order (a vertex_elimination_order(), or empty) is
+// restricted to the unknowns.
+struct InteriorPattern {
+    SparsePattern pattern;
+    std::vector<int32_t> vertex_of_unknown;
+    std::vector<int32_t> value_of_slot;        // per slot of an unknown's row: its entry, or -1
+    std::vector<int32_t> diagonal_of_unknown;  // its diagonal entry
+    std::vector<int32_t> order;                // order[k]: the unknown eliminated k-th
+};
 InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
                                  const std::vector<char>& on_boundary,
                                  const std::vector<int32_t>& vertex_order) {
@@ -71,6 +84,8 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
     }
     return interior;
 }
+
+}  // namespace
 
 LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                              const std::vector<char>& on_boundary,

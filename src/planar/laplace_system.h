@@ -24,21 +24,6 @@ namespace raps {
 std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
                                               const VertexAdjacency& adjacency);
 
-// The pattern of a Laplace system over the vertices not on the boundary, one unknown each
-// (numbered in vertex order), rows sorted with the diagonal included, and where each adjacency
-// slot of an unknown's row lands. vertex_order (a vertex_elimination_order(), or empty) is
-// restricted to the unknowns.
-struct InteriorPattern {
-    SparsePattern pattern;
-    std::vector<int32_t> vertex_of_unknown;
-    std::vector<int32_t> value_of_slot;        // per slot of an unknown's row: its entry, or -1
-    std::vector<int32_t> diagonal_of_unknown;  // its diagonal entry
-    std::vector<int32_t> order;                // order[k]: the unknown eliminated k-th
-};
-InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
-                                 const std::vector<char>& on_boundary,
-                                 const std::vector<int32_t>& vertex_order);
-
 class LaplaceSystem {
   public:
     // vertex_order: a vertex_elimination_order() of this mesh to restrict to the interior
@@ -54,6 +39,14 @@ class LaplaceSystem {
                const std::function<void(double)>& progress);
 
     int32_t unknown_count() const { return static_cast<int32_t>(vertex_of_unknown_.size()); }
+
+    // For other systems on the same unknowns (the free-boundary map's Cholesky): the vertex of
+    // each unknown, the entry of each adjacency slot of an unknown's row (or -1) and of each
+    // diagonal, and the solver, whose ordering and symbolic analysis they then share.
+    const std::vector<int32_t>& vertex_of_unknown() const { return vertex_of_unknown_; }
+    const std::vector<int32_t>& value_of_slot() const { return value_of_slot_; }
+    const std::vector<int32_t>& diagonal_of_unknown() const { return diagonal_of_unknown_; }
+    SparseSolver& solver() { return *solver_; }
 
   private:
     const VertexAdjacency& adjacency_;

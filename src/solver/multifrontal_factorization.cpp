@@ -25,11 +25,10 @@ bool worth_merging(int64_t columns, double zero_fraction) {
 }  // namespace
 
 void MultifrontalFactorization::analyze(const SparsePattern& pattern,
-                                        const std::vector<int32_t>& order, Factorization kind) {
+                                        const std::vector<int32_t>& order) {
     const int32_t n = pattern.size;
     size_ = n;
-    cholesky_ = kind == Factorization::kCholesky;
-    partial_factorization_ = cholesky_ ? fastest_partial_cholesky() : fastest_partial_lu();
+    prepared_ = false;
 
     // Elimination tree of the permuted matrix (Liu's algorithm with path compression).
     std::vector<int32_t> position(n);
@@ -266,19 +265,12 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
         node.rows = static_cast<int32_t>(row_indices_.size() - node.row_offset);
     }
 
-    // Where each child's update rows land in its parent's front, and where each original entry
-    // lands in the front of the supernode that owns min(row, column).
+    // Where each child's update rows land in its parent's front.
     std::vector<int32_t> local(n, -1);
     relative_rows_.clear();
-    int64_t factor_size = 0, max_front = 0;
-    total_flops_ = 0;
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        Supernode& node = supernodes_[s];
-        node.factor_offset = factor_size;
-        const int64_t m = node.rows, k = node.columns;
-        factor_size += cholesky_ ? m * k : m * k + k * (m - k);
-        max_front = std::max(max_front, m * m);
-        total_flops_ += front_flops(node);
+    int64_t max_front = 0;
+    for (const Supernode& node : supernodes_) {
+        max_front = std::max(max_front, static_cast<int64_t>(node.rows) * node.rows);
     }
     for (int32_t s = 0; s < supernode_count; ++s) {
         const Supernode& node = supernodes_[s];
@@ -292,6 +284,43 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
             }
         }
     }
+    // Peak of the contribution-block stack, simulated in the factorization's order.
+    {
+        int64_t stack = 0;
+        stack_peak_ = 0;
+        std::vector<int64_t> stack_sizes;
+        for (int32_t s = 0; s < supernode_count; ++s) {
+            const Supernode& node = supernodes_[s];
+            for (int32_t c = node.child_begin; c < node.child_end; ++c) {
+                stack -= stack_sizes.back();
+                stack_sizes.pop_back();
+            }
+            const int64_t update = node.rows - node.columns;
+            stack_sizes.push_back(update * update);
+            stack += update * update;
+            stack_peak_ = std::max(stack_peak_, stack);
+        }
+    }
+    front_ = allocate(max_front);
+    stack_ = allocate(stack_peak_);
+}
+
+void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorization kind) {
+    if (prepared_ && cholesky_ == (kind == Factorization::kCholesky)) return;
+    prepared_ = true;
+    cholesky_ = kind == Factorization::kCholesky;
+    partial_factorization_ = cholesky_ ? fastest_partial_cholesky() : fastest_partial_lu();
+    const int32_t n = size_;
+    int64_t factor_size = 0;
+    total_flops_ = 0;
+    for (Supernode& node : supernodes_) {
+        node.factor_offset = factor_size;
+        const int64_t m = node.rows, k = node.columns;
+        factor_size += cholesky_ ? m * k : m * k + k * (m - k);
+        total_flops_ += front_flops(node);
+    }
+    std::vector<int32_t> position(n), local(n, -1);
+    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
     // Original entries: A(i, j) goes to the front of the supernode owning column min(i, j), at
     // (local row of i, local column of j); max(i, j) is in that front because L(max, min) != 0.
     // From the rows of the supernode's columns we see the entries (j, other) with other at or
@@ -315,8 +344,7 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     value_target_.resize(pattern.nonzeros());
     diagonal_source_.assign(n, -1);
     int64_t next_value = 0;
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        Supernode& node = supernodes_[s];
+    for (Supernode& node : supernodes_) {
         const int32_t f = node.first_column, l = f + node.columns - 1;
         for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
         node.value_begin = next_value;
@@ -347,29 +375,13 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     value_source_.resize(next_value);  // Cholesky placed only about half of the entries
     value_target_.resize(next_value);
 
-    // Peak of the contribution-block stack, simulated in the factorization's order.
-    {
-        int64_t stack = 0;
-        stack_peak_ = 0;
-        std::vector<int64_t> stack_sizes;
-        for (int32_t s = 0; s < supernode_count; ++s) {
-            const Supernode& node = supernodes_[s];
-            for (int32_t c = node.child_begin; c < node.child_end; ++c) {
-                stack -= stack_sizes.back();
-                stack_sizes.pop_back();
-            }
-            const int64_t update = node.rows - node.columns;
-            stack_sizes.push_back(update * update);
-            stack += update * update;
-            stack_peak_ = std::max(stack_peak_, stack);
-        }
-    }
     // Left uninitialized: factorize() writes every entry before reading it, and zero-filling
-    // hundreds of megabytes measured 0.19 s of a 0.5 s analysis at 413K unknowns.
-    factors_ = allocate(factor_size);
-    factor_size_ = factor_size;
-    front_ = allocate(max_front);
-    stack_ = allocate(stack_peak_);
+    // hundreds of megabytes measured 0.19 s of a 0.5 s analysis at 413K unknowns. Kept when
+    // large enough for the new kind.
+    if (factor_size > factor_capacity_) {
+        factors_ = allocate(factor_size);
+        factor_capacity_ = factor_size;
+    }
 }
 
 double MultifrontalFactorization::front_flops(const Supernode& node) const {

@@ -28,14 +28,18 @@ enum class Factorization {
 
 class MultifrontalFactorization {
   public:
-    // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated),
-    // for factorizations of the given kind.
-    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order,
-                 Factorization kind);
+    // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated):
+    // elimination tree, supernodes and front structures, the same for LU and Cholesky.
+    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order);
 
-    // Numeric factorization of the values of `pattern` (in its column order). Returns false when
-    // a pivot is zero or tiny against its row's original diagonal (the matrix needs pivoting),
-    // or, for Cholesky, not positive.
+    // Where the values of the analyzed `pattern` land in the fronts, and the factor's layout, for
+    // factorizations of `kind`; nothing to do when that kind is already prepared. A chart's
+    // Cholesky (free-boundary map) and LU (adaptive step) share one analysis this way.
+    void prepare(const SparsePattern& pattern, Factorization kind);
+
+    // Numeric factorization, of the kind prepared, of the values of `pattern` (in its column
+    // order). Returns false when a pivot is zero or tiny against its row's original diagonal
+    // (the matrix needs pivoting), or, for Cholesky, not positive.
     // `progress` receives the fraction of the work done (by flops), about every 1%.
     bool factorize(const double* values, const std::function<void(double)>& progress);
 
@@ -43,8 +47,6 @@ class MultifrontalFactorization {
     void solve(double* b, int rhs_count) const;
 
     int32_t size() const { return size_; }
-    int64_t factor_entries() const { return factor_size_; }
-    double factor_flops() const { return total_flops_; }
 
   private:
     struct Supernode {
@@ -64,6 +66,7 @@ class MultifrontalFactorization {
     double front_flops(const Supernode& node) const;
 
     int32_t size_ = 0;
+    bool prepared_ = false;  // for the kind cholesky_ says
     bool cholesky_ = false;
     PartialFactorization partial_factorization_ = nullptr;
     std::vector<int32_t> order_;         // elimination position -> unknown
@@ -86,7 +89,7 @@ class MultifrontalFactorization {
         return Buffer(static_cast<double*>(::operator new[](bytes, std::align_val_t(64))));
     }
     Buffer factors_;  // per supernode: L panel, then U panel (LU)
-    int64_t factor_size_ = 0;
+    int64_t factor_capacity_ = 0;
     Buffer front_;  // workspace: the largest front
     Buffer stack_;  // contribution blocks waiting for their parent
     int64_t stack_peak_ = 0;

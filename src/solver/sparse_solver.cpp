@@ -47,18 +47,19 @@ std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
 SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates)
     : pattern_(std::move(pattern)) {
     order_ = fill_reducing_order(pattern_, coordinates);
-    factorization_.analyze(pattern_, order_, Factorization::kLU);
+    factorization_.analyze(pattern_, order_);
 }
 
-SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order, Factorization kind)
+SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order)
     : pattern_(std::move(pattern)), order_(std::move(order)) {
-    factorization_.analyze(pattern_, order_, kind);
+    factorization_.analyze(pattern_, order_);
 }
 
 void SparseSolver::solve(const std::vector<double>& values, double* rhs, int rhs_count,
-                         const std::function<void(double)>& progress) {
+                         const std::function<void(double)>& progress, Factorization kind) {
     if (pattern_.size == 0) return;
     pivoting_values_.clear();
+    factorization_.prepare(pattern_, kind);
     if (factorization_.factorize(values.data(), progress)) {
         factorization_.solve(rhs, rhs_count);
     } else {

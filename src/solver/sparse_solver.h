@@ -25,15 +25,15 @@ class SparseSolver {
     // coordinates[i]: a point in space for unknown i, for the fill-reducing order.
     SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates);
     // With an elimination order the caller already has (order[k]: the unknown eliminated k-th).
-    // kCholesky promises values that are symmetric positive definite (a system that turns out
-    // not to be is still solved, by the pivoting fallback).
-    SparseSolver(SparsePattern pattern, std::vector<int32_t> order,
-                 Factorization kind = Factorization::kLU);
+    SparseSolver(SparsePattern pattern, std::vector<int32_t> order);
 
     // Solves A X = B in place: `values` in the pattern's order, `rhs` holds rhs_count columns of
-    // size() entries. Throws Error(kSolverFailed) for a singular system.
+    // size() entries. Throws Error(kSolverFailed) for a singular system. kCholesky promises
+    // values that are symmetric positive definite (a system that turns out not to be is still
+    // solved, by the pivoting fallback); solves of either kind share the symbolic analysis.
     void solve(const std::vector<double>& values, double* rhs, int rhs_count,
-               const std::function<void(double)>& progress);
+               const std::function<void(double)>& progress,
+               Factorization kind = Factorization::kLU);
 
     // Solves A X = B in place for more right-hand sides, with the values of the last solve()
     // (not factored again).
