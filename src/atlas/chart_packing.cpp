@@ -588,6 +588,17 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
 // Atlases of up to this many charts get the thorough search of layouts (pack_charts).
 constexpr size_t kFewCharts = 100;
 
+// Up to this many charts, the best layout's chart order is then improved by swaps: each round
+// packs the order with every pair of charts swapped (same strip width and rule) and keeps the
+// smallest layout, until a round finds none smaller or after kSwapRounds. A few large charts
+// fill the square worst, and their order matters most. Measured against 7db2b6e, 2 threads:
+// halftunnel (7 charts) coverage 0.623 -> 0.662, pack 7.4 -> 12.4 ms; face (12) 0.711 ->
+// 0.745, 13.2 -> 20.9 ms; 3holes (11) and fandisk (4) unchanged, beetle (9) 0.628 -> 0.629.
+// Four rounds found nothing more on these five; 21 random swaps per round, in 8 rounds,
+// ranged 0.653 to 0.683 on halftunnel with the seed.
+constexpr size_t kSwappedCharts = 16;
+constexpr int kSwapRounds = 2;
+
 }  // namespace
 
 double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
@@ -733,11 +744,16 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         const size_t trials = (few ? orders.size() : 1) * per_order;
         std::vector<Packed> packed(trials);
         std::vector<char> fits(trials, 0);
-        auto pack_trial = [&](size_t trial, bool holes, Packed& p) {
+        auto pack_order = [&](const std::vector<size_t>& chart_order, int32_t width,
+                              bool count_waste, bool holes, Packed& p) {
             p.at.resize(count);
             p.quarter.resize(count);
-            return pack_strip(prepared, orders[trial / per_order], widths[trial % per_order / 2],
-                              trial % 2 == 1, holes, limit, p.at, p.quarter, p.width, p.height);
+            return pack_strip(prepared, chart_order, width, count_waste, holes, limit, p.at,
+                              p.quarter, p.width, p.height);
+        };
+        auto pack_trial = [&](size_t trial, bool holes, Packed& p) {
+            return pack_order(orders[trial / per_order], widths[trial % per_order / 2],
+                              trial % 2 == 1, holes, p);
         };
         parallel_for_each(pool, trials, [&](size_t trial) {
             fits[trial] = (few && pack_trial(trial, true, packed[trial])) ||
@@ -768,7 +784,36 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             if (fits[trial] && (best == trials || area_of(trial) < area_of(best))) best = trial;
         }
         if (best == trials) throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
-        return std::move(packed[best]);
+        Packed layout = std::move(packed[best]);
+        if (count < 2 || count > kSwappedCharts) return layout;
+        std::vector<size_t> kept_order = orders[best / per_order];
+        const int32_t width = widths[best % per_order / 2];
+        const bool count_waste = best % 2 == 1;
+        for (int round = 0; round < kSwapRounds; ++round) {
+            std::vector<std::vector<size_t>> variants;
+            for (size_t i = 0; i < count; ++i) {
+                for (size_t j = i + 1; j < count; ++j) {
+                    variants.push_back(kept_order);
+                    std::swap(variants.back()[i], variants.back()[j]);
+                }
+            }
+            std::vector<Packed> tried(variants.size());
+            std::vector<char> tried_fits(variants.size(), 0);
+            parallel_for_each(pool, variants.size(), [&](size_t k) {
+                tried_fits[k] = pack_order(variants[k], width, count_waste, true, tried[k]);
+            });
+            bool improved = false;
+            for (size_t k = 0; k < variants.size(); ++k) {
+                const double area = static_cast<double>(tried[k].width) * tried[k].height;
+                if (tried_fits[k] && area < static_cast<double>(layout.width) * layout.height) {
+                    layout = std::move(tried[k]);
+                    kept_order = variants[k];
+                    improved = true;
+                }
+            }
+            if (!improved) break;
+        }
+        return layout;
     };
 
     // The strip the density is fitted in: as wide as the square of the charts' box areas (a
