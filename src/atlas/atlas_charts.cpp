@@ -90,12 +90,16 @@ double chart_area(const ChartDisk& disk) {
     return area;
 }
 
-// One chart from its triangles: the disk and its adapted map, or false when it must be split.
-// unadapted_l2: the map's L2 stretch before its adaptive step.
+// One chart from its triangles (those of two charts when `parts` are given): the disk and its
+// adapted map, or false when it must be split. unadapted_l2: the map's L2 stretch before its
+// adaptive step.
 bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
-               AtlasChart& chart, double& unadapted_l2) {
-    bool good = make_chart_disk(surface, triangles, seam, chart.disk);
+               AtlasChart& chart, double& unadapted_l2,
+               std::pair<const ChartDisk*, const ChartDisk*> parts = {}) {
+    bool good = parts.first ? make_union_chart_disk(surface, triangles, seam, *parts.first,
+                                                    *parts.second, chart.disk)
+                            : make_chart_disk(surface, triangles, seam, chart.disk);
     if (!good && triangles.size() > 1) return false;
     LaplaceSystem system = chart_laplace_system(chart.disk);
     if (good) {
@@ -281,8 +285,8 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 // A union is judged by its adapted map: the step lowers stretch most on exactly
                 // the larger, more curved charts that merging makes.
                 double unadapted;
-                good[i] =
-                    try_chart(surface, triangles, seam, settings, limits, built[i], unadapted);
+                good[i] = try_chart(surface, triangles, seam, settings, limits, built[i], unadapted,
+                                    {&charts[batch[i].a].disk, &charts[batch[i].b].disk});
                 if (good[i]) {
                     built_fill[i] =
                         bounding_box_fill(built[i].map.uv, built[i].disk.mesh.triangles);

@@ -49,10 +49,9 @@ bool is_disk(const ChartDisk& disk, const Halfedges& halfedges,
     return loops.size() == 1 && euler == 1;
 }
 
-}  // namespace
-
-bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                     const std::vector<char>& seam, ChartDisk& disk) {
+// The chart's topology (everything but its vertex order), or false when it is no disk.
+bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                      const std::vector<char>& seam, ChartDisk& disk) {
     std::vector<int32_t> local_of(surface.mesh.triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) local_of[triangles[i]] = static_cast<int32_t>(i);
     disk.surface_triangle = triangles;
@@ -134,7 +133,47 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
     // The chart's own twins are the chart mesh's half-edges: every pair joins the same two
     // chart vertices (they are classes of corners joined across exactly these pairs).
     disk.adjacency = build_vertex_adjacency(disk.mesh, halfedges);
+    return true;
+}
+
+}  // namespace
+
+bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                     const std::vector<char>& seam, ChartDisk& disk) {
+    if (!build_chart_disk(surface, triangles, seam, disk)) return false;
     disk.vertex_order = vertex_elimination_order(disk.mesh, disk.adjacency);
+    return true;
+}
+
+bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                           const std::vector<char>& seam, const ChartDisk& a, const ChartDisk& b,
+                           ChartDisk& disk) {
+    if (!build_chart_disk(surface, triangles, seam, disk)) return false;
+    // One level of nested dissection with the parts' own minimum degree orders inside: a's
+    // vertices in a's order, then b's in b's, then the vertices they share (the seam between
+    // them, which separates the two) in a's order. Measured by callgrind on one thread, the
+    // whole atlas, against ordering the unions by minimum degree: fandisk 543.2M -> 524.4M
+    // instructions, cheburashka 875.7M -> 852.5M, lion 1071.6M -> 1040.4M; the factorizations
+    // did not grow (fandisk's Cholesky and LU kernels 40.1M -> 39.1M).
+    const size_t surface_vertices = surface.mesh.positions.size();
+    std::vector<int32_t> position_in_a(surface_vertices, -1), position_in_b(surface_vertices, -1);
+    auto note_positions = [](const ChartDisk& part, std::vector<int32_t>& position) {
+        for (size_t k = part.vertex_order.size(); k-- > 0;)  // first chart vertex wins
+            position[part.surface_vertex[part.vertex_order[k]]] = static_cast<int32_t>(k);
+    };
+    note_positions(a, position_in_a);
+    note_positions(b, position_in_b);
+    const int32_t n = disk.mesh.vertex_count();
+    std::vector<std::pair<int64_t, int32_t>> keyed(n);
+    for (int32_t v = 0; v < n; ++v) {
+        const int32_t in_a = position_in_a[disk.surface_vertex[v]];
+        const int32_t in_b = position_in_b[disk.surface_vertex[v]];
+        const int64_t group = in_a >= 0 ? (in_b >= 0 ? 2 : 0) : 1;
+        keyed[v] = {group << 32 | (group == 1 ? in_b : in_a), v};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    disk.vertex_order.resize(n);
+    for (int32_t k = 0; k < n; ++k) disk.vertex_order[k] = keyed[k].second;
     return true;
 }
 

@@ -31,4 +31,10 @@ struct ChartDisk {
 bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                      const std::vector<char>& seam, ChartDisk& disk);
 
+// The same for the union of two charts `a` and `b` (triangles: theirs together), whose vertex
+// order is made from theirs instead of ordering the union again.
+bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                           const std::vector<char>& seam, const ChartDisk& a, const ChartDisk& b,
+                           ChartDisk& disk);
+
 }  // namespace raps
