@@ -56,15 +56,12 @@ void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
 }  // namespace
 
 AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
-                        const Progress& progress, PhaseTimes& times) {
+                        const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
     {
         PhaseTimer timer(Phase::kValidate, progress, times);
         check_indices_in_range(mesh);  // everything else an atlas takes as it comes
         timer.finish();
     }
-    // One pool of threads for the whole atlas: starting threads for each parallel loop (17 of
-    // them on cheburashka) cost about 2% of the atlas.
-    ThreadPool pool(settings.threads);
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
     const std::vector<int32_t> welded = weld_vertices(mesh.positions, settings.weld_tolerance);
     const AtlasSurface surface = build_atlas_surface(mesh, welded, pool);

@@ -14,6 +14,7 @@
 #include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -27,7 +28,8 @@ struct AtlasOutput {
     int32_t width = 0, height = 0;  // atlas size in texels
 };
 
+// Every parallel step runs on `pool`; the output is the same for any pool size.
 AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
-                        const Progress& progress, PhaseTimes& times);
+                        const Progress& progress, PhaseTimes& times, ThreadPool& pool);
 
 }  // namespace raps

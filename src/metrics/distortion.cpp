@@ -73,70 +73,120 @@ Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
     return stretch;
 }
 
+namespace {
+
+// Sums and extremes over a range of triangles, combined in block order (parallel_sum).
+struct Totals {
+    double area_3d = 0, area_uv = 0;
+    int64_t used = 0;
+    Totals& operator+=(const Totals& o) {
+        area_3d += o.area_3d;
+        area_uv += o.area_uv;
+        used += o.used;
+        return *this;
+    }
+};
+struct Figures {
+    int64_t flipped = 0, zero_area = 0;
+    double area_log = 0, area_max = 1, angle_sum = 0, angle_max = 0, stretch_sum = 0,
+           stretch_max = 0;
+    Figures& operator+=(const Figures& o) {
+        flipped += o.flipped;
+        zero_area += o.zero_area;
+        area_log += o.area_log;
+        area_max = std::max(area_max, o.area_max);
+        angle_sum += o.angle_sum;
+        angle_max = std::max(angle_max, o.angle_max);
+        stretch_sum += o.stretch_sum;
+        stretch_max = std::max(stretch_max, o.stretch_max);
+        return *this;
+    }
+};
+
+}  // namespace
+
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
-                                   const MapGeometry& map, const std::vector<Triangle>& triangles) {
-    const size_t count = triangles.size();
+                                   const MapGeometry& map, const std::vector<Triangle>& triangles,
+                                   ThreadPool& pool) {
+    const int64_t count = static_cast<int64_t>(triangles.size());
     std::vector<double> area(count), uv_signed_area(count);
-    double area_sum = 0;
-    for (size_t t = 0; t < count; ++t) {
-        const Triangle& v = triangles[t];
-        area[t] =
-            0.5 *
-            (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
-        uv_signed_area[t] = map.area(v[0], v[1], v[2]);
-        area_sum += area[t];
-    }
-    const double degenerate_3d = 1e-12 * area_sum / static_cast<double>(count);
-    std::vector<size_t> used;
-    used.reserve(count);
-    double total_3d = 0, total_uv = 0;
-    for (size_t t = 0; t < count; ++t) {
-        if (area[t] >= degenerate_3d && area[t] > 0 && std::isfinite(uv_signed_area[t])) {
-            used.push_back(t);
-            total_3d += area[t];
-            total_uv += std::abs(uv_signed_area[t]);
+    const double area_sum = parallel_sum<double>(pool, count, [&](int64_t begin, int64_t end) {
+        double sum = 0;
+        for (int64_t t = begin; t < end; ++t) {
+            const Triangle& v = triangles[t];
+            area[t] =
+                0.5 *
+                (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
+            uv_signed_area[t] = map.area(v[0], v[1], v[2]);
+            sum += area[t];
         }
-    }
+        return sum;
+    });
+    const double degenerate_3d = 1e-12 * area_sum / static_cast<double>(count);
+    auto used = [&](int64_t t) {
+        return area[t] >= degenerate_3d && area[t] > 0 && std::isfinite(uv_signed_area[t]);
+    };
+    const Totals totals = parallel_sum<Totals>(pool, count, [&](int64_t begin, int64_t end) {
+        Totals sum;
+        for (int64_t t = begin; t < end; ++t) {
+            if (!used(t)) continue;
+            ++sum.used;
+            sum.area_3d += area[t];
+            sum.area_uv += std::abs(uv_signed_area[t]);
+        }
+        return sum;
+    });
     DistortionStats stats;
-    if (used.empty()) return stats;
-    const double zero_uv = 1e-14 * total_uv / static_cast<double>(used.size());
+    if (totals.used == 0) return stats;
+    const double total_3d = totals.area_3d, total_uv = totals.area_uv;
+    const double zero_uv = 1e-14 * total_uv / static_cast<double>(totals.used);
     const double infinity = std::numeric_limits<double>::infinity();
     // A map that collapses every triangle (total uv area 0) has infinite distortion, not 0/0:
     // r_t is 0 and, at scale 1, every singular value is 0.
     const double scale = total_uv > 0 ? std::sqrt(total_3d / total_uv) : 1.0;
-    double angle_sum = 0, stretch_sum = 0;
-    stats.area_max = 1;
-    stats.stretch_linf = 0;
-    for (size_t t : used) {
-        const Triangle& v = triangles[t];
-        const double a = uv_signed_area[t];
-        if (a < -zero_uv) ++stats.flipped_triangles;
-        if (std::abs(a) <= zero_uv) ++stats.zero_area_triangles;
-        const double weight = area[t] / total_3d;
-        const double r = total_uv > 0 ? (std::abs(a) / total_uv) / weight : 0.0;
-        stats.area_log_mean += weight * std::abs(std::log(r));
-        stats.area_max = std::max(stats.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
-        for (int k = 0; k < 3; ++k) {
-            const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
-            double sine, cosine;
-            map.angle(i, j, l, &sine, &cosine);
-            const double degrees = angle_difference(positions[j] - positions[i],
-                                                    positions[l] - positions[i], sine, cosine) *
-                                   180.0 / M_PI;
-            angle_sum += degrees;
-            stats.angle_max_deg = std::max(stats.angle_max_deg, degrees);
+    const Figures figures = parallel_sum<Figures>(pool, count, [&](int64_t begin, int64_t end) {
+        Figures sum;
+        for (int64_t t = begin; t < end; ++t) {
+            if (!used(t)) continue;
+            const Triangle& v = triangles[t];
+            const double a = uv_signed_area[t];
+            if (a < -zero_uv) ++sum.flipped;
+            if (std::abs(a) <= zero_uv) ++sum.zero_area;
+            const double weight = area[t] / total_3d;
+            const double r = total_uv > 0 ? (std::abs(a) / total_uv) / weight : 0.0;
+            sum.area_log += weight * std::abs(std::log(r));
+            sum.area_max = std::max(sum.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
+            for (int k = 0; k < 3; ++k) {
+                const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
+                double sine, cosine;
+                map.angle(i, j, l, &sine, &cosine);
+                const double degrees = angle_difference(positions[j] - positions[i],
+                                                        positions[l] - positions[i], sine, cosine) *
+                                       180.0 / M_PI;
+                sum.angle_sum += degrees;
+                sum.angle_max = std::max(sum.angle_max, degrees);
+            }
+            Eigen::Vector2d d1, d2;
+            map.edges(v[0], v[1], v[2], &d1, &d2);
+            const auto [uv_big, uv_small] =
+                uv_singular_values(positions[v[1]] - positions[v[0]],
+                                   positions[v[2]] - positions[v[0]], area[t], d1, d2);
+            const double big = scale * uv_big, small = scale * uv_small;
+            const double stretch_max = 1.0 / small, stretch_min = 1.0 / big;
+            sum.stretch_sum +=
+                weight * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);
+            sum.stretch_max = std::max(sum.stretch_max, stretch_max);
         }
-        Eigen::Vector2d d1, d2;
-        map.edges(v[0], v[1], v[2], &d1, &d2);
-        const auto [uv_big, uv_small] = uv_singular_values(
-            positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]], area[t], d1, d2);
-        const double big = scale * uv_big, small = scale * uv_small;
-        const double stretch_max = 1.0 / small, stretch_min = 1.0 / big;
-        stretch_sum += weight * 0.5 * (stretch_max * stretch_max + stretch_min * stretch_min);
-        stats.stretch_linf = std::max(stats.stretch_linf, stretch_max);
-    }
-    stats.angle_mean_deg = angle_sum / (3.0 * static_cast<double>(used.size()));
-    stats.stretch_l2 = std::sqrt(stretch_sum);
+        return sum;
+    });
+    stats.flipped_triangles = figures.flipped;
+    stats.zero_area_triangles = figures.zero_area;
+    stats.area_log_mean = figures.area_log;
+    stats.area_max = figures.area_max;
+    stats.angle_mean_deg = figures.angle_sum / (3.0 * static_cast<double>(totals.used));
+    stats.angle_max_deg = figures.angle_max;
+    stats.stretch_l2 = std::sqrt(figures.stretch_sum);
+    stats.stretch_linf = figures.stretch_max;
     return stats;
 }
 

@@ -15,6 +15,7 @@
 
 #include "core/triangle_mesh.h"
 #include "metrics/map_geometry.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -38,8 +39,10 @@ Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
                         const std::vector<Eigen::Vector2d>& uv,
                         const std::vector<Triangle>& triangles);
 
-// Statistics of the map of `triangles` (indices into positions and the map alike).
+// Statistics of the map of `triangles` (indices into positions and the map alike), on the pool's
+// threads: the same bits for any thread count.
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
-                                   const MapGeometry& map, const std::vector<Triangle>& triangles);
+                                   const MapGeometry& map, const std::vector<Triangle>& triangles,
+                                   ThreadPool& pool);
 
 }  // namespace raps
