@@ -128,32 +128,34 @@ class RapsParamTest(unittest.TestCase):
         self.assertEqual(ref['n_flipped'], 0)
         self.assertLess(ref['uv_overlap_fraction'], 0.002)  # raster noise only
 
+    def assert_reference_metrics(self, ours, obj, relative, label):
+        """Our statistics against uvmetrics.py's figures of `obj`, to `relative` precision."""
+        p = subprocess.run(['/usr/bin/python3', os.path.join(DATA, '..', 'tools', 'uvmetrics.py'),
+                            '--raster', '0', obj], capture_output=True, text=True, timeout=600)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        ref = json.loads(p.stdout)
+        self.assertEqual(ours['flipped_triangles'], ref['n_flipped'])
+        self.assertEqual(ours['zero_area_triangles'], ref['n_degenerate_uv'])
+        for key, ref_key in (('area_log_mean', 'area_mean_abs_log'), ('area_max', 'area_max'),
+                             ('angle_mean_deg', 'angle_mean_deg'), ('angle_max_deg', 'angle_max_deg'),
+                             ('stretch_l2', 'stretch_l2'), ('stretch_linf', 'stretch_linf')):
+            self.assertAlmostEqual(ours[key], ref[ref_key], delta=relative * max(1.0, abs(ref[ref_key])),
+                                   msg=f'{label} {key}')
+        return ref
+
     def test_statistics_match_the_reference_metrics(self):
-        tool = os.path.join(DATA, '..', 'tools', 'uvmetrics.py')
         for mesh, flags in (('camelhead.off', []), ('face.obj', ['--monitor', 'none']),
                             ('alligator.obj', ['--monitor', 'angle', '--alpha', '2'])):
             rc, out, err = run(self.mesh(mesh), '-o', self.out, *flags)
             self.assertEqual(rc, 0, err)
-            ours = json.loads(out)['stats']
-            p = subprocess.run(['/usr/bin/python3', tool, '--raster', '0', self.out],
-                               capture_output=True, text=True, timeout=600)
-            self.assertEqual(p.returncode, 0, p.stderr)
-            ref = json.loads(p.stdout)
-            self.assertEqual(ours['flipped_triangles'], ref['n_flipped'])
-            self.assertEqual(ours['zero_area_triangles'], ref['n_degenerate_uv'])
-            for key, ref_key in (('area_log_mean', 'area_mean_abs_log'), ('area_max', 'area_max'),
-                                 ('angle_mean_deg', 'angle_mean_deg'), ('angle_max_deg', 'angle_max_deg'),
-                                 ('stretch_l2', 'stretch_l2'), ('stretch_linf', 'stretch_linf')):
-                # The OBJ stores uv with float-to-text rounding: agree to 1e-6 relative.
-                self.assertAlmostEqual(ours[key], ref[ref_key], delta=1e-6 * max(1.0, abs(ref[ref_key])),
-                                       msg=f'{mesh} {key}')
+            # The OBJ stores uv with float-to-text rounding: agree to 1e-6 relative.
+            self.assert_reference_metrics(json.loads(out)['stats'], self.out, 1e-6, mesh)
 
     def test_atlas_statistics_are_the_reference_metrics_in_texel_space(self):
         # Atlas uvs are normalised per axis to a width x height texture; the statistics are
         # those of the texel-space layout (isotropic), which is what uvmetrics measures once the
         # vt lines are scaled back by width and height. alligator's atlas is 1022 x 179 texels,
         # fandisk's about 3:2.
-        tool = os.path.join(DATA, '..', 'tools', 'uvmetrics.py')
         texel_obj = os.path.join(self.dir.name, 'texels.obj')
         for mesh in ('alligator.obj', 'fandisk.obj'):
             rc, out, err = run('--atlas', self.mesh(mesh), '-o', self.out)
@@ -166,18 +168,9 @@ class RapsParamTest(unittest.TestCase):
                         u, w = map(float, line.split()[1:3])
                         line = f'vt {u * width!r} {w * height!r}\n'
                     dst.write(line)
-            p = subprocess.run(['/usr/bin/python3', tool, '--raster', '0', texel_obj],
-                               capture_output=True, text=True, timeout=600)
-            self.assertEqual(p.returncode, 0, p.stderr)
-            ref = json.loads(p.stdout)
-            self.assertEqual(ours['flipped_triangles'], ref['n_flipped'])
+            # Measured: equal to 1e-10 relative (the JSON prints 10 significant digits).
+            ref = self.assert_reference_metrics(ours, texel_obj, 1e-8, mesh)
             self.assertEqual(ours['charts'], ref['n_charts'])
-            for key, ref_key in (('area_log_mean', 'area_mean_abs_log'), ('area_max', 'area_max'),
-                                 ('angle_mean_deg', 'angle_mean_deg'), ('stretch_l2', 'stretch_l2'),
-                                 ('stretch_linf', 'stretch_linf')):
-                # Measured: equal to 1e-10 relative (the JSON prints 10 significant digits).
-                self.assertAlmostEqual(ours[key], ref[ref_key], delta=1e-8 * max(1.0, abs(ref[ref_key])),
-                                       msg=f'{mesh} {key}')
 
     def test_memory_cap_refuses_before_any_work_without_output(self):
         rc, out, err = run(self.mesh('face.obj'), '-o', self.out, '--max-memory-mb', '10')
