@@ -169,7 +169,7 @@ bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_
         const int32_t in_a = position_in_a[disk.surface_vertex[v]];
         const int32_t in_b = position_in_b[disk.surface_vertex[v]];
         const int64_t group = in_a >= 0 ? (in_b >= 0 ? 2 : 0) : 1;
-        keyed[v] = {group << 32 | (group == 1 ? in_b : in_a), v};
+        keyed[v] = {(group << 32) + (group == 1 ? in_b : in_a), v};
     }
     std::sort(keyed.begin(), keyed.end());
     disk.vertex_order.resize(n);
