@@ -223,7 +223,8 @@ enum {
      * before any work is done. Default 2^31-1. */
     RAPS_PARAM_MAX_TRIANGLES = 8,
     /* int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-     * bit-identical for every value. Used by the sphere relaxation and the atlas. Default 0. */
+     * bit-identical for every value. Used by the sphere relaxation, the atlas, and the
+     * statistics of every domain (at most one thread per 16,384 triangles there). Default 0. */
     RAPS_PARAM_THREADS = 9,
 
     /* Sphere domain (RAPS_DOMAIN_SPHERE); ignored by the others. */
@@ -434,8 +435,9 @@ RAPS_API void raps_result_destroy(raps_result* result);
 
 /* Parameterizes mesh with settings (NULL: the defaults) into result, replacing what it held.
  * mesh and settings are only read (see Threading). Runs on the calling thread; the sphere and
- * atlas domains also start up to RAPS_PARAM_THREADS - 1 worker threads of their own and join
- * them before it returns (the progress callback may be called from them, never two calls at
+ * atlas domains also start up to RAPS_PARAM_THREADS - 1 worker threads of their own, every
+ * domain does to measure the statistics of a mesh of 32,768 triangles or more, and all are
+ * joined before it returns (the progress callback may be called from them, never two calls at
  * once; see raps_progress_fn).
  * On success result holds the output vertices (UVs and the input vertex each comes from), the
  * output triangles and the statistics. The errors below are those of every domain: the disk's

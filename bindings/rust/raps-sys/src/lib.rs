@@ -86,7 +86,8 @@ pub const RAPS_PARAM_BOUNDARY: i32 = 7;
 /// before any work is done. Default 2^31-1.
 pub const RAPS_PARAM_MAX_TRIANGLES: i32 = 8;
 /// int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-/// bit-identical for every value. Used by the sphere relaxation and the atlas. Default 0.
+/// bit-identical for every value. Used by the sphere relaxation, the atlas, and the
+/// statistics of every domain (at most one thread per 16,384 triangles there). Default 0.
 pub const RAPS_PARAM_THREADS: i32 = 9;
 /// int. How the sphere domain computes its map, see RAPS_SPHERE_*. Default ROBUST.
 pub const RAPS_PARAM_SPHERE_METHOD: i32 = 10;
@@ -424,8 +425,9 @@ extern "C" {
 
     /// Parameterizes mesh with settings (NULL: the defaults) into result, replacing what it held.
     /// mesh and settings are only read (see Threading). Runs on the calling thread; the sphere and
-    /// atlas domains also start up to RAPS_PARAM_THREADS - 1 worker threads of their own and join
-    /// them before it returns (the progress callback may be called from them, never two calls at
+    /// atlas domains also start up to RAPS_PARAM_THREADS - 1 worker threads of their own, every
+    /// domain does to measure the statistics of a mesh of 32,768 triangles or more, and all are
+    /// joined before it returns (the progress callback may be called from them, never two calls at
     /// once; see raps_progress_fn).
     /// On success result holds the output vertices (UVs and the input vertex each comes from), the
     /// output triangles and the statistics. The errors below are those of every domain: the disk's
