@@ -39,10 +39,14 @@ double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangl
     return std::min(area, 1.0);
 }
 
-// Threads for measuring a map of `triangles` alone (the disk and sphere domains): one per 16K
-// triangles, about 2 ms of work each, so that small meshes start no threads.
-int metrics_threads(const Settings& settings, const TriangleMesh& mesh) {
-    return choose_thread_count(settings.threads, mesh.triangle_count(), 16384);
+// The statistics of a map measured alone (the disk and sphere domains, which keep no pool):
+// one thread per 16K triangles, about 2 ms of work each, so that small meshes start none.
+DistortionStats measure_alone(const Settings& settings,
+                              const std::vector<Eigen::Vector3d>& positions, const MapGeometry& map,
+                              const std::vector<Triangle>& triangles) {
+    ThreadPool pool(
+        choose_thread_count(settings.threads, static_cast<int64_t>(triangles.size()), 16384));
+    return measure_distortion(positions, map, triangles, pool);
 }
 
 }  // namespace
@@ -79,9 +83,8 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
             identity_output(mesh, out);
             out.sphere_points = std::move(map.points);
             PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-            ThreadPool pool(metrics_threads(settings, mesh));
-            out.distortion = measure_distortion(
-                mesh.positions, SphericalMapGeometry(out.sphere_points), mesh.triangles, pool);
+            out.distortion = measure_alone(settings, mesh.positions,
+                                           SphericalMapGeometry(out.sphere_points), mesh.triangles);
             timer.finish();
             return out;
         }
@@ -102,8 +105,7 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                 triangles[t][k] = static_cast<int32_t>(out.indices[3 * t + k]);
         }
         PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-        ThreadPool pool(metrics_threads(settings, mesh));
-        out.distortion = measure_distortion(positions, PlanarMapGeometry(out.uv), triangles, pool);
+        out.distortion = measure_alone(settings, positions, PlanarMapGeometry(out.uv), triangles);
         out.utilization = uv_area(out.uv, triangles);
         timer.finish();
         return out;
@@ -146,9 +148,8 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
     out.adaptive_solves = map.adaptive_solves;
     identity_output(mesh, out);
     PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-    ThreadPool pool(metrics_threads(settings, mesh));
     out.distortion =
-        measure_distortion(mesh.positions, PlanarMapGeometry(out.uv), mesh.triangles, pool);
+        measure_alone(settings, mesh.positions, PlanarMapGeometry(out.uv), mesh.triangles);
     out.utilization = uv_area(out.uv, mesh.triangles);
     timer.finish();
     return out;

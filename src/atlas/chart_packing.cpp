@@ -489,12 +489,19 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             const Profile& p = prepared[c].profiles[q];
             if (p.width > strip) continue;
             const int32_t last = strip - p.width, step = std::max(1, p.width / 8);
-            auto consider = [&](int32_t x) {
-                if (score_at_least(p, x) >= best_score) return;
-                const int32_t limit = row_limit(p, x, best_score);
+            // The score at x and its resting row when it may beat `than`, given a lower bound
+            // of the score; otherwise the largest score, which beats nothing.
+            auto score_below = [&](int32_t x, int64_t at_least,
+                                   int64_t than) -> std::pair<int64_t, int32_t> {
+                constexpr int64_t kNone = std::numeric_limits<int64_t>::max();
+                if (at_least >= than) return {kNone, 0};
+                const int32_t limit = row_limit(p, x, than);
                 const int32_t y = rest_height(p, x, limit);
-                if (y >= limit) return;
-                const int64_t score = score_of(p, x, y);
+                if (y >= limit) return {kNone, 0};
+                return {score_of(p, x, y), y};
+            };
+            auto consider = [&](int32_t x) {
+                const auto [score, y] = score_below(x, score_at_least(p, x), best_score);
                 if (score < best_score) {
                     best_score = score;
                     best_x = x;
@@ -517,11 +524,7 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
                 if (step == 1 && bounds[x] >= first_limit) continue;
                 const int64_t at_least =
                     step == 1 ? score_from_bound(p, x, bounds[x]) : score_at_least(p, x);
-                if (at_least >= coarse_score) continue;
-                const int32_t limit = row_limit(p, x, coarse_score);
-                const int32_t y = rest_height(p, x, limit);
-                if (y >= limit) continue;
-                const int64_t score = score_of(p, x, y);
+                const int64_t score = score_below(x, at_least, coarse_score).first;
                 if (score < coarse_score) {
                     coarse_score = score;
                     coarse_best = x;
@@ -708,6 +711,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         std::vector<Eigen::Vector2i> at;
         std::vector<int> quarter;
         int32_t width = 0, height = 0;
+        double area() const { return static_cast<double>(width) * height; }
     };
     // Every order, strip width and scoring rule, each packed with holes filled, or on the
     // skyline alone where filling holes overflows the atlas; the smallest rectangle wins (ties:
@@ -759,16 +763,14 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             fits[trial] = (few && pack_trial(trial, true, packed[trial])) ||
                           pack_trial(trial, false, packed[trial]);
         });
-        auto area_of = [&](size_t trial) {
-            return static_cast<double>(packed[trial].width) * packed[trial].height;
-        };
         if (!few) {
             std::vector<size_t> ranked;
             for (size_t trial = 0; trial < trials; ++trial) {
                 if (fits[trial]) ranked.push_back(trial);
             }
-            std::stable_sort(ranked.begin(), ranked.end(),
-                             [&](size_t a, size_t b) { return area_of(a) < area_of(b); });
+            std::stable_sort(ranked.begin(), ranked.end(), [&](size_t a, size_t b) {
+                return packed[a].area() < packed[b].area();
+            });
             ranked.resize(std::min<size_t>(ranked.size(), 2));
             std::vector<Packed> with_holes(ranked.size());
             std::vector<char> holes_fit(ranked.size(), 0);
@@ -781,7 +783,8 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         }
         size_t best = trials;
         for (size_t trial = 0; trial < trials; ++trial) {
-            if (fits[trial] && (best == trials || area_of(trial) < area_of(best))) best = trial;
+            if (fits[trial] && (best == trials || packed[trial].area() < packed[best].area()))
+                best = trial;
         }
         if (best == trials) throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
         Packed layout = std::move(packed[best]);
@@ -804,8 +807,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             });
             bool improved = false;
             for (size_t k = 0; k < variants.size(); ++k) {
-                const double area = static_cast<double>(tried[k].width) * tried[k].height;
-                if (tried_fits[k] && area < static_cast<double>(layout.width) * layout.height) {
+                if (tried_fits[k] && tried[k].area() < layout.area()) {
                     layout = std::move(tried[k]);
                     kept_order = variants[k];
                     improved = true;
