@@ -4,6 +4,9 @@
 // (peak memory per mesh); times are medians of several runs.
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
+//                    [--mesh FILE] [--phases]
+// --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
+// each mesh's median time per phase.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,6 +52,7 @@ const Reference kReference[] = {
 
 struct Sample {
     double total_ms;
+    double phase_ms[RAPS_PHASE_COUNT];
     raps_stats stats;
     int ok;
 };
@@ -79,6 +83,8 @@ Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uin
                 .count();
         sample.stats.struct_size = sizeof(sample.stats);
         raps_result_get_stats(result, &sample.stats);
+        for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p)
+            sample.phase_ms[p] = raps_result_phase_ms(result, p);
         sample.ok = 1;
     } else {
         std::fprintf(stderr, "raps-bench-atlas: %s\n", raps_result_last_error(result));
@@ -93,14 +99,21 @@ Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uin
 
 int main(int argc, char** argv) {
     std::string data = RAPS_SHARED_DATA_DIR;
+    std::string only;
+    bool phases = false;
+    std::string phase_lines;
     int runs = 3;
     Options options;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        if (arg == "--phases") {
+            phases = true;
+            continue;
+        }
         if (i + 1 >= argc) {
             std::fprintf(stderr,
                          "usage: raps-bench-atlas [--data DIR] [--runs N] [--threads N] "
-                         "[--resolution N] [--padding N]\n");
+                         "[--resolution N] [--padding N] [--mesh FILE] [--phases]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -114,6 +127,8 @@ int main(int argc, char** argv) {
             options.resolution = std::atoi(value.c_str());
         else if (arg == "--padding")
             options.padding = std::atoi(value.c_str());
+        else if (arg == "--mesh")
+            only = value;
         else {
             std::fprintf(stderr, "raps-bench-atlas: unknown option %s\n", arg.c_str());
             return 2;
@@ -128,6 +143,7 @@ int main(int argc, char** argv) {
     std::printf(
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Reference& ref : kReference) {
+        if (!only.empty() && only != ref.file) continue;
         int fds[2];
         if (pipe(fds) != 0) return 1;
         const pid_t pid = fork();
@@ -180,6 +196,21 @@ int main(int argc, char** argv) {
             reference(ref.linf, "%.2f").c_str(), st.area_log_mean, st.angle_mean_deg,
             static_cast<unsigned long long>(st.flipped_triangles), usage.ru_maxrss / 1024.0);
         std::fflush(stdout);
+        if (phases) {
+            static const char* const kNames[RAPS_PHASE_COUNT] = {
+                "validate", "topology", "initial_map", "adapt", "metrics", "segment", "pack"};
+            phase_lines += std::string("| ") + ref.file;
+            for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p) {
+                std::vector<double> phase;
+                for (const Sample& x : samples) phase.push_back(x.phase_ms[p]);
+                std::sort(phase.begin(), phase.end());
+                char cell[64];
+                std::snprintf(cell, sizeof(cell), " | %s %.1f", kNames[p], phase[phase.size() / 2]);
+                phase_lines += cell;
+            }
+            phase_lines += " |\n";
+        }
     }
+    if (phases) std::printf("\nmedian ms per phase\n\n%s", phase_lines.c_str());
     return 0;
 }
