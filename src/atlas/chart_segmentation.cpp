@@ -267,7 +267,11 @@ std::vector<int32_t> segment_charts(const AtlasSurface& surface,
     Grower grower(surface, geometry, settings);
     std::vector<int32_t> chart = compact_ids(grower.grow({0}));
     for (int i = 0; i < settings.lloyd_iterations; ++i) {
-        chart = compact_ids(grower.grow(grower.centres(chart)));
+        std::vector<int32_t> regrown = compact_ids(grower.grow(grower.centres(chart)));
+        // The same charts again: their centres, hence every later iteration, are the same too
+        // (charts fenced in by hard edges, as on CAD parts, are there from the start).
+        if (regrown == chart) break;
+        chart = std::move(regrown);
     }
     std::vector<int32_t> all(chart.size());
     std::iota(all.begin(), all.end(), 0);
