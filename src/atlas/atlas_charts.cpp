@@ -110,6 +110,7 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
     if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system);
     unadapted_l2 = chart.map.stretch_l2;
     adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system);
+    chart.box = smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles);
     return true;
 }
 
@@ -211,18 +212,13 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     // one over the L2 budget by `change` stays over it until the budget has that much room: the
     // later passes skip them instead of mapping them again (lion: the last pass, which merged
     // nothing, was a quarter of the atlas's time). Charts keep ids across passes for this.
-    // Per chart, beside it: its 3D area, how well it fills its bounding box (for the fill rule
-    // below: measured once per chart, on the threads, not per candidate pair in the serial
-    // acceptance) and its id.
+    // Per chart, beside it: its 3D area and its id.
     struct Facts {
-        double area, fill;
+        double area;
         int64_t id;
     };
     std::vector<Facts> facts(charts.size());
-    parallel_for_each(pool, charts.size(), [&](size_t c) {
-        facts[c] = {area[c], bounding_box_fill(charts[c].map.uv, charts[c].disk.mesh.triangles),
-                    static_cast<int64_t>(c)};
-    });
+    for (size_t c = 0; c < charts.size(); ++c) facts[c] = {area[c], static_cast<int64_t>(c)};
     int64_t next_id = static_cast<int64_t>(charts.size());
     constexpr double kNever = std::numeric_limits<double>::infinity();
     std::map<std::pair<int64_t, int64_t>, double> rejected;  // id pair -> change in L2 budget
@@ -276,7 +272,6 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
             }
             std::vector<AtlasChart> built(batch.size());
             std::vector<char> good(batch.size(), 0), mapped(batch.size(), 0);
-            std::vector<double> built_fill(batch.size(), 0.0);
             auto map_union = [&](size_t i) {
                 std::vector<int32_t> triangles = charts[batch[i].a].disk.surface_triangle;
                 const std::vector<int32_t>& more = charts[batch[i].b].disk.surface_triangle;
@@ -287,10 +282,6 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 double unadapted;
                 good[i] = try_chart(surface, triangles, seam, settings, limits, built[i], unadapted,
                                     {&charts[batch[i].a].disk, &charts[batch[i].b].disk});
-                if (good[i]) {
-                    built_fill[i] =
-                        bounding_box_fill(built[i].map.uv, built[i].disk.mesh.triangles);
-                }
                 mapped[i] = 1;
             };
             std::vector<size_t> union_size(batch.size());
@@ -329,15 +320,15 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 // boundary first flattening: lion's coverage 0.606 -> 0.687 and suzanne's
                 // 0.636 -> 0.674, against a rule of 0.8 times the worse part's fill).
                 const double parts_box =
-                    facts[a].area / facts[a].fill + facts[b].area / facts[b].fill;
-                if (union_area / built_fill[i] > parts_box / 0.9) {
+                    facts[a].area / charts[a].box.fill + facts[b].area / charts[b].box.fill;
+                if (union_area / built[i].box.fill > parts_box / 0.9) {
                     rejected[key(a, b)] = kNever;
                     continue;
                 }
                 weighted += change;
                 consumed[a] = consumed[b] = 1;
                 merged_charts.push_back(std::move(built[i]));
-                merged_facts.push_back({union_area, built_fill[i], next_id++});
+                merged_facts.push_back({union_area, next_id++});
                 any = true;
             }
         }

@@ -10,6 +10,7 @@
 
 #include "atlas/atlas_surface.h"
 #include "atlas/chart_disk.h"
+#include "atlas/chart_packing.h"
 #include "atlas/chart_parameterization.h"
 #include "core/progress.h"
 #include "core/settings.h"
@@ -20,6 +21,7 @@ namespace raps {
 struct AtlasChart {
     ChartDisk disk;
     ChartMap map;
+    ChartBox box;  // of the map: merging weighs its fill, packing turns the chart by it
 };
 
 struct ChartLimits {

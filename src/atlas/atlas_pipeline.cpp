@@ -105,7 +105,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     std::vector<PackInput> inputs;
     inputs.reserve(charts.size());
     for (const AtlasChart& chart : charts)
-        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles});
+        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation});
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
     pack_settings.padding = settings.atlas_padding;

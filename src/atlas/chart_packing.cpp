@@ -34,9 +34,9 @@ std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
     return hull;
 }
 
-// The rotation (as cos, sin) that aligns the smallest-area bounding box (or, for a single
-// chart, the smallest square) with the axes: one of the hull's edge directions.
-Eigen::Vector2d best_rotation(const std::vector<Eigen::Vector2d>& uv, bool square) {
+// The rotation (as cos, sin) that aligns the smallest-area bounding box with the axes: one of
+// the hull's edge directions.
+Eigen::Vector2d best_rotation(const std::vector<Eigen::Vector2d>& uv) {
     const std::vector<Eigen::Vector2d> hull = convex_hull(uv);
     Eigen::Vector2d best(1, 0);
     double best_score = std::numeric_limits<double>::max();
@@ -53,8 +53,7 @@ Eigen::Vector2d best_rotation(const std::vector<Eigen::Vector2d>& uv, bool squar
             lo_y = std::min(lo_y, y);
             hi_y = std::max(hi_y, y);
         }
-        const double score =
-            square ? std::max(hi_x - lo_x, hi_y - lo_y) : (hi_x - lo_x) * (hi_y - lo_y);
+        const double score = (hi_x - lo_x) * (hi_y - lo_y);
         if (score < best_score - 1e-12 * std::abs(best_score)) {
             best_score = score;
             best = edge;
@@ -604,9 +603,11 @@ constexpr int kSwapRounds = 2;
 
 }  // namespace
 
-double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
-                         const std::vector<Triangle>& triangles) {
-    const Eigen::Vector2d r = best_rotation(uv, false);
+ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
+                               const std::vector<Triangle>& triangles) {
+    ChartBox box;
+    box.rotation = best_rotation(uv);
+    const Eigen::Vector2d r = box.rotation;
     Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
     for (const Eigen::Vector2d& p : uv) {
         const Eigen::Vector2d q(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
@@ -618,8 +619,9 @@ double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
         const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
         area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
     }
-    const double box = (hi.x() - lo.x()) * (hi.y() - lo.y());
-    return box > 0 ? std::min(1.0, area / box) : 1.0;
+    const double box_area = (hi.x() - lo.x()) * (hi.y() - lo.y());
+    box.fill = box_area > 0 ? std::min(1.0, area / box_area) : 1.0;
+    return box;
 }
 
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
@@ -631,13 +633,13 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     const int32_t padding = std::max(0, settings.padding);
     const double resolution = std::max(1, settings.resolution);
 
-    // Rotate every chart to its best box.
+    // Turn every chart to its smallest box.
     std::vector<PreparedChart> prepared(count);
     std::vector<Eigen::Vector2d> extent(count);
     double total_area = 0;
     for (size_t c = 0; c < count; ++c) {
         const std::vector<Eigen::Vector2d>& uv = *charts[c].uv;
-        prepared[c].rotation = best_rotation(uv, false);
+        prepared[c].rotation = charts[c].rotation;
         const Eigen::Vector2d r = prepared[c].rotation;
         Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
         for (const Eigen::Vector2d& p : uv) {

@@ -1,15 +1,15 @@
 // Step 5 of the atlas pipeline: place the charts at one texel density in a rectangle of at most
 // resolution x resolution texels, as small as possible. Every chart is turned to its smallest
-// bounding box (rotating calipers over its convex hull), rasterised conservatively at the texel
-// size and padded, so that no two charts come closer than `padding` texels (bilinear filtering
-// and mip levels then never mix them). Charts are placed largest first into a strip of fixed
-// width, each in whichever of its four quarter turns lands lowest on the skyline (the top of
-// what is already placed, per column of texels) or lower, in a hole under an overhang; three
-// orders of size, several strip widths and two scoring rules are tried and the one giving the
-// smallest rectangle wins (up to 16 charts, its order is then improved by pair swaps). The texel
-// density is then raised until the longer side is `resolution` texels. As in xatlas, uvs are
-// normalised per axis: u = x / width, v = y / height, so a texture of width x height texels maps
-// them at equal density.
+// bounding box (smallest_bounding_box, measured by the caller with the chart's map), rasterised
+// conservatively at the texel size and padded, so that no two charts come closer than `padding`
+// texels (bilinear filtering and mip levels then never mix them). Charts are placed largest first
+// into a strip of fixed width, each in whichever of its four quarter turns lands lowest on the
+// skyline (the top of what is already placed, per column of texels) or lower, in a hole under an
+// overhang; three orders of size, several strip widths and two scoring rules are tried and the one
+// giving the smallest rectangle wins (up to 16 charts, its order is then improved by pair swaps).
+// The texel density is then raised until the longer side is `resolution` texels. As in xatlas, uvs
+// are normalised per axis: u = x / width, v = y / height, so a texture of width x height texels
+// maps them at equal density.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +25,7 @@ namespace raps {
 struct PackInput {
     const std::vector<Eigen::Vector2d>* uv;  // chart-local uv, in 3D units (uv area = 3D area)
     const std::vector<Triangle>* triangles;
+    Eigen::Vector2d rotation;  // the chart's smallest box (smallest_bounding_box)
 };
 
 struct PackSettings {
@@ -41,9 +42,14 @@ struct PackResult {
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
                        ThreadPool& pool);
 
-// How well a chart fills its smallest bounding box: uv area / box area, in (0, 1]. Arches,
-// rings and L-shapes score low and waste packing space around them.
-double bounding_box_fill(const std::vector<Eigen::Vector2d>& uv,
-                         const std::vector<Triangle>& triangles);
+// A chart's smallest bounding box: the rotation (cos, sin) that aligns it with the axes, and how
+// well the chart fills it, uv area / box area, in (0, 1]. Arches, rings and L-shapes fill it
+// badly and waste packing space around them.
+struct ChartBox {
+    Eigen::Vector2d rotation = Eigen::Vector2d(1, 0);
+    double fill = 1;
+};
+ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
+                               const std::vector<Triangle>& triangles);
 
 }  // namespace raps
