@@ -103,7 +103,7 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
     if (!good && triangles.size() > 1) return false;
     LaplaceSystem system = chart_laplace_system(chart.disk);
     if (good) {
-        chart.map = free_boundary_chart_map(chart.disk, system);
+        chart.map = free_boundary_chart_map(chart.disk, system, limits.max_stretch_linf);
         good = chart.map.injective && chart.map.stretch_linf <= limits.max_stretch_linf;
     }
     if (!good && triangles.size() > 1) return false;

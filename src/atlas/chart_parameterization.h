@@ -33,8 +33,9 @@ struct ChartMap {
 LaplaceSystem chart_laplace_system(const ChartDisk& disk);
 
 // The free-boundary map, its uvs scaled to the chart's 3D area. map.injective is false when
-// the free boundary overlaps itself: the caller should split the chart.
-ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system);
+// the free boundary overlaps itself, or when its conformal scale factors already show a Linf
+// stretch well above max_linf (the map is then not finished): the caller should split the chart.
+ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf);
 
 // The paper's adaptive step on an injective map, boundary held; replaces the map when the
 // result is injective with a lower L2 stretch and a Linf stretch within max_linf (or the
