@@ -331,6 +331,42 @@ static void hostile_meshes_get_valid_atlases(void** state) {
     test_mesh_free(&fan);
 }
 
+/* Vertices at exactly one position are one vertex of the surface (RAPS_PARAM_WELD_TOLERANCE 0):
+ * a flat disk given as a triangle soup, every corner its own vertex and some of the copies with
+ * -0 for a zero coordinate (z, and x or y at the centre and on the axes), is still one chart without seams, and all copies of a position get the
+ * same uv. Two copies of a triangle over those vertices follow their first. */
+static void split_vertices_are_welded_back(void** state) {
+    (void)state;
+    test_mesh disk = make_flat_disk(6, 8, 0.2);
+    const size_t triangles = disk.index_count / 3;
+    test_mesh soup = {malloc((9 * triangles + 9) * sizeof(double)), 3 * triangles + 3,
+                      malloc((3 * triangles + 3) * sizeof(uint32_t)), 3 * triangles + 3};
+    for (size_t c = 0; c < 3 * triangles; ++c) {
+        memcpy(&soup.positions[3 * c], &disk.positions[3 * disk.indices[c]], 3 * sizeof(double));
+        for (int k = 0; k < 3; ++k) {
+            if (c % 2 && soup.positions[3 * c + k] == 0.0) soup.positions[3 * c + k] = -0.0;
+        }
+        soup.indices[c] = (uint32_t)c;
+    }
+    /* The first triangle once more, over copies of its corners (a duplicate face). */
+    memcpy(&soup.positions[9 * triangles], &soup.positions[0], 9 * sizeof(double));
+    for (int k = 0; k < 3; ++k) soup.indices[3 * triangles + k] = (uint32_t)(3 * triangles + k);
+    atlas a = run_atlas(&soup, 0, 1);
+    check_structure(&soup, &a);
+    assert_int_equal(a.stats.chart_count, 1);
+    assert_int_equal(a.stats.flipped_triangles, 0);
+    for (size_t i = 0; i < a.index_count; ++i) { /* corner i is a copy of disk corner i % 3T */
+        for (size_t j = 0; j < i; ++j) {
+            if (disk.indices[i % (3 * triangles)] != disk.indices[j % (3 * triangles)]) continue;
+            const uint32_t vi = a.indices[i], vj = a.indices[j];
+            assert_true(a.uv[2 * vi] == a.uv[2 * vj] && a.uv[2 * vi + 1] == a.uv[2 * vj + 1]);
+        }
+    }
+    atlas_free(&a);
+    test_mesh_free(&soup);
+    test_mesh_free(&disk);
+}
+
 /* A vertex so far out (1e29, inside the 1e30 positions accept) that every chart is thinner
  * than double precision resolves at one texel density: every uv triangle would have zero area.
  * That is refused, not returned as a map (found by fuzzing; the statistics were NaN). */
@@ -531,6 +567,7 @@ int main(void) {
         cmocka_unit_test(every_shared_mesh_gets_a_valid_atlas),
         cmocka_unit_test(output_is_identical_for_any_thread_count),
         cmocka_unit_test(hostile_meshes_get_valid_atlases),
+        cmocka_unit_test(split_vertices_are_welded_back),
         cmocka_unit_test(an_atlas_of_zero_area_is_refused),
         cmocka_unit_test(atlas_progress_and_cancellation),
         cmocka_unit_test(progress_calls_never_overlap),
