@@ -297,35 +297,45 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
         ++adjacency.offsets[halfedge_target(mesh, h) + 1];
     }
     std::partial_sum(adjacency.offsets.begin(), adjacency.offsets.end(), adjacency.offsets.begin());
-    adjacency.neighbors.resize(adjacency.offsets.back());
+    // Each entry carries its edge's half-edge h and direction (2h: in the row of h's origin,
+    // 2h + 1: of its target) through the sort, so the slots come out of the sort itself: binary
+    // searches for them afterwards were most of this function.
+    std::vector<std::pair<int32_t, int32_t>> entries(adjacency.offsets.back());
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
         if (halfedges.twin[h] > h) continue;
         const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
-        adjacency.neighbors[fill[a]++] = b;
-        adjacency.neighbors[fill[b]++] = a;
+        entries[fill[a]++] = {b, 2 * h};
+        entries[fill[b]++] = {a, 2 * h + 1};
     }
-    for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
-        std::sort(adjacency.neighbors.begin() + adjacency.offsets[v],
-                  adjacency.neighbors.begin() + adjacency.offsets[v + 1]);
-    }
-    auto slot = [&](int32_t from, int32_t to) {
-        const auto begin = adjacency.neighbors.begin() + adjacency.offsets[from];
-        const auto end = adjacency.neighbors.begin() + adjacency.offsets[from + 1];
-        return static_cast<int32_t>(std::lower_bound(begin, end, to) - adjacency.neighbors.begin());
-    };
+    adjacency.neighbors.resize(entries.size());
     adjacency.forward_slot.resize(halfedge_count);
     adjacency.backward_slot.resize(halfedge_count);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        const int32_t g = halfedges.twin[h];
-        if (g >= 0 && g < h) continue;  // set with its twin, which runs the other way
-        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
-        adjacency.forward_slot[h] = slot(a, b);
-        adjacency.backward_slot[h] = slot(b, a);
-        if (g >= 0) {
-            adjacency.forward_slot[g] = adjacency.backward_slot[h];
-            adjacency.backward_slot[g] = adjacency.forward_slot[h];
+    for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
+        // Insertion sort by neighbour: a vertex has about six.
+        const auto first = entries.begin() + adjacency.offsets[v];
+        const auto last = entries.begin() + adjacency.offsets[v + 1];
+        for (auto i = first + 1; i < last; ++i) {
+            const std::pair<int32_t, int32_t> entry = *i;
+            auto j = i;
+            for (; j > first && (j - 1)->first > entry.first; --j) *j = *(j - 1);
+            *j = entry;
         }
+        // A neighbour listed twice (two edges between the same vertices, in degenerate input)
+        // has its first slot, the one a search would find.
+        int32_t run = adjacency.offsets[v];
+        for (int32_t slot = adjacency.offsets[v]; slot < adjacency.offsets[v + 1]; ++slot) {
+            const auto [neighbor, tag] = entries[slot];
+            if (neighbor != entries[run].first) run = slot;
+            adjacency.neighbors[slot] = neighbor;
+            (tag % 2 ? adjacency.backward_slot : adjacency.forward_slot)[tag / 2] = run;
+        }
+    }
+    for (int32_t h = 0; h < halfedge_count; ++h) {  // the larger twin, g, runs the other way
+        const int32_t g = halfedges.twin[h];
+        if (g < h) continue;
+        adjacency.forward_slot[h] = adjacency.backward_slot[g];
+        adjacency.backward_slot[h] = adjacency.forward_slot[g];
     }
     return adjacency;
 }
