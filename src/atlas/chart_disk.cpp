@@ -1,6 +1,7 @@
 #include "atlas/chart_disk.h"
 
 #include <algorithm>
+#include <numeric>
 
 #include "mesh/mesh_topology.h"
 #include "planar/laplace_system.h"
@@ -163,17 +164,20 @@ bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_
     };
     note_positions(a, position_in_a);
     note_positions(b, position_in_b);
+    // A counting sort by (group, position in its part's order), ties in vertex order.
     const int32_t n = disk.mesh.vertex_count();
-    std::vector<std::pair<int64_t, int32_t>> keyed(n);
+    const int32_t size_a = static_cast<int32_t>(a.vertex_order.size());
+    const int32_t size_b = static_cast<int32_t>(b.vertex_order.size());
+    std::vector<int32_t> key(n), start(2 * static_cast<size_t>(size_a) + size_b + 1, 0);
     for (int32_t v = 0; v < n; ++v) {
         const int32_t in_a = position_in_a[disk.surface_vertex[v]];
         const int32_t in_b = position_in_b[disk.surface_vertex[v]];
-        const int64_t group = in_a >= 0 ? (in_b >= 0 ? 2 : 0) : 1;
-        keyed[v] = {(group << 32) + (group == 1 ? in_b : in_a), v};
+        key[v] = in_a < 0 ? size_a + in_b : in_b < 0 ? in_a : size_a + size_b + in_a;
+        ++start[key[v] + 1];
     }
-    std::sort(keyed.begin(), keyed.end());
+    std::partial_sum(start.begin(), start.end(), start.begin());
     disk.vertex_order.resize(n);
-    for (int32_t k = 0; k < n; ++k) disk.vertex_order[k] = keyed[k].second;
+    for (int32_t v = 0; v < n; ++v) disk.vertex_order[start[key[v]]++] = v;
     return true;
 }
 
