@@ -110,7 +110,8 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
     if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system);
     unadapted_l2 = chart.map.stretch_l2;
     adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system);
-    chart.box = smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles);
+    chart.box =
+        smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles, chart.disk.boundary_loop);
     return true;
 }
 

@@ -604,9 +604,12 @@ constexpr int kSwapRounds = 2;
 }  // namespace
 
 ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
-                               const std::vector<Triangle>& triangles) {
+                               const std::vector<Triangle>& triangles,
+                               const std::vector<int32_t>& boundary) {
+    std::vector<Eigen::Vector2d> outline(boundary.size());
+    for (size_t i = 0; i < boundary.size(); ++i) outline[i] = uv[boundary[i]];
     ChartBox box;
-    box.rotation = best_rotation(uv);
+    box.rotation = best_rotation(outline);
     const Eigen::Vector2d r = box.rotation;
     Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
     for (const Eigen::Vector2d& p : uv) {

@@ -49,7 +49,11 @@ struct ChartBox {
     Eigen::Vector2d rotation = Eigen::Vector2d(1, 0);
     double fill = 1;
 };
+// boundary: the chart's boundary vertices, whose hull is the chart's when the map is injective
+// (the hull is searched over them alone; a map that is not gets a box that is still valid, if
+// not the smallest).
 ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
-                               const std::vector<Triangle>& triangles);
+                               const std::vector<Triangle>& triangles,
+                               const std::vector<int32_t>& boundary);
 
 }  // namespace raps
