@@ -182,6 +182,9 @@ BitImage rotate_quarter(const BitImage& in) {
 // and both footprints as bit rows, for exact fitting into holes.
 // An empty column's resting row: skyline - kNeverRests is below any real resting height.
 constexpr int32_t kNeverRests = 1 << 30;
+// Charts narrower than this are tried at every position of the strip (wider ones at steps of
+// an eighth of their width, then refined).
+constexpr int32_t kNarrowChart = 16;
 
 struct Profile {
     int32_t width = 0, height = 0;
@@ -191,9 +194,14 @@ struct Profile {
     // columns that count.
     std::vector<int32_t> resting_bottom, occupied;
     int64_t occupied_count = 0, occupied_bottom_sum = 0;  // and the sum of their bottoms
+    // The first occupied column and one past the last: the occupied columns are exactly these
+    // when occupied_count == occupied_end - occupied_begin (a connected chart).
+    int32_t occupied_begin = 0, occupied_end = 0;
     // A few occupied columns (its first, its middle, its lowest): the highest the chart must
     // rest over these alone bounds its resting row from below at a glance. More columns
-    // measured slower: the bound prunes little more and costs more.
+    // measured slower: the bound prunes little more and costs more. A chart narrower than
+    // kNarrowChart columns, whose every position is tried, probes every occupied column: the
+    // bound is then its resting row, found for all positions in one vectorised pass.
     std::vector<int32_t> probe_columns;
     int32_t words = 0;
     std::vector<uint64_t> chart_bits, padded_bits;
@@ -264,18 +272,20 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
     profile.resting_bottom.resize(chart.width);
     profile.occupied.resize(chart.width);
     int32_t lowest = -1;
-    const int32_t spacing = std::max(1, chart.width / 2);
+    const int32_t spacing = chart.width < kNarrowChart ? 1 : chart.width / 2;
     for (int32_t x = 0; x < chart.width; ++x) {
         const bool occupied = bottom[x] < chart.height;
         profile.resting_bottom[x] = occupied ? bottom[x] : kNeverRests;
         profile.occupied[x] = occupied;
         if (!occupied) continue;
+        if (profile.occupied_count == 0) profile.occupied_begin = x;
+        profile.occupied_end = x + 1;
         ++profile.occupied_count;
         profile.occupied_bottom_sum += bottom[x];
         if (lowest < 0 || bottom[x] < bottom[lowest]) lowest = x;
         if (x % spacing == 0) profile.probe_columns.push_back(x);
     }
-    if (lowest >= 0) profile.probe_columns.push_back(lowest);
+    if (lowest >= 0 && chart.width >= kNarrowChart) profile.probe_columns.push_back(lowest);
     return profile;
 }
 
@@ -457,14 +467,20 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         return y;
     };
     std::vector<int32_t> bounds(static_cast<size_t>(strip));  // of every position, narrow charts
+    // With count_waste, the skyline's prefix sums: under a chart whose occupied columns are
+    // one run (a connected chart's are), the skyline's sum is one difference.
+    std::vector<int64_t> skyline_sum(count_waste ? static_cast<size_t>(strip) + 1 : 0, 0);
     // Lowest top first; or, with count_waste, the texels left empty under the chart plus the
     // area up to its top, which favours placements that fit the skyline's dips.
     auto score_of = [&](const Profile& p, int32_t x, int32_t y) -> int64_t {
         const int64_t top = static_cast<int64_t>(y) + p.height;
         if (!count_waste) return top * (int64_t(strip) + 1) + x;
         // Sum over occupied columns of y + bottom - skyline.
-        const int64_t waste = p.occupied_count * y + p.occupied_bottom_sum -
-                              kernels.skyline_under(skyline.data() + x, p.occupied.data(), p.width);
+        const int64_t under =
+            p.occupied_count == p.occupied_end - p.occupied_begin
+                ? skyline_sum[x + p.occupied_end] - skyline_sum[x + p.occupied_begin]
+                : kernels.skyline_under(skyline.data() + x, p.occupied.data(), p.width);
+        const int64_t waste = p.occupied_count * y + p.occupied_bottom_sum - under;
         return (waste + top * p.width) * (int64_t(strip) + 1) + x;
     };
     // A lower bound of score_of(p, x, rest_height(p, x)): both rules grow with y, and the
@@ -494,7 +510,8 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
         for (int q = 0; q < 4; ++q) {
             const Profile& p = prepared[c].profiles[q];
             if (p.width > strip) continue;
-            const int32_t last = strip - p.width, step = std::max(1, p.width / 8);
+            const int32_t last = strip - p.width;
+            const int32_t step = p.width < kNarrowChart ? 1 : p.width / 8;
             // The score at x and its resting row when it may beat `than`, given a lower bound
             // of the score; otherwise the largest score, which beats nothing.
             auto score_below = [&](int32_t x, int64_t at_least,
@@ -517,24 +534,31 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             };
             int32_t coarse_best = 0;
             int64_t coarse_score = std::numeric_limits<int64_t>::max();
-            // A chart narrower than 16 columns tries every position: their bounds in one pass.
             if (step == 1) {
+                // row_limit falls with x, so a bound at or above its value just right of the best
+                // so far rules a position out with one comparison.
+                int32_t first_limit = std::numeric_limits<int32_t>::max();
+                // A narrow chart tries every position, and its probes give the resting row of
+                // each (Profile::probe_columns): all in one pass, none searched again.
                 kernels.probe_bounds(
                     skyline.data(), p.resting_bottom.data(), p.probe_columns.data(),
                     static_cast<int32_t>(p.probe_columns.size()), last + 1, bounds.data());
-            }
-            // row_limit falls with x, so a bound at or above its value at x = 0 rules a
-            // position out with one comparison.
-            int32_t first_limit = row_limit(p, 0, coarse_score);
-            for (int32_t x = 0; x <= last; x += step) {
-                if (step == 1 && bounds[x] >= first_limit) continue;
-                const int64_t at_least =
-                    step == 1 ? score_from_bound(p, x, bounds[x]) : score_at_least(p, x);
-                const int64_t score = score_below(x, at_least, coarse_score).first;
-                if (score < coarse_score) {
-                    coarse_score = score;
-                    coarse_best = x;
-                    first_limit = row_limit(p, 0, coarse_score);
+                for (int32_t x = 0; x <= last; ++x) {
+                    if (bounds[x] >= first_limit) continue;
+                    const int64_t score = score_of(p, x, bounds[x]);
+                    if (score < coarse_score) {
+                        coarse_score = score;
+                        coarse_best = x;
+                        first_limit = row_limit(p, x + 1, coarse_score);  // for the x right of it
+                    }
+                }
+            } else {
+                for (int32_t x = 0; x <= last; x += step) {
+                    const int64_t score = score_below(x, score_at_least(p, x), coarse_score).first;
+                    if (score < coarse_score) {
+                        coarse_score = score;
+                        coarse_best = x;
+                    }
                 }
             }
             for (int32_t x = std::max(0, coarse_best - step + 1);
@@ -585,6 +609,8 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             if (p.top[i] >= 0)
                 skyline[best_x + i] = std::max(skyline[best_x + i], best_y + p.top[i] + 1);
         }
+        for (int32_t i = best_x; i < strip && count_waste; ++i)
+            skyline_sum[i + 1] = skyline_sum[i] + skyline[i];
         at[c] = Eigen::Vector2i(best_x, best_y);
         quarter[c] = best_q;
         width = std::max(width, best_x + p.width);
