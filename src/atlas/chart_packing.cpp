@@ -180,6 +180,28 @@ BitImage rotate_quarter(const BitImage& in) {
 
 // Per column: the lowest cell of the padded footprint and the highest cell of the chart itself;
 // and both footprints as bit rows, for exact fitting into holes.
+// The longest run of cells equal to `value` among cells 0 .. count - 1 of a bit row, a run at a
+// time (count trailing zeros), not a cell at a time.
+int32_t longest_run(const uint64_t* bits, int32_t count, bool value) {
+    // The first cell at or after `from` that equals `want`, or count.
+    auto next = [&](int32_t from, bool want) {
+        int32_t w = from / 64;
+        uint64_t word = (want ? bits[w] : ~bits[w]) & (~uint64_t(0) << (from % 64));
+        while (word == 0) {
+            if (++w * 64 >= count) return count;
+            word = want ? bits[w] : ~bits[w];
+        }
+        return std::min(count, w * 64 + __builtin_ctzll(word));
+    };
+    int32_t longest = 0;
+    for (int32_t x = next(0, value); x < count;) {
+        const int32_t end = next(x, !value);
+        longest = std::max(longest, end - x);
+        x = end < count ? next(end, value) : count;
+    }
+    return longest;
+}
+
 // An empty column's resting row: skyline - kNeverRests is below any real resting height.
 constexpr int32_t kNeverRests = 1 << 30;
 // Charts narrower than this are tried at every position of the strip (wider ones at steps of
@@ -205,6 +227,9 @@ struct Profile {
     std::vector<int32_t> probe_columns;
     int32_t words = 0;
     std::vector<uint64_t> chart_bits, padded_bits;
+    // The longest run of padded cells in the middle row (the row collision tests start with):
+    // a row of the layout with no free run as long has no room for the chart.
+    int32_t middle_run = 0;
 };
 
 struct PreparedChart {
@@ -286,13 +311,16 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
         if (x % spacing == 0) profile.probe_columns.push_back(x);
     }
     if (lowest >= 0 && chart.width >= kNarrowChart) profile.probe_columns.push_back(lowest);
+    profile.middle_run = longest_run(
+        profile.padded_bits.data() + static_cast<size_t>(chart.height / 2) * chart.words,
+        chart.width, true);
     return profile;
 }
 
 // The placed charts' cells as bit rows of a strip, growing upwards as needed.
 class Occupancy {
   public:
-    explicit Occupancy(int32_t strip) : words_((strip + 63) / 64 + 1) {}
+    explicit Occupancy(int32_t strip) : strip_(strip), words_((strip + 63) / 64 + 1) {}
 
     // Whether `bits` (rows of `p.words` words) placed with its lower left cell at (x, y) meets
     // an occupied cell.
@@ -325,7 +353,10 @@ class Occupancy {
 
     void place(const Profile& p, int32_t x, int32_t y) {
         const int32_t needed = y + p.height;
-        if (needed > rows()) cells_.resize(static_cast<size_t>(needed) * words_, 0);
+        if (needed > rows()) {
+            cells_.resize(static_cast<size_t>(needed) * words_, 0);
+            longest_free_.resize(needed, -1);
+        }
         const int32_t shift = x % 64, offset = x / 64;
         for (int32_t r = 0; r < p.height; ++r) {
             uint64_t* target = row_ptr(y + r) + offset;
@@ -336,10 +367,18 @@ class Occupancy {
                 carry = shift ? source[w] >> (64 - shift) : 0;
             }
             target[p.words] |= carry;
+            longest_free_[y + r] = -1;  // measured again when asked for
         }
     }
 
     int32_t rows() const { return static_cast<int32_t>(cells_.size() / words_); }
+
+    // The longest run of free cells in a row of the strip.
+    int32_t longest_free(int32_t row) {
+        if (row >= rows()) return strip_;
+        if (longest_free_[row] < 0) longest_free_[row] = longest_run(row_ptr(row), strip_, false);
+        return longest_free_[row];
+    }
 
   private:
     uint64_t* row_ptr(int32_t row) { return cells_.data() + static_cast<size_t>(row) * words_; }
@@ -347,8 +386,9 @@ class Occupancy {
         return cells_.data() + static_cast<size_t>(row) * words_;
     }
 
-    int32_t words_;
+    int32_t strip_, words_;
     std::vector<uint64_t> cells_;
+    std::vector<int32_t> longest_free_;  // per row, -1 until measured
 };
 
 // The skyline search's inner loops and their caller: a quarter of cheburashka's atlas cycles,
@@ -582,6 +622,8 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             const int32_t best_top = best_y + prepared[c].profiles[best_q].height;
             bool found = false;
             for (int32_t y = 0; !found && y + p.height < best_top; y += sy) {
+                // Every position of a row too full for the chart's middle row collides there.
+                if (occupancy.longest_free(y + p.height / 2) < p.middle_run) continue;
                 for (int32_t x = 0; x + p.width <= strip; x += sx) {
                     if (occupancy.collides(p, p.padded_bits, x, y)) continue;
                     int32_t fx = x, fy = y;
