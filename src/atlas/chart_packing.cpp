@@ -91,11 +91,6 @@ struct BitImage {
     }
 };
 
-// Marks every cell that a triangle touches (conservative). With the corners sorted by height,
-// the triangle's cross-section at height y runs between the long edge (lowest to highest
-// corner) and one of the two short edges; both ends move linearly in y except at the middle
-// corner, so over a row band the x-range is the hull of the sections at the band's two ends
-// (clipped to the triangle) and the middle corner when it lies inside the band.
 // floor(x) for the raster's coordinates (well inside int32_t): std::floor is a library call
 // on baseline x86-64, and was a quarter of rasterising.
 inline int32_t floor_cell(double x) {
@@ -103,6 +98,11 @@ inline int32_t floor_cell(double x) {
     return truncated - (x < truncated);
 }
 
+// Marks every cell that a triangle touches (conservative). With the corners sorted by height,
+// the triangle's cross-section at height y runs between the long edge (lowest to highest
+// corner) and one of the two short edges; both ends move linearly in y except at the middle
+// corner, so over a row band the x-range is the hull of the sections at the band's two ends
+// (clipped to the triangle) and the middle corner when it lies inside the band.
 void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Triangle>& triangles,
                BitImage& image) {
     for (const Triangle& t : triangles) {
@@ -178,8 +178,6 @@ BitImage rotate_quarter(const BitImage& in) {
     return out;
 }
 
-// Per column: the lowest cell of the padded footprint and the highest cell of the chart itself;
-// and both footprints as bit rows, for exact fitting into holes.
 // The longest run of cells equal to `value` among cells 0 .. count - 1 of a bit row, a run at a
 // time (count trailing zeros), not a cell at a time.
 int32_t longest_run(const uint64_t* bits, int32_t count, bool value) {
@@ -202,6 +200,8 @@ int32_t longest_run(const uint64_t* bits, int32_t count, bool value) {
     return longest;
 }
 
+// Per column: the lowest cell of the padded footprint and the highest cell of the chart itself;
+// and both footprints as bit rows, for exact fitting into holes.
 // An empty column's resting row: skyline - kNeverRests is below any real resting height.
 constexpr int32_t kNeverRests = 1 << 30;
 // Charts narrower than this are tried at every position of the strip (wider ones at steps of
@@ -577,19 +577,19 @@ bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<si
             if (step == 1) {
                 // row_limit falls with x, so a bound at or above its value just right of the best
                 // so far rules a position out with one comparison.
-                int32_t first_limit = std::numeric_limits<int32_t>::max();
+                int32_t rest_limit = std::numeric_limits<int32_t>::max();
                 // A narrow chart tries every position, and its probes give the resting row of
                 // each (Profile::probe_columns): all in one pass, none searched again.
                 kernels.probe_bounds(
                     skyline.data(), p.resting_bottom.data(), p.probe_columns.data(),
                     static_cast<int32_t>(p.probe_columns.size()), last + 1, bounds.data());
                 for (int32_t x = 0; x <= last; ++x) {
-                    if (bounds[x] >= first_limit) continue;
+                    if (bounds[x] >= rest_limit) continue;
                     const int64_t score = score_of(p, x, bounds[x]);
                     if (score < coarse_score) {
                         coarse_score = score;
                         coarse_best = x;
-                        first_limit = row_limit(p, x + 1, coarse_score);  // for the x right of it
+                        rest_limit = row_limit(p, x + 1, coarse_score);  // for the x right of it
                     }
                 }
             } else {

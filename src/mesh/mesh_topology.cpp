@@ -313,18 +313,18 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     adjacency.backward_slot.resize(halfedge_count);
     for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
         // Insertion sort by neighbour: a vertex has about six.
-        const auto first = entries.begin() + adjacency.offsets[v];
-        const auto last = entries.begin() + adjacency.offsets[v + 1];
-        for (auto i = first + 1; i < last; ++i) {
-            const std::pair<int32_t, int32_t> entry = *i;
-            auto j = i;
-            for (; j > first && (j - 1)->first > entry.first; --j) *j = *(j - 1);
-            *j = entry;
+        const int32_t first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
+        for (int32_t i = first + 1; i < last; ++i) {
+            const std::pair<int32_t, int32_t> entry = entries[i];
+            int32_t j = i;
+            for (; j > first && entries[j - 1].first > entry.first; --j)
+                entries[j] = entries[j - 1];
+            entries[j] = entry;
         }
         // A neighbour listed twice (two edges between the same vertices, in degenerate input)
         // has its first slot, the one a search would find.
-        int32_t run = adjacency.offsets[v];
-        for (int32_t slot = adjacency.offsets[v]; slot < adjacency.offsets[v + 1]; ++slot) {
+        int32_t run = first;
+        for (int32_t slot = first; slot < last; ++slot) {
             const auto [neighbor, tag] = entries[slot];
             if (neighbor != entries[run].first) run = slot;
             adjacency.neighbors[slot] = neighbor;
