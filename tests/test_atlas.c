@@ -333,8 +333,9 @@ static void hostile_meshes_get_valid_atlases(void** state) {
 
 /* Vertices at exactly one position are one vertex of the surface (RAPS_PARAM_WELD_TOLERANCE 0):
  * a flat disk given as a triangle soup, every corner its own vertex and some of the copies with
- * -0 for a zero coordinate (z, and x or y at the centre and on the axes), is still one chart without seams, and all copies of a position get the
- * same uv. Two copies of a triangle over those vertices follow their first. */
+ * -0 for a zero coordinate (z, and x or y at the centre and on the axes), is still one chart
+ * without seams, and all copies of a position get the same uv. Two copies of a triangle over those
+ * vertices follow their first. */
 static void split_vertices_are_welded_back(void** state) {
     (void)state;
     test_mesh disk = make_flat_disk(6, 8, 0.2);
