@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "mesh_io.h"
+#include "parameter_text.h"
 #include "raps.h"
 
 namespace {
@@ -197,15 +198,14 @@ int main(int argc, char** argv) {
             static_cast<unsigned long long>(st.flipped_triangles), usage.ru_maxrss / 1024.0);
         std::fflush(stdout);
         if (phases) {
-            static const char* const kNames[RAPS_PHASE_COUNT] = {
-                "validate", "topology", "initial_map", "adapt", "metrics", "segment", "pack"};
             phase_lines += std::string("| ") + ref.file;
             for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p) {
                 std::vector<double> phase;
                 for (const Sample& x : samples) phase.push_back(x.phase_ms[p]);
                 std::sort(phase.begin(), phase.end());
                 char cell[64];
-                std::snprintf(cell, sizeof(cell), " | %s %.1f", kNames[p], phase[phase.size() / 2]);
+                std::snprintf(cell, sizeof(cell), " | %s %.1f", raps_samples::phase_name(p),
+                              phase[phase.size() / 2]);
                 phase_lines += cell;
             }
             phase_lines += " |\n";

@@ -104,4 +104,10 @@ const char* choice_name(const ParameterFlag& flag, int64_t value) {
     return "?";
 }
 
+const char* phase_name(raps_phase phase) {
+    static const char* const kNames[RAPS_PHASE_COUNT] = {
+        "validate", "topology", "initial_map", "adapt", "metrics", "segment", "pack"};
+    return phase >= 0 && phase < RAPS_PHASE_COUNT ? kNames[phase] : "?";
+}
+
 }  // namespace raps_samples

@@ -32,4 +32,7 @@ std::string set_parameter_from_text(raps_settings* settings, const ParameterFlag
 // The name of the choice with `value` ("?" when there is none).
 const char* choice_name(const ParameterFlag& flag, int64_t value);
 
+// The name a report gives a progress phase ("initial_map", ...; "?" for an unknown one).
+const char* phase_name(raps_phase phase);
+
 }  // namespace raps_samples

@@ -2,12 +2,11 @@
 
 #include <cmath>
 
+#include "parameter_text.h"
+
 namespace raps_gltf {
 
 namespace {
-
-const char* kPhaseNames[RAPS_PHASE_COUNT] = {"validate", "topology", "initial_map", "adapt",
-                                             "metrics",  "segment",  "pack"};
 
 const char* choice(raps_param param, int64_t value) {
     switch (param) {
@@ -99,7 +98,7 @@ Json bake_json(const BakeResult& bake) {
         } else {
             Json times = Json::object();
             for (int p = 0; p < RAPS_PHASE_COUNT; ++p)
-                times[kPhaseNames[p]] = json_number(g.phase_ms[p]);
+                times[raps_samples::phase_name(p)] = json_number(g.phase_ms[p]);
             times["total"] = json_number(g.total_ms);
             j["time_ms"] = times;
         }

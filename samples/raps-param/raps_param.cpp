@@ -328,8 +328,6 @@ int run(int argc, char** argv) {
     raps_settings_get_float(h.settings, RAPS_PARAM_SPHERE_DAMPING, &damping);
     raps_settings_get_float(h.settings, RAPS_PARAM_SPHERE_TOLERANCE, &tolerance);
 
-    static const char* kPhaseNames[RAPS_PHASE_COUNT] = {
-        "validate", "topology", "initial_map", "adapt", "metrics", "segment", "pack"};
     std::string json = "{";
     json += "\"input\": " + json_string(input) + ", \"output\": " + json_string(output);
     json += ", \"vertices\": " + std::to_string(stats.vertex_count);
@@ -380,7 +378,7 @@ int run(int argc, char** argv) {
     for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {
         const double ms = raps_result_phase_ms(h.result, p);
         library_ms += ms;
-        json += std::string(", \"") + kPhaseNames[p] + "\": " + json_number(ms);
+        json += std::string(", \"") + raps_samples::phase_name(p) + "\": " + json_number(ms);
     }
     json += ", \"library_total\": " + json_number(library_ms) +
             ", \"write\": " + json_number(write_ms) + "}}";
