@@ -33,8 +33,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     // where sorting the triples was a quarter of fandisk's topology phase).
     std::vector<std::array<int32_t, 3>> rotated(input_count);
     std::vector<int32_t> primary_of(input_count, -1);
-    size_t capacity = 16;
-    while (capacity < 2 * static_cast<size_t>(input_count)) capacity *= 2;
+    const size_t capacity = hash_table_size(static_cast<size_t>(input_count));
     std::vector<int32_t> slot(capacity, -1);
     for (int32_t t = 0; t < input_count; ++t) {
         const Triangle& v = input.triangles[t];

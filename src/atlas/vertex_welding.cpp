@@ -36,8 +36,7 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
         // Exact equality: a hash table of positions, vertices visited in index order, so each
         // position's first vertex is its representative. Linear, where sorting the positions
         // was a fifth of fandisk's topology phase.
-        size_t capacity = 16;
-        while (capacity < 2 * static_cast<size_t>(n)) capacity *= 2;
+        const size_t capacity = hash_table_size(static_cast<size_t>(n));
         std::vector<int32_t> slot(capacity, -1), representative(n);
         for (int32_t v = 0; v < n; ++v) {
             const Eigen::Vector3d& p = positions[v];
