@@ -28,27 +28,29 @@ def main():
                     glob.glob(os.path.join(args.data, 'gltf', '*', '*.gltf'))) + args.extra
     if not assets:
         sys.exit('no glTF assets under ' + args.data)
-    print(f'raps-gltf, median of {args.runs} runs, --threads {args.threads}, output .glb')
-    header = (f"{'asset':<28}{'tris':>8}{'charts':>8}{'util':>6}{'area|log r|':>12}{'L2':>7}"
-              f"{'tool ms':>9}{'lib ms':>9}{'s/Mtri':>8}")
-    print(header)
-    print('-' * len(header))
+    print(f'raps-gltf, median of {args.runs} runs, --threads {args.threads}, output .glb, whole tool'
+          ' from load to write; "lib ms" is the library\'s own time, summed over the atlases\n')
+    print('| asset | triangles | charts | utilization | area mean abs log | L2 stretch | tool ms |'
+          ' lib ms | s per M triangles |')
+    print('|---|---:|---:|---:|---:|---:|---:|---:|---:|')
     total_tris = total_ms = 0.0
     with tempfile.TemporaryDirectory() as tmp:
         for asset in assets:
             out = os.path.join(tmp, 'out.glb')
-            wall, library, report = [], [], None
+            wall, library, report, failed = [], [], None, False
             for _ in range(args.runs):
                 start = time.perf_counter()
                 p = subprocess.run([args.raps_gltf, '--no-progress', '--overwrite', '--threads',
                                     str(args.threads), asset, out], capture_output=True, text=True)
                 wall.append(1000 * (time.perf_counter() - start))
                 if p.returncode != 0:
-                    print(f'{os.path.basename(asset):<28} failed: {p.stderr.strip()}')
+                    message = ' '.join(p.stderr.split()).replace('|', '/')
+                    print(f'| {os.path.basename(asset)} | failed (exit {p.returncode}): {message} |')
+                    failed = True
                     break
                 report = json.loads(p.stdout)
                 library.append(sum(g.get('time_ms', {}).get('total', 0) for g in report['groups']))
-            if report is None or len(wall) < args.runs:
+            if failed or report is None:
                 continue
             tris = report['baked']['triangles']
             groups = [g for g in report['groups'] if 'reused_from_mesh' not in g]
@@ -61,11 +63,11 @@ def main():
             lib = statistics.median(library)
             total_tris += tris
             total_ms += ms
-            print(f'{os.path.basename(asset):<28}{tris:>8}{charts:>8}{util:>6.2f}{area:>12.3f}{l2:>7.3f}'
-                  f'{ms:>9.0f}{lib:>9.0f}{ms / 1000 / (tris / 1e6):>8.1f}')
-    print('-' * len(header))
-    print(f"{'all':<28}{int(total_tris):>8}{'':>8}{'':>6}{'':>12}{'':>7}{total_ms:>9.0f}{'':>9}"
-          f'{total_ms / 1000 / (total_tris / 1e6):>8.1f}')
+            print(f'| {os.path.basename(asset)} | {tris} | {charts} | {util:.2f} | {area:.3f} |'
+                  f' {l2:.3f} | {ms:.0f} | {lib:.0f} | {ms / 1000 / (tris / 1e6):.1f} |')
+    if total_tris:
+        print(f'| all | {int(total_tris)} | | | | | {total_ms:.0f} | |'
+              f' {total_ms / 1000 / (total_tris / 1e6):.1f} |')
 
 
 if __name__ == '__main__':
