@@ -63,8 +63,10 @@ def main():
             lib = statistics.median(library)
             total_tris += tris
             total_ms += ms
+            # Below 1,000 triangles fixed costs (process start, loading) dominate: no rate.
+            rate = f'{ms / 1000 / (tris / 1e6):.1f}' if tris >= 1000 else '—'
             print(f'| {os.path.basename(asset)} | {tris} | {charts} | {util:.2f} | {area:.3f} |'
-                  f' {l2:.3f} | {ms:.0f} | {lib:.0f} | {ms / 1000 / (tris / 1e6):.1f} |')
+                  f' {l2:.3f} | {ms:.0f} | {lib:.0f} | {rate} |')
     if total_tris:
         print(f'| all | {int(total_tris)} | | | | | {total_ms:.0f} | |'
               f' {total_ms / 1000 / (total_tris / 1e6):.1f} |')
