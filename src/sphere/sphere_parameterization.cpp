@@ -6,6 +6,7 @@
 #include "parallel/thread_pool.h"
 #include "sphere/gauss_map.h"
 #include "sphere/sphere_initial_map.h"
+#include "sphere/sphere_map_check.h"
 #include "sphere/sphere_problem.h"
 #include "sphere/sphere_relaxation.h"
 #include "sphere/spherical_geometry.h"
@@ -96,6 +97,9 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
     }
     map.points.resize(points.size());
     for (size_t k = 0; k < order.size(); ++k) map.points[order[k]] = points[k];
+    // The literal method returns what algorithm 7.1 gives, folds and all (README); the robust
+    // one returns a bijection or nothing.
+    if (!literal) require_bijective_sphere_map(input, map.points);
     if (settings.sphere_uv == SphereUv::kOctahedral) {
         map.unfold = octahedral_unfold(input, map.points, [&](double) {
             progress.report(Phase::kAdapt, 1.0);  // cancellation point inside the solve
