@@ -197,27 +197,65 @@ static void area_monitor_equidistributes_area_on_a_cone(void** state) {
     test_mesh_free(&cone);
 }
 
-/* The length monitor evens out edge length ratios and the angle monitor lowers angle error
- * spread; both on the bumpy disk, against the initial map. */
-static void length_and_angle_monitors_act_on_their_measures(void** state) {
+/* The spread of the edge length ratios of a map: the standard deviation, over the triangles'
+ * directed edges, of log(uv length / 3D length); 0 when every edge is scaled alike. */
+static double edge_ratio_spread(const test_mesh* mesh, const double* uv) {
+    double sum = 0, sum2 = 0;
+    for (size_t t = 0; t < mesh->index_count; ++t) {
+        const uint32_t a = mesh->indices[t];
+        const uint32_t b = mesh->indices[t - t % 3 + (t % 3 + 1) % 3];
+        const double *p = mesh->positions + 3 * a, *q = mesh->positions + 3 * b;
+        const double length = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                   (p[2] - q[2]) * (p[2] - q[2]));
+        const double l = log(hypot(uv[2 * a] - uv[2 * b], uv[2 * a + 1] - uv[2 * b + 1]) / length);
+        sum += l;
+        sum2 += l * l;
+    }
+    const double n = (double)mesh->index_count, mean = sum / n;
+    return sqrt(sum2 / n - mean * mean);
+}
+
+/* On the cone, against the initial (quasi-conformal) map and the area monitor, alpha 1.
+ * The length monitor evens out the edge length ratios, its own measure (spread 0.602 ->
+ * 0.498), and with them stretch and area distortion. The angle monitor does not lower angle
+ * error: no monitor does, the initial map being the one closest to conformal (mean angle error
+ * 5.90 degrees initially, 13.17 with the angle monitor, measured likewise on a bumpy disk, lion
+ * and camelhead). What it does is lower stretch and area distortion (L2 3.113 -> 1.312, area
+ * 0.795 -> 0.322) at a smaller cost in angles than the area monitor (18.26 degrees; 0.72 times
+ * that). Thresholds: those values with a margin. */
+static void length_monitor_evens_edge_ratios_and_angle_monitor_spares_angles(void** state) {
     (void)state;
     test_mesh cone = make_open_cone(16, 6, 3.0);
     raps_settings* initial = make_settings(RAPS_WEIGHTS_MEAN_VALUE, RAPS_MONITOR_NONE, 1, 1);
+    raps_settings* area = make_settings(RAPS_WEIGHTS_MEAN_VALUE, RAPS_MONITOR_AREA, 1, 1);
     raps_settings* length = make_settings(RAPS_WEIGHTS_MEAN_VALUE, RAPS_MONITOR_EDGE_LENGTH, 1, 1);
     raps_settings* angle = make_settings(RAPS_WEIGHTS_MEAN_VALUE, RAPS_MONITOR_ANGLE, 1, 1);
-    raps_stats s0, sl, sa;
-    free(map_uvs(&cone, initial, &s0));
-    free(map_uvs(&cone, length, &sl));
+    raps_stats s0, sr, sl, sa;
+    double* uv0 = map_uvs(&cone, initial, &s0);
+    free(map_uvs(&cone, area, &sr));
+    double* uvl = map_uvs(&cone, length, &sl);
     free(map_uvs(&cone, angle, &sa));
+    const double spread0 = edge_ratio_spread(&cone, uv0), spreadl = edge_ratio_spread(&cone, uvl);
     print_message(
-        "cone: initial L2 %.4f area %.4f; length L2 %.4f area %.4f; angle L2 %.4f area %.4f\n",
-        s0.stretch_l2, s0.area_log_mean, sl.stretch_l2, sl.area_log_mean, sa.stretch_l2,
-        sa.area_log_mean);
-    /* Equalising edge length ratios shrinks stretch and area distortion alike. */
+        "cone: edge ratio spread initial %.4f, length %.4f; angle error (deg) initial %.3f, "
+        "area %.3f, angle %.3f; angle monitor L2 %.4f (initial %.4f), area %.4f (initial %.4f)\n",
+        spread0, spreadl, s0.angle_mean_deg, sr.angle_mean_deg, sa.angle_mean_deg, sa.stretch_l2,
+        s0.stretch_l2, sa.area_log_mean, s0.area_log_mean);
+    /* Length: its measure, then stretch and area distortion alike. */
+    assert_true(spread0 > 0.58);
+    assert_below(spreadl, 0.52);
     assert_below(sl.stretch_l2, s0.stretch_l2);
     assert_below(sl.area_log_mean, s0.area_log_mean);
+    /* Angle: stretch and area down, angles kept better than by the area monitor. */
+    assert_below(sa.stretch_l2, 1.4);
+    assert_true(s0.stretch_l2 > 3.0);
+    assert_below(sa.area_log_mean, 0.35);
+    assert_below(sa.angle_mean_deg, 0.8 * sr.angle_mean_deg);
     assert_int_equal(sa.flipped_triangles, 0);
+    free(uv0);
+    free(uvl);
     raps_settings_destroy(initial);
+    raps_settings_destroy(area);
     raps_settings_destroy(length);
     raps_settings_destroy(angle);
     test_mesh_free(&cone);
@@ -289,7 +327,7 @@ int main(void) {
         cmocka_unit_test(uniform_fan_centre_is_the_circle_centre),
         cmocka_unit_test(positive_weights_never_flip),
         cmocka_unit_test(area_monitor_equidistributes_area_on_a_cone),
-        cmocka_unit_test(length_and_angle_monitors_act_on_their_measures),
+        cmocka_unit_test(length_monitor_evens_edge_ratios_and_angle_monitor_spares_angles),
         cmocka_unit_test(negative_cotangent_weights_are_counted),
         cmocka_unit_test(runs_are_deterministic),
         cmocka_unit_test(mesh_without_interior_vertices_maps_its_boundary),
