@@ -33,17 +33,23 @@
  *     the enum-like types are int32_t typedefs (a C enum's size is up to the compiler, and FFI
  *     code must be able to receive a value added by a later version).
  *   - Messages: a failing call stores a UTF-8 message naming the problem in the handle it was
- *     given (for raps_parameterize: in the result handle). Read it with raps_*_last_error(); the
- *     pointer stays valid until the next call that may fail on that same handle. A successful
- *     call clears the message to "".
+ *     given (for raps_parameterize: in the result handle; for a getter, a copy out of a result or
+ *     raps_settings_clone: in the handle read, const as it is). Read it with
+ *     raps_*_last_error(); the pointer stays valid until the next call that may fail on that
+ *     same handle. A successful call that changes its handle clears the message to ""; a
+ *     successful call on a const handle leaves it as it was (it only reads the handle).
  *   - Ownership: create/destroy pairs. The caller owns every handle it created and must destroy
  *     it exactly once; destroy(NULL) is a no-op. The library copies all input arrays it is given
  *     (the caller may free them on return) and never keeps a caller pointer except the progress
  *     callback's user pointer. Output is copied into caller-owned buffers (raps_result_copy_*).
  *   - Threading: there is no global state. Distinct handles may be used from any threads at
- *     once. Functions taking a const handle only read it: one mesh and one settings handle may be
- *     shared by any number of concurrent raps_parameterize calls, each with its own result
- *     handle. A handle must not be passed to a non-const function while any other call uses it.
+ *     once. Functions taking a const handle only read it, unless they fail: one mesh and one
+ *     settings handle may be shared by any number of concurrent raps_parameterize calls, each
+ *     with its own result handle (raps_parameterize never writes its mesh or settings), and one
+ *     result read by any number of concurrent copies. A const call that fails writes its message
+ *     into the handle (see Messages), so a call that can fail on a shared handle (a capacity
+ *     that may be too small, an unknown parameter) must not run while another call uses it. A
+ *     handle must not be passed to a non-const function while any other call uses it.
  *   - Errors never crash: no function aborts, throws across the ABI or leaves a handle half
  *     changed. On failure a setter leaves its handle as it was; raps_parameterize leaves the
  *     result empty (zero counts) with its message set.
@@ -418,7 +424,8 @@ typedef int32_t (*raps_progress_fn)(void* user, raps_phase phase, double fractio
 RAPS_API raps_status raps_settings_set_progress(raps_settings* settings, raps_progress_fn fn,
                                                 void* user);
 
-/* The message of the last failed setter on these settings, "" after a success; never NULL. */
+/* The message of the last failed call on these settings (a setter, a getter, a clone), "" after
+ * a setter succeeds; never NULL. */
 RAPS_API const char* raps_settings_last_error(const raps_settings* settings);
 
 /* ---------------------------------------------------------------------------------------------
@@ -452,7 +459,8 @@ RAPS_API void raps_result_destroy(raps_result* result);
 RAPS_API raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
                                        raps_result* result);
 
-/* The message of the last failed call on this result, "" after a success; never NULL. */
+/* The message of the last failed call on this result (raps_parameterize, a copy, the stats), ""
+ * after raps_parameterize succeeds; never NULL. */
 RAPS_API const char* raps_result_last_error(const raps_result* result);
 
 /* Output sizes; 0 for NULL or an empty result. For RAPS_DOMAIN_DISK, and RAPS_DOMAIN_SPHERE
@@ -524,8 +532,8 @@ typedef struct raps_stats {
                          * 0 for a sphere map without uvs */
 } raps_stats;
 
-/* Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size < 8),
- * INVALID_OPERATION (the result holds no map). */
+/* Fills stats (see raps_stats). Errors (the message in result, when it is not NULL):
+ * INVALID_ARGUMENT (NULL, struct_size < 8), INVALID_OPERATION (the result holds no map). */
 RAPS_API raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats);
 
 /* Wall-clock milliseconds the run that filled this result spent in a phase (RAPS_PHASE_*); 0 for

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -52,17 +53,19 @@ struct raps_mesh {
     std::string last_error;
 };
 
+// The message is mutable: a failing getter or copy, which takes a const handle, still stores
+// its message in the handle, as the header promises for every failing call.
 struct raps_settings {
     raps::Settings settings;
     raps_progress_fn progress = nullptr;
     void* progress_user = nullptr;
-    std::string last_error;
+    mutable std::string last_error;
 };
 
 struct raps_result {
     raps::Parameterization map;
     bool has_map = false;
-    std::string last_error;
+    mutable std::string last_error;
 };
 
 namespace {
@@ -89,13 +92,19 @@ void store_message(std::string* last_error, const char* message) {
     }
 }
 
+// What a successful call does to its handle's message: a call that may change the handle clears
+// it; one on a const handle keeps it, so that it only reads the handle when it succeeds and
+// concurrent successful calls on one const handle never write to it.
+enum class OnSuccess { kClearMessage, kKeepMessage };
+
 // Runs `body`, storing the message of any failure in `last_error`; never lets an exception
 // cross the ABI.
 template <typename Body>
-raps_status guarded(std::string* last_error, Body&& body) {
+raps_status guarded(std::string* last_error, Body&& body,
+                    OnSuccess on_success = OnSuccess::kClearMessage) {
     try {
         body();
-        if (last_error) last_error->clear();
+        if (last_error && on_success == OnSuccess::kClearMessage) last_error->clear();
         return RAPS_OK;
     } catch (const Error& error) {
         store_message(last_error, error.what());
@@ -450,6 +459,41 @@ void copy_u32(const raps_result* result, const std::vector<uint32_t>& source, ui
     std::copy(source.begin(), source.end(), dst);
 }
 
+// Fills the fields of raps_stats that fit the caller's struct_size (an older caller's struct
+// is shorter).
+void copy_stats(const raps::Parameterization& map, raps_stats* stats) {
+    raps_stats full;
+    std::memset(&full, 0, sizeof(full));
+    full.struct_size = static_cast<uint32_t>(std::min<size_t>(stats->struct_size, sizeof(full)));
+    full.vertex_count = map.vertex_remap.size();
+    full.triangle_count = map.indices.size() / 3;
+    full.flipped_triangles = static_cast<uint64_t>(map.distortion.flipped_triangles);
+    full.zero_area_triangles = static_cast<uint64_t>(map.distortion.zero_area_triangles);
+    full.negative_weights = static_cast<uint64_t>(map.negative_weights);
+    full.adaptive_solves = static_cast<uint64_t>(map.adaptive_solves);
+    full.area_log_mean = map.distortion.area_log_mean;
+    full.area_max = map.distortion.area_max;
+    full.angle_mean_deg = map.distortion.angle_mean_deg;
+    full.angle_max_deg = map.distortion.angle_max_deg;
+    full.stretch_l2 = map.distortion.stretch_l2;
+    full.stretch_linf = map.distortion.stretch_linf;
+    full.chart_count = static_cast<uint64_t>(map.chart_count);
+    full.atlas_width = static_cast<uint64_t>(map.atlas_width);
+    full.atlas_height = static_cast<uint64_t>(map.atlas_height);
+    full.utilization = map.utilization;
+    full.relaxation_sweeps = static_cast<uint64_t>(map.relaxation_sweeps);
+    // Only what fits the caller's (possibly older, shorter) struct.
+    std::memcpy(stats, &full, full.struct_size);
+}
+
+// guarded() for a call on a const handle: a failure's message goes into the handle (none for
+// NULL), a success leaves the message as it was.
+template <typename Handle, typename Body>
+raps_status guarded_read(const Handle* handle, Body&& body) {
+    return guarded(handle ? &handle->last_error : nullptr, std::forward<Body>(body),
+                   OnSuccess::kKeepMessage);
+}
+
 const char* message_of(const std::string* last_error) {
     return last_error ? last_error->c_str() : "the handle is NULL";
 }
@@ -580,7 +624,7 @@ raps_status raps_settings_clone(const raps_settings* settings, raps_settings** o
     if (!out_settings) return RAPS_ERROR_INVALID_ARGUMENT;
     *out_settings = nullptr;
     if (!settings) return RAPS_ERROR_INVALID_ARGUMENT;
-    return guarded(nullptr, [&] {
+    return guarded_read(settings, [&] {
         *out_settings = new raps_settings(*settings);
         (*out_settings)->last_error.clear();
     });
@@ -619,7 +663,7 @@ raps_status raps_settings_set_float(raps_settings* settings, raps_param param, d
 
 raps_status raps_settings_get_int(const raps_settings* settings, raps_param param,
                                   int64_t* out_value) {
-    return guarded(nullptr, [&] {
+    return guarded_read(settings, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
         checked_param(param, false);
         *out_value = get_int(settings->settings, param);
@@ -628,7 +672,7 @@ raps_status raps_settings_get_int(const raps_settings* settings, raps_param para
 
 raps_status raps_settings_get_float(const raps_settings* settings, raps_param param,
                                     double* out_value) {
-    return guarded(nullptr, [&] {
+    return guarded_read(settings, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
         checked_param(param, true);
         *out_value = *float_field(settings->settings, param);
@@ -712,27 +756,27 @@ size_t raps_result_index_count(const raps_result* result) {
 
 raps_status raps_result_copy_uvs_f32(const raps_result* result, float* dst, size_t capacity,
                                      size_t stride_bytes) {
-    return guarded(nullptr, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
+    return guarded_read(result, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
 }
 
 raps_status raps_result_copy_uvs_f64(const raps_result* result, double* dst, size_t capacity,
                                      size_t stride_bytes) {
-    return guarded(nullptr, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
+    return guarded_read(result, [&] { copy_uvs(result, dst, capacity, stride_bytes); });
 }
 
 raps_status raps_result_copy_sphere_points_f32(const raps_result* result, float* dst,
                                                size_t capacity, size_t stride_bytes) {
-    return guarded(nullptr, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
+    return guarded_read(result, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
 }
 
 raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,
                                                size_t capacity, size_t stride_bytes) {
-    return guarded(nullptr, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
+    return guarded_read(result, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
 }
 
 raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,
                                          size_t capacity) {
-    return guarded(nullptr, [&] {
+    return guarded_read(result, [&] {
         require(result != nullptr, "result is NULL");
         copy_u32(result, result->map.indices, dst, capacity, "indices");
     });
@@ -740,14 +784,14 @@ raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* ds
 
 raps_status raps_result_copy_vertex_remap(const raps_result* result, uint32_t* dst,
                                           size_t capacity) {
-    return guarded(nullptr, [&] {
+    return guarded_read(result, [&] {
         require(result != nullptr, "result is NULL");
         copy_u32(result, result->map.vertex_remap, dst, capacity, "output vertices");
     });
 }
 
 raps_status raps_result_copy_chart_ids(const raps_result* result, uint32_t* dst, size_t capacity) {
-    return guarded(nullptr, [&] {
+    return guarded_read(result, [&] {
         require(result != nullptr, "result is NULL");
         const std::vector<uint32_t>& ids = result->map.chart_ids;
         if (!ids.empty() || !result->has_map) {
@@ -763,32 +807,17 @@ raps_status raps_result_copy_chart_ids(const raps_result* result, uint32_t* dst,
 }
 
 raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats) {
-    if (!result || !stats || stats->struct_size < 8) return RAPS_ERROR_INVALID_ARGUMENT;
-    if (!result->has_map) return RAPS_ERROR_INVALID_OPERATION;
-    const raps::Parameterization& map = result->map;
-    raps_stats full;
-    std::memset(&full, 0, sizeof(full));
-    full.struct_size = static_cast<uint32_t>(std::min<size_t>(stats->struct_size, sizeof(full)));
-    full.vertex_count = map.vertex_remap.size();
-    full.triangle_count = map.indices.size() / 3;
-    full.flipped_triangles = static_cast<uint64_t>(map.distortion.flipped_triangles);
-    full.zero_area_triangles = static_cast<uint64_t>(map.distortion.zero_area_triangles);
-    full.negative_weights = static_cast<uint64_t>(map.negative_weights);
-    full.adaptive_solves = static_cast<uint64_t>(map.adaptive_solves);
-    full.area_log_mean = map.distortion.area_log_mean;
-    full.area_max = map.distortion.area_max;
-    full.angle_mean_deg = map.distortion.angle_mean_deg;
-    full.angle_max_deg = map.distortion.angle_max_deg;
-    full.stretch_l2 = map.distortion.stretch_l2;
-    full.stretch_linf = map.distortion.stretch_linf;
-    full.chart_count = static_cast<uint64_t>(map.chart_count);
-    full.atlas_width = static_cast<uint64_t>(map.atlas_width);
-    full.atlas_height = static_cast<uint64_t>(map.atlas_height);
-    full.utilization = map.utilization;
-    full.relaxation_sweeps = static_cast<uint64_t>(map.relaxation_sweeps);
-    // Only what fits the caller's (possibly older, shorter) struct.
-    std::memcpy(stats, &full, full.struct_size);
-    return RAPS_OK;
+    return guarded_read(result, [&] {
+        require(result != nullptr, "result is NULL");
+        require(stats != nullptr, "stats is NULL");
+        if (stats->struct_size < 8) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        "stats->struct_size " + std::to_string(stats->struct_size) +
+                            " is below 8: set it to sizeof(raps_stats)");
+        }
+        if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
+        copy_stats(result->map, stats);
+    });
 }
 
 double raps_result_phase_ms(const raps_result* result, raps_phase phase) {

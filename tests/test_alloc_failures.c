@@ -70,6 +70,8 @@ static const char* message_of_step(const session* s, int step) {
         case 5:
             return raps_settings_last_error(s->settings);
         case 6:
+        case 7:
+        case 8:
             return raps_result_last_error(s->result);
         default:
             return NULL;

@@ -313,6 +313,89 @@ static void result_copies_check_capacity_and_stride(void** state) {
     test_mesh_free(&disk);
 }
 
+/* Fails unless the handle's message contains `fragment`. */
+#define assert_message(message, fragment)                                                   \
+    do {                                                                                    \
+        const char* assert_message_m = (message);                                           \
+        if (!strstr(assert_message_m, (fragment))) {                                        \
+            fail_msg("%s is '%s', which lacks '%s'", #message, assert_message_m, fragment); \
+        }                                                                                   \
+    } while (0)
+
+/* Every failing call stores a message naming its problem in the handle it was given, const
+ * handles included: the getters in the settings, the copies and the statistics in the result.
+ * A successful call on a const handle leaves the message as it was (it only reads); one that
+ * changes the handle clears it. */
+static void failing_reads_store_their_message_in_the_handle(void** state) {
+    (void)state;
+    raps_settings* s = NULL;
+    assert_status(raps_settings_create(&s), RAPS_OK);
+    int64_t i = 0;
+    double f = 0;
+    assert_status(raps_settings_get_int(s, 9999, &i), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_settings_last_error(s), "unknown parameter 9999");
+    assert_status(raps_settings_get_float(s, RAPS_PARAM_MONITOR, &f), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_settings_last_error(s), "an int: use raps_settings_set_int/get_int");
+    assert_status(raps_settings_get_int(s, RAPS_PARAM_ALPHA, &i), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_settings_last_error(s), "a float");
+    assert_status(raps_settings_get_int(s, RAPS_PARAM_MONITOR, NULL), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_settings_last_error(s), "NULL pointer");
+    assert_status(raps_settings_get_int(s, RAPS_PARAM_MONITOR, &i), RAPS_OK);
+    assert_message(raps_settings_last_error(s), "NULL pointer");
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_MONITOR, RAPS_MONITOR_AREA), RAPS_OK);
+    assert_string_equal(raps_settings_last_error(s), "");
+    raps_settings_destroy(s);
+
+    raps_result* r = NULL;
+    assert_status(raps_result_create(&r), RAPS_OK);
+    float uv[2];
+    uint32_t u32[3];
+    raps_stats stats;
+    stats.struct_size = sizeof(stats);
+    assert_status(raps_result_copy_uvs_f32(r, uv, 1, 0), RAPS_ERROR_INVALID_OPERATION);
+    assert_message(raps_result_last_error(r), "holds no map");
+    assert_status(raps_result_copy_vertex_remap(r, NULL, 3), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "dst is NULL");
+    assert_status(raps_result_get_stats(r, &stats), RAPS_ERROR_INVALID_OPERATION);
+    assert_message(raps_result_last_error(r), "holds no map");
+
+    test_mesh disk = make_flat_disk(3, 6, 0.0);
+    raps_mesh* mesh = to_raps_mesh(&disk);
+    assert_status(raps_parameterize(mesh, NULL, r), RAPS_OK);
+    assert_string_equal(raps_result_last_error(r), "");
+    const size_t n = raps_result_vertex_count(r);
+    float* packed = malloc(2 * n * sizeof(float));
+    uint32_t* indices = malloc(disk.index_count * sizeof(uint32_t));
+    assert_status(raps_result_copy_uvs_f32(r, packed, n - 1, 0), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "is smaller than the");
+    assert_status(raps_result_copy_uvs_f32(r, packed, n, 4), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "stride_bytes is smaller");
+    assert_status(raps_result_copy_indices_u32(r, indices, 2), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "capacity 2 is smaller");
+    assert_status(raps_result_copy_vertex_remap(r, u32, 1), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "capacity 1 is smaller");
+    assert_status(raps_result_copy_chart_ids(r, u32, 1), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "capacity is smaller than the output triangles");
+    assert_status(raps_result_copy_sphere_points_f32(r, packed, n, 0),
+                  RAPS_ERROR_INVALID_OPERATION);
+    assert_message(raps_result_last_error(r), "no sphere points");
+    stats.struct_size = 4;
+    assert_status(raps_result_get_stats(r, &stats), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_message(raps_result_last_error(r), "struct_size 4");
+    /* Successful reads keep the last failure's message; the next run clears it. */
+    assert_status(raps_result_copy_uvs_f32(r, packed, n, 0), RAPS_OK);
+    stats.struct_size = sizeof(stats);
+    assert_status(raps_result_get_stats(r, &stats), RAPS_OK);
+    assert_message(raps_result_last_error(r), "struct_size 4");
+    assert_status(raps_parameterize(mesh, NULL, r), RAPS_OK);
+    assert_string_equal(raps_result_last_error(r), "");
+    free(packed);
+    free(indices);
+    raps_result_destroy(r);
+    raps_mesh_destroy(mesh);
+    test_mesh_free(&disk);
+}
+
 /* A caller compiled against an older, shorter raps_stats sets a smaller struct_size: the
  * library must write nothing beyond it. */
 static void stats_respect_the_callers_struct_size(void** state) {
@@ -418,6 +501,7 @@ int main(void) {
         cmocka_unit_test(settings_clone_is_independent),
         cmocka_unit_test(empty_result_refuses_reads),
         cmocka_unit_test(result_copies_check_capacity_and_stride),
+        cmocka_unit_test(failing_reads_store_their_message_in_the_handle),
         cmocka_unit_test(stats_respect_the_callers_struct_size),
         cmocka_unit_test(phase_times_are_recorded),
         cmocka_unit_test(mesh_setters_replace_and_count),

@@ -687,7 +687,8 @@ namespace Raps
         public static extern int raps_settings_set_progress(SettingsHandle settings, ProgressFn fn, IntPtr user);
 
         /// <summary>
-        /// The message of the last failed setter on these settings, "" after a success; never NULL.
+        /// The message of the last failed call on these settings (a setter, a getter, a clone), "" after
+        /// a setter succeeds; never NULL.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern IntPtr raps_settings_last_error(SettingsHandle settings);
@@ -727,7 +728,8 @@ namespace Raps
         public static extern int raps_parameterize(MeshHandle mesh, SettingsHandle settings, ResultHandle result);
 
         /// <summary>
-        /// The message of the last failed call on this result, "" after a success; never NULL.
+        /// The message of the last failed call on this result (raps_parameterize, a copy, the stats), ""
+        /// after raps_parameterize succeeds; never NULL.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern IntPtr raps_result_last_error(ResultHandle result);
@@ -808,8 +810,8 @@ namespace Raps
         public static extern int raps_result_copy_chart_ids(ResultHandle result, [Out] uint[] dst, UIntPtr capacity);
 
         /// <summary>
-        /// Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size &lt; 8),
-        /// INVALID_OPERATION (the result holds no map).
+        /// Fills stats (see raps_stats). Errors (the message in result, when it is not NULL):
+        /// INVALID_ARGUMENT (NULL, struct_size &lt; 8), INVALID_OPERATION (the result holds no map).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_get_stats(ResultHandle result, ref Stats stats);

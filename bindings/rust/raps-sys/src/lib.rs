@@ -413,7 +413,8 @@ extern "C" {
     /// (NULL settings).
     pub fn raps_settings_set_progress(settings: *mut raps_settings, r#fn: raps_progress_fn, user: *mut c_void) -> raps_status;
 
-    /// The message of the last failed setter on these settings, "" after a success; never NULL.
+    /// The message of the last failed call on these settings (a setter, a getter, a clone), "" after
+    /// a setter succeeds; never NULL.
     pub fn raps_settings_last_error(settings: *const raps_settings) -> *const c_char;
 
     /// Creates an empty result, to be filled (and refilled) by raps_parameterize.
@@ -441,7 +442,8 @@ extern "C" {
     /// INTERNAL.
     pub fn raps_parameterize(mesh: *const raps_mesh, settings: *const raps_settings, result: *mut raps_result) -> raps_status;
 
-    /// The message of the last failed call on this result, "" after a success; never NULL.
+    /// The message of the last failed call on this result (raps_parameterize, a copy, the stats), ""
+    /// after raps_parameterize succeeds; never NULL.
     pub fn raps_result_last_error(result: *const raps_result) -> *const c_char;
 
     /// Output sizes; 0 for NULL or an empty result. For RAPS_DOMAIN_DISK, and RAPS_DOMAIN_SPHERE
@@ -492,8 +494,8 @@ extern "C" {
     /// index_count / 3. Disk domain: every triangle is in chart 0.
     pub fn raps_result_copy_chart_ids(result: *const raps_result, dst: *mut u32, capacity: usize) -> raps_status;
 
-    /// Fills stats (see raps_stats). Errors: INVALID_ARGUMENT (NULL, struct_size < 8),
-    /// INVALID_OPERATION (the result holds no map).
+    /// Fills stats (see raps_stats). Errors (the message in result, when it is not NULL):
+    /// INVALID_ARGUMENT (NULL, struct_size < 8), INVALID_OPERATION (the result holds no map).
     pub fn raps_result_get_stats(result: *const raps_result, stats: *mut raps_stats) -> raps_status;
 
     /// Wall-clock milliseconds the run that filled this result spent in a phase (RAPS_PHASE_*); 0 for
