@@ -229,8 +229,9 @@ enum {
      * before any work is done. Default 2^31-1. */
     RAPS_PARAM_MAX_TRIANGLES = 8,
     /* int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-     * bit-identical for every value. Used by the sphere relaxation, the atlas, and the
-     * statistics of every domain (at most one thread per 16,384 triangles there). Default 0. */
+     * bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
+     * vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
+     * triangles there); raps_stats.threads_used says how many a run computed on. Default 0. */
     RAPS_PARAM_THREADS = 9,
 
     /* Sphere domain (RAPS_DOMAIN_SPHERE); ignored by the others. */
@@ -530,6 +531,12 @@ typedef struct raps_stats {
     uint64_t atlas_height;
     double utilization; /* uv area over the unit square ([0,1]^2 after normalising);
                          * 0 for a sphere map without uvs */
+    /* Threads the run computed on, the calling thread included: the most that any of its steps
+     * shared work among, counting a worker thread only once it has computed a share. 1 when no
+     * step was large enough to share (see RAPS_PARAM_THREADS) or no worker could start; at most
+     * RAPS_PARAM_THREADS. It describes the run, not the map (which is the same bits for any
+     * count), and may differ between runs of one input. */
+    uint64_t threads_used;
 } raps_stats;
 
 /* Fills stats (see raps_stats). Errors (the message in result, when it is not NULL):

@@ -18,8 +18,9 @@
 #include "parameterization.h"
 #include "raps.h"
 
-static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8, "raps_stats layout is ABI");
+static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8 + 8, "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, relaxation_sweeps) == 104, "raps_stats layout is ABI");
+static_assert(offsetof(raps_stats, threads_used) == 144, "raps_stats layout is ABI");
 
 #define RAPS_CHECK_CODE(name, value) \
     static_assert(static_cast<int32_t>(raps::ErrorCode::name) == (value), #value)
@@ -482,6 +483,7 @@ void copy_stats(const raps::Parameterization& map, raps_stats* stats) {
     full.atlas_height = static_cast<uint64_t>(map.atlas_height);
     full.utilization = map.utilization;
     full.relaxation_sweeps = static_cast<uint64_t>(map.relaxation_sweeps);
+    full.threads_used = static_cast<uint64_t>(map.threads_used);
     // Only what fits the caller's (possibly older, shorter) struct.
     std::memcpy(stats, &full, full.struct_size);
 }

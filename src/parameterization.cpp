@@ -41,12 +41,15 @@ double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangl
 
 // The statistics of a map measured alone (the disk and sphere domains, which keep no pool):
 // one thread per 16K triangles, about 2 ms of work each, so that small meshes start none.
+// Raises *threads_used to the threads the measuring ran on.
 DistortionStats measure_alone(const Settings& settings,
                               const std::vector<Eigen::Vector3d>& positions, const MapGeometry& map,
-                              const std::vector<Triangle>& triangles) {
+                              const std::vector<Triangle>& triangles, int* threads_used) {
     ThreadPool pool(
         choose_thread_count(settings.threads, static_cast<int64_t>(triangles.size()), 16384));
-    return measure_distortion(positions, map, triangles, pool);
+    DistortionStats stats = measure_distortion(positions, map, triangles, pool);
+    *threads_used = std::max(*threads_used, pool.threads_used());
+    return stats;
 }
 
 }  // namespace
@@ -79,12 +82,14 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         out.negative_weights = map.negative_weights;
         out.adaptive_solves = map.adaptive_solves;
         out.relaxation_sweeps = map.relaxation_sweeps;
+        out.threads_used = map.threads_used;
         if (map.unfold.uv.empty()) {
             identity_output(mesh, out);
             out.sphere_points = std::move(map.points);
             PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-            out.distortion = measure_alone(settings, mesh.positions,
-                                           SphericalMapGeometry(out.sphere_points), mesh.triangles);
+            out.distortion =
+                measure_alone(settings, mesh.positions, SphericalMapGeometry(out.sphere_points),
+                              mesh.triangles, &out.threads_used);
             timer.finish();
             return out;
         }
@@ -105,7 +110,8 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                 triangles[t][k] = static_cast<int32_t>(out.indices[3 * t + k]);
         }
         PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-        out.distortion = measure_alone(settings, positions, PlanarMapGeometry(out.uv), triangles);
+        out.distortion = measure_alone(settings, positions, PlanarMapGeometry(out.uv), triangles,
+                                       &out.threads_used);
         out.utilization = uv_area(out.uv, triangles);
         timer.finish();
         return out;
@@ -139,6 +145,7 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         out.adaptive_solves = atlas.adaptive_solves;
         out.atlas_width = atlas.width;
         out.atlas_height = atlas.height;
+        out.threads_used = pool.threads_used();
         timer.finish();
         return out;
     }
@@ -148,8 +155,8 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
     out.adaptive_solves = map.adaptive_solves;
     identity_output(mesh, out);
     PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-    out.distortion =
-        measure_alone(settings, mesh.positions, PlanarMapGeometry(out.uv), mesh.triangles);
+    out.distortion = measure_alone(settings, mesh.positions, PlanarMapGeometry(out.uv),
+                                   mesh.triangles, &out.threads_used);
     out.utilization = uv_area(out.uv, mesh.triangles);
     timer.finish();
     return out;

@@ -30,6 +30,9 @@ struct Parameterization {
     int64_t chart_count = 1;          // the disk and sphere domains: one chart
     int32_t atlas_width = 0, atlas_height = 0;
     double utilization = 0;  // uv area over the unit square
+    // The most threads any step of the run computed on (ThreadPool::threads_used), the caller's
+    // included: describes the run, not the map.
+    int threads_used = 1;
     PhaseTimes phase_ms{};
 };
 

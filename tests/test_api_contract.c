@@ -70,11 +70,12 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, 37);
     assert_int_equal(RAPS_DOMAIN_ATLAS, 2);
     assert_int_equal(RAPS_PHASE_PACK, 6);
-    assert_int_equal(sizeof(raps_stats), 144);
+    assert_int_equal(sizeof(raps_stats), 152);
     assert_int_equal(offsetof(raps_stats, area_log_mean), 56);
     assert_int_equal(offsetof(raps_stats, stretch_linf), 96);
     assert_int_equal(offsetof(raps_stats, relaxation_sweeps), 104);
     assert_int_equal(offsetof(raps_stats, utilization), 136);
+    assert_int_equal(offsetof(raps_stats, threads_used), 144);
 }
 
 static void every_status_has_a_description(void** state) {

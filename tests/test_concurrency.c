@@ -1,8 +1,8 @@
 /* The threading contract: one mesh and one settings handle shared read-only by concurrent
  * runs, each with its own result, give exactly the serial result; so do many threads each
  * running their own meshes of every domain at once, sharing one settings handle per domain (and
- * its progress callback), while the runs start worker threads of their own. ThreadSanitizer
- * runs this file (quickstart). */
+ * its progress callback), while some of the runs compute on a worker thread of their own (the
+ * statistics' threads_used says which). ThreadSanitizer runs this file (quickstart). */
 #include <math.h>
 #include <pthread.h>
 #include <setjmp.h>
@@ -88,6 +88,7 @@ typedef struct own_mesh_job {
     double* values;                   /* serial uvs, or sphere points */
     uint32_t* indices;
     int mismatches, failures;
+    uint64_t most_threads; /* the largest threads_used of its concurrent runs */
 } own_mesh_job;
 
 /* The output of `r` (uvs, or sphere points when it has none), malloc'ed. */
@@ -119,10 +120,15 @@ static void* run_own_mesh(void* arg) {
             continue;
         }
         double* values = values_of(r);
-        if (!values) {
+        raps_stats stats;
+        memset(&stats, 0, sizeof(stats));
+        stats.struct_size = sizeof(stats);
+        if (!values || raps_result_get_stats(r, &stats) != RAPS_OK) {
+            free(values);
             j->failures++;
             continue;
         }
+        if (stats.threads_used > j->most_threads) j->most_threads = stats.threads_used;
         if (memcmp(values, j->values, 3 * j->vertex_count * sizeof(double)) != 0 ||
             memcmp(indices, j->indices, j->index_count * sizeof(uint32_t)) != 0) {
             j->mismatches++;
@@ -144,7 +150,12 @@ static int32_t count_progress(void* user, raps_phase phase, double fraction) {
 #define OWN_MESH_JOBS 9
 
 /* Nine threads, three per domain, each with a mesh of its own; the runs of a domain share one
- * settings handle (two worker threads per run, a progress callback counting every call). */
+ * settings handle (2 threads per run, a progress callback counting every call). 2 threads
+ * means the calling one and at most one worker, which a run starts only for a mesh large
+ * enough to share: of these, the 8,972-vertex sphere (one thread per 4,096 vertices) and the
+ * atlases (one pool for the whole run; its worker computes when it takes a chart or a block
+ * before the calling thread does). The disks, below the 32,768 triangles at which their
+ * statistics share out, and the smaller spheres start none. */
 static void many_threads_with_their_own_meshes_give_the_serial_results(void** state) {
     (void)state;
     test_mesh meshes[OWN_MESH_JOBS] = {
@@ -174,6 +185,10 @@ static void many_threads_with_their_own_meshes_give_the_serial_results(void** st
     assert_status(
         raps_settings_set_int(settings[1], RAPS_PARAM_SPHERE_UV, RAPS_SPHERE_UV_OCTAHEDRAL),
         RAPS_OK);
+    /* threads_used of the serial runs: 1 where the run starts no worker, 2 for the sphere that
+     * gives its worker a share of every sweep; an atlas's worker may or may not have taken work
+     * (0: not checked beyond <= 2). */
+    const uint64_t serial_threads[OWN_MESH_JOBS] = {1, 1, 1, 1, 1, 2, 0, 0, 0};
     own_mesh_job jobs[OWN_MESH_JOBS];
     int serial_calls = 0;
     for (int i = 0; i < OWN_MESH_JOBS; ++i) {
@@ -191,6 +206,11 @@ static void many_threads_with_their_own_meshes_give_the_serial_results(void** st
         assert_non_null(j->values);
         assert_non_null(j->indices);
         assert_status(raps_result_copy_indices_u32(serial, j->indices, j->index_count), RAPS_OK);
+        const uint64_t used = stats_of(serial).threads_used;
+        print_message("job %d (domain %d): %llu thread(s) computed\n", i, (int)domains[i / 3],
+                      (unsigned long long)used);
+        assert_true(used >= 1 && used <= 2);
+        if (serial_threads[i]) assert_int_equal(used, serial_threads[i]);
         raps_result_destroy(serial);
     }
     progress_calls = 0;
@@ -204,6 +224,9 @@ static void many_threads_with_their_own_meshes_give_the_serial_results(void** st
             fail_msg("job %d (domain %d): %d failed runs, %d differing from the serial run", i,
                      (int)domains[i / 3], jobs[i].failures, jobs[i].mismatches);
         }
+        assert_true(jobs[i].most_threads >= 1 && jobs[i].most_threads <= 2);
+        /* The sphere's worker computes in the concurrent runs too: their nested pools ran. */
+        if (serial_threads[i]) assert_int_equal(jobs[i].most_threads, serial_threads[i]);
     }
     /* Every call reached the shared callback: as many as the serial runs made, per round. */
     assert_int_equal(progress_calls, RUNS_PER_THREAD * serial_calls);

@@ -148,6 +148,14 @@ namespace Raps
         /// 0 for a sphere map without uvs
         /// </summary>
         public double Utilization;
+        /// <summary>
+        /// Threads the run computed on, the calling thread included: the most that any of its steps
+        /// shared work among, counting a worker thread only once it has computed a share. 1 when no
+        /// step was large enough to share (see RAPS_PARAM_THREADS) or no worker could start; at most
+        /// RAPS_PARAM_THREADS. It describes the run, not the map (which is the same bits for any
+        /// count), and may differ between runs of one input.
+        /// </summary>
+        public ulong ThreadsUsed;
     }
 
     /// <summary>
@@ -305,8 +313,9 @@ namespace Raps
         public const int RAPS_PARAM_MAX_TRIANGLES = 8;
         /// <summary>
         /// int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-        /// bit-identical for every value. Used by the sphere relaxation, the atlas, and the
-        /// statistics of every domain (at most one thread per 16,384 triangles there). Default 0.
+        /// bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
+        /// vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
+        /// triangles there); raps_stats.threads_used says how many a run computed on. Default 0.
         /// </summary>
         public const int RAPS_PARAM_THREADS = 9;
         /// <summary>

@@ -27,9 +27,18 @@ ThreadPool::~ThreadPool() {
     for (std::thread& worker : workers_) worker.join();
 }
 
-void ThreadPool::take_blocks(std::unique_lock<std::mutex>& lock) {
+int ThreadPool::threads_used() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return workers_that_worked_ + 1;
+}
+
+void ThreadPool::take_blocks(std::unique_lock<std::mutex>& lock, bool* worked) {
     while (next_block_ < blocks_) {
         const int64_t block = next_block_++;
+        if (worked && !*worked) {
+            *worked = true;
+            ++workers_that_worked_;
+        }
         const std::function<void(int64_t)>* task = task_;
         lock.unlock();
         try {
@@ -46,12 +55,13 @@ void ThreadPool::take_blocks(std::unique_lock<std::mutex>& lock) {
 
 void ThreadPool::work() {
     uint64_t seen = 0;
+    bool worked = false;
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
         wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
         if (stopping_) return;
         seen = generation_;
-        take_blocks(lock);
+        take_blocks(lock, &worked);
     }
 }
 
@@ -69,7 +79,7 @@ void ThreadPool::run(int64_t blocks, const std::function<void(int64_t)>& task) {
     error_ = nullptr;
     ++generation_;
     wake_.notify_all();
-    take_blocks(lock);
+    take_blocks(lock, nullptr);
     done_.wait(lock, [&] { return finished_blocks_ == blocks_; });
     task_ = nullptr;
     blocks_ = 0;

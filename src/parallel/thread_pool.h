@@ -26,6 +26,9 @@ class ThreadPool {
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     int size() const { return static_cast<int>(workers_.size()) + 1; }
+    // The threads that have computed at least one block so far, the caller's included (1 until
+    // a worker takes one): what the work was really shared among, which size() only allows.
+    int threads_used();
 
     // Calls task(block) once for every block in [0, blocks), on the calling thread and the
     // workers, and returns when all are done. An exception thrown by a task is rethrown here
@@ -34,7 +37,8 @@ class ThreadPool {
 
   private:
     void work();
-    void take_blocks(std::unique_lock<std::mutex>& lock);
+    // `worked`: whether this worker has taken a block yet (nullptr for the calling thread).
+    void take_blocks(std::unique_lock<std::mutex>& lock, bool* worked);
 
     std::vector<std::thread> workers_;
     std::mutex mutex_;
@@ -42,6 +46,7 @@ class ThreadPool {
     const std::function<void(int64_t)>* task_ = nullptr;
     int64_t blocks_ = 0, next_block_ = 0, finished_blocks_ = 0;
     uint64_t generation_ = 0;
+    int workers_that_worked_ = 0;
     bool stopping_ = false;
     std::exception_ptr error_;
 };

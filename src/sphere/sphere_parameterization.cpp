@@ -106,6 +106,7 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
         });
     }
     adapt_timer.finish();
+    map.threads_used = pool.threads_used();
     return map;
 }
 

@@ -29,6 +29,7 @@ struct SphereMap {
     int64_t negative_weights = 0;         // directed edges whose base weight is negative
     int64_t adaptive_solves = 0;          // relaxations with adaptive weights
     int64_t relaxation_sweeps = 0;        // all sweeps, initial and adaptive
+    int threads_used = 1;                 // ThreadPool::threads_used of the run's pool
     // With RAPS_SPHERE_UV_OCTAHEDRAL (octahedral_unfold.h); empty otherwise.
     OctahedralUnfold unfold;
 };

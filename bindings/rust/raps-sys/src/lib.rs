@@ -86,8 +86,9 @@ pub const RAPS_PARAM_BOUNDARY: i32 = 7;
 /// before any work is done. Default 2^31-1.
 pub const RAPS_PARAM_MAX_TRIANGLES: i32 = 8;
 /// int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-/// bit-identical for every value. Used by the sphere relaxation, the atlas, and the
-/// statistics of every domain (at most one thread per 16,384 triangles there). Default 0.
+/// bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
+/// vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
+/// triangles there); raps_stats.threads_used says how many a run computed on. Default 0.
 pub const RAPS_PARAM_THREADS: i32 = 9;
 /// int. How the sphere domain computes its map, see RAPS_SPHERE_*. Default ROBUST.
 pub const RAPS_PARAM_SPHERE_METHOD: i32 = 10;
@@ -302,6 +303,12 @@ pub struct raps_stats {
     /// uv area over the unit square ([0,1]^2 after normalising);
     /// 0 for a sphere map without uvs
     pub utilization: f64,
+    /// Threads the run computed on, the calling thread included: the most that any of its steps
+    /// shared work among, counting a worker thread only once it has computed a share. 1 when no
+    /// step was large enough to share (see RAPS_PARAM_THREADS) or no worker could start; at most
+    /// RAPS_PARAM_THREADS. It describes the run, not the map (which is the same bits for any
+    /// count), and may differ between runs of one input.
+    pub threads_used: u64,
 }
 
 /// Progress callback: called with the phase and the fraction of it done, in [0, 1], at least at
