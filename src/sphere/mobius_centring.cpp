@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "sphere/spherical_geometry.h"
 
@@ -33,6 +34,63 @@ bool folds_more(const SphereProblem& problem, const std::vector<Eigen::Vector3d>
             return count;
         });
     return folded > 0;
+}
+
+using Complex = std::complex<double>;
+
+// w = (a z + b) / (c z + d).
+struct Mobius {
+    Complex a, b, c, d;
+};
+
+Mobius compose(const Mobius& f, const Mobius& g) {  // f after g
+    Mobius h{f.a * g.a + f.b * g.c, f.a * g.b + f.b * g.d, f.c * g.a + f.d * g.c,
+             f.c * g.b + f.d * g.d};
+    // A Moebius matrix means the same map at any scale: keep the entries near 1.
+    const double big = std::max(std::max(std::abs(h.a), std::abs(h.b)),
+                                std::max(std::abs(h.c), std::abs(h.d)));
+    h.a /= big;
+    h.b /= big;
+    h.c /= big;
+    h.d /= big;
+    return h;
+}
+
+// Inverse stereographic projection (from the north pole) of num / den, by whichever of the
+// quotient and its inverse is at most 1, so that neither infinity nor points near the north
+// pole lose their relative precision.
+Eigen::Vector3d lift(Complex num, Complex den) {
+    if (std::abs(num) <= std::abs(den)) {
+        const Complex w = num / den;
+        const double r2 = std::norm(w);
+        return Eigen::Vector3d(2.0 * w.real(), 2.0 * w.imag(), r2 - 1.0) / (r2 + 1.0);
+    }
+    const Complex v = den / num;
+    const double v2 = std::norm(v);
+    return Eigen::Vector3d(2.0 * v.real(), -2.0 * v.imag(), 1.0 - v2) / (1.0 + v2);
+}
+
+// The boost that spreads the points near the unit vector `direction` by the factor k there
+// (fixed points +-direction): R^-1 diag(1, k) R with R the rotation (an SU(2) matrix in
+// stereographic coordinates) that takes `direction` to the north pole.
+Mobius boost_towards(const Eigen::Vector3d& direction, double k) {
+    const double phi = std::atan2(direction.y(), direction.x());
+    const Complex alpha = std::sqrt(std::max(0.0, 0.5 * (1.0 + direction.z()))) *
+                          std::polar(1.0, -phi);
+    const Complex beta = std::sqrt(std::max(0.0, 0.5 * (1.0 - direction.z())));
+    const Mobius rotation{alpha, beta, -std::conj(beta), std::conj(alpha)};
+    const Mobius back{std::conj(alpha), -beta, std::conj(beta), alpha};
+    return compose(back, compose(Mobius{1.0, 0.0, 0.0, k}, rotation));
+}
+
+void lift_all(const std::vector<Eigen::Vector2d>& plane, int32_t pole, const Mobius& m,
+              std::vector<Eigen::Vector3d>& points, ThreadPool& pool) {
+    parallel_for(pool, static_cast<int64_t>(plane.size()), [&](int64_t begin, int64_t end) {
+        for (int64_t i = begin; i < end; ++i) {
+            const Complex z(plane[i].x(), plane[i].y());
+            points[i] = i == pole ? lift(m.a, m.c) : lift(m.a * z + m.b, m.c * z + m.d);
+        }
+    });
 }
 
 }  // namespace
@@ -79,6 +137,26 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
         }
     }
     return offset;
+}
+
+std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
+                                                 const std::vector<Eigen::Vector2d>& plane,
+                                                 int32_t pole, double scale, ThreadPool& pool,
+                                                 double tolerance, int max_steps) {
+    Mobius m{scale, 0.0, 0.0, 1.0};
+    std::vector<Eigen::Vector3d> points(plane.size());
+    lift_all(plane, pole, m, points, pool);
+    for (int step = 0; step < max_steps; ++step) {
+        const Eigen::Vector3d centre = centre_of_mass(problem, points, pool);
+        const double offset = centre.norm();
+        if (!(offset > tolerance)) break;
+        // As centring_step: a = 3/4 of the centre of mass, at most 0.9 long; T_a spreads the
+        // points near a / |a| by (1 + |a|) / (1 - |a|).
+        const double t = std::min(0.75 * offset, 0.9);
+        m = compose(boost_towards(centre / offset, (1.0 + t) / (1.0 - t)), m);
+        lift_all(plane, pole, m, points, pool);
+    }
+    return points;
 }
 
 int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u, ThreadPool& pool,

@@ -43,4 +43,22 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
 int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u, ThreadPool& pool,
                   double tolerance, int max_steps);
 
+// The same centring done in the plane before the lift, for a map given as planar points (the
+// stereographic coordinates of its sphere points, projected from the north pole) and one vertex
+// at infinity (`pole`, or -1 for none). Each step is the boost of centring_step written as a
+// complex Moebius matrix (a rotation taking the centre of mass's direction to the north pole, a
+// scaling, the rotation back); the steps are composed, and the points are lifted from the
+// original planar points through the composed matrix, never through the previous lift. Why:
+// floating point resolves a point near the plane's origin relative to its distance from it, and
+// the lift keeps that near the sphere's poles, where a boost applied on the sphere resolves only
+// 1e-16 absolute. A capsule punctured at one end puts the other end at the origin and the body
+// on a circle of radius e^-aspect around it; centring it is a scaling, exact in the plane,
+// which on the sphere blew up the rounding of the squeezed end into folds (docs/sphere-status.md).
+// Takes steps until the centre of mass is shorter than `tolerance` or `max_steps` were taken;
+// returns the lifted points.
+std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
+                                                 const std::vector<Eigen::Vector2d>& plane,
+                                                 int32_t pole, double scale, ThreadPool& pool,
+                                                 double tolerance, int max_steps);
+
 }  // namespace raps

@@ -78,18 +78,12 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(
 
     // Inverse stereographic projection of s * plane. The ring (radius 1) lands on the circle of
     // height (s^2 - 1) / (s^2 + 1), which leaves the cap above it 4 pi / (1 + s^2): the pole's
-    // star gets the share of the sphere that it has of the 3D area.
+    // star gets the share of the sphere that it has of the 3D area. The scale is the first
+    // Moebius map of the centring, which is done on the planar points.
     const double star_share = std::clamp(3.0 * problem.mass[pole], 1e-12, 0.5);
     const double s = std::sqrt(1.0 / star_share - 1.0);
-    std::vector<Eigen::Vector3d> points(mesh.positions.size());
-    parallel_for(pool, mesh.vertex_count(), [&](int64_t begin, int64_t end) {
-        for (int64_t i = begin; i < end; ++i) {
-            const Eigen::Vector2d p = s * plane[i];
-            const double r2 = p.squaredNorm();
-            points[i] = Eigen::Vector3d(2.0 * p.x(), 2.0 * p.y(), r2 - 1.0) / (r2 + 1.0);
-        }
-    });
-    points[pole] = Eigen::Vector3d::UnitZ();
+    std::vector<Eigen::Vector3d> points =
+        mobius_centred_lift(problem, plane, pole, s, pool, 1e-4, 100);
     mobius_centre(problem, points, pool, 1e-4, 100);
     return points;
 }
