@@ -46,6 +46,7 @@ struct Sample {
     uint64_t flipped;
     uint64_t triangles;
     uint64_t sweeps;
+    uint64_t threads_used;
     int ok;
 };
 
@@ -84,6 +85,7 @@ Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t
         sample.flipped = stats.flipped_triangles;
         sample.triangles = stats.triangle_count;
         sample.sweeps = stats.relaxation_sweeps;
+        sample.threads_used = stats.threads_used;
         sample.ok = 1;
     } else {
         std::fprintf(stderr, "raps-bench: %s\n", raps_result_last_error(result));
@@ -158,9 +160,9 @@ int run_sphere(const std::string& data, int runs, int large_runs, int subdivisio
         raps_version_string(), all);
     std::printf(
         "| mesh | triangles | runs | sweeps | topology ms | initial map ms | adapt ms | "
-        "total ms | total ms, 1 thread | speed-up | peak MB | area initial -> adapted | "
-        "flips |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+        "total ms | total ms, 1 thread | speed-up | threads used | peak MB | area initial -> "
+        "adapted | flips |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
     for (const Case& c : cases) {
         const int n = c.subdivisions > 0 ? large_runs : runs;
         Config initial;
@@ -186,12 +188,13 @@ int run_sphere(const std::string& data, int runs, int large_runs, int subdivisio
         for (const Sample& s : serial.first) total_serial.push_back(s.total_ms);
         const double t = median(total), t1 = median(total_serial);
         std::printf(
-            "| %s | %llu | %zu | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.3f -> "
-            "%.3f | %llu |\n",
+            "| %s | %llu | %zu | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %llu | %.0f | "
+            "%.3f -> %.3f | %llu |\n",
             c.name.c_str(), static_cast<unsigned long long>(samples[0].triangles), samples.size(),
             static_cast<unsigned long long>(samples[0].sweeps), median(phase[RAPS_PHASE_TOPOLOGY]),
             median(phase[RAPS_PHASE_INITIAL_MAP]), median(phase[RAPS_PHASE_ADAPT]), t, t1, t1 / t,
-            peak_mb, first.first[0].area_log_mean, samples[0].area_log_mean,
+            static_cast<unsigned long long>(samples[0].threads_used), peak_mb,
+            first.first[0].area_log_mean, samples[0].area_log_mean,
             static_cast<unsigned long long>(samples[0].flipped));
         std::fflush(stdout);
     }
