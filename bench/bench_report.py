@@ -41,9 +41,9 @@ def cpu_model():
 
 def load_average():
     try:
-        return '%.2f' % os.getloadavg()[0]
+        return os.getloadavg()[0]
     except OSError:
-        return '?'
+        return float('nan')
 
 
 def shown(path, source_dir):
@@ -84,6 +84,7 @@ def main():
     t0 = time.monotonic()
     run = subprocess.run(command, stdout=subprocess.PIPE, text=True)
     seconds = time.monotonic() - t0
+    load_after = load_average()
     if run.returncode != 0:
         sys.stdout.write(run.stdout)
         sys.exit('bench_report.py: the command exited with %d; %s left as it was'
@@ -97,8 +98,12 @@ def main():
                                            ', '.join('`%s`' % c for c in changed)) if changed
                                    else ''),
              '- date: %s' % started.strftime('%Y-%m-%d %H:%M UTC'),
-             '- machine: %s, %d cores; load average %s at the start, %s at the end; %.0f s'
-             % (cpu_model(), os.cpu_count() or 0, load_before, load_average(), seconds), '']
+             '- machine: %s, %d cores; load average %.2f at the start, %.2f at the end; %.0f s'
+             % (cpu_model(), os.cpu_count() or 0, load_before, load_after, seconds), '']
+    if max(load_before, load_after) > (os.cpu_count() or 1):
+        lines += ['Other work shared the machine (a load average above its core count): times are '
+                  'slower than on an idle machine, and runs on several threads the most. Figures '
+                  'that are not times do not depend on it.', '']
     if args.note:
         lines += [args.note, '']
     body = run.stdout.rstrip('\n')
