@@ -4,6 +4,7 @@
  * duplicate vertices (each output vertex sits at its input vertex's position), and the output
  * does not depend on the thread count. */
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -237,6 +238,14 @@ static void output_is_identical_for_any_thread_count(void** state) {
         test_mesh mesh = load_shared_mesh(meshes[m]);
         atlas one = run_atlas(&mesh, 1, 1), two = run_atlas(&mesh, 2, 1),
               many = run_atlas(&mesh, 5, 1);
+        /* The runs with threads did compute on workers (charts are mapped in parallel). */
+        print_message("%s: %llu, %llu and %llu threads computed\n", meshes[m],
+                      (unsigned long long)one.stats.threads_used,
+                      (unsigned long long)two.stats.threads_used,
+                      (unsigned long long)many.stats.threads_used);
+        assert_int_equal(one.stats.threads_used, 1);
+        assert_int_equal(two.stats.threads_used, 2);
+        assert_true(many.stats.threads_used >= 2 && many.stats.threads_used <= 5);
         assert_int_equal(one.vertex_count, two.vertex_count);
         assert_int_equal(one.vertex_count, many.vertex_count);
         assert_memory_equal(one.uv, two.uv, 2 * one.vertex_count * sizeof(float));
@@ -454,6 +463,8 @@ static void atlas_progress_and_cancellation(void** state) {
 
 typedef struct overlap_probe {
     int inside, overlaps, calls;
+    int slots;              /* calls recorded in caller[] */
+    pthread_t caller[4096]; /* the thread of each call */
 } overlap_probe;
 
 static int32_t detect_overlap(void* user, raps_phase phase, double fraction) {
@@ -467,12 +478,27 @@ static int32_t detect_overlap(void* user, raps_phase phase, double fraction) {
     volatile int spin = 0;
     for (int i = 0; i < 20000; ++i) spin = spin + 1;
     __atomic_add_fetch(&probe->calls, 1, __ATOMIC_SEQ_CST);
+    const int slot = __atomic_fetch_add(&probe->slots, 1, __ATOMIC_SEQ_CST);
+    if (slot < 4096) probe->caller[slot] = pthread_self();
     __atomic_sub_fetch(&probe->inside, 1, __ATOMIC_SEQ_CST);
     return 1;
 }
 
+/* The number of distinct threads among the recorded calls. */
+static int calling_threads(const overlap_probe* probe) {
+    const int n = probe->slots < 4096 ? probe->slots : 4096;
+    int distinct = 0;
+    for (int i = 0; i < n; ++i) {
+        int seen = 0;
+        for (int j = 0; j < i && !seen; ++j)
+            seen = pthread_equal(probe->caller[i], probe->caller[j]);
+        distinct += !seen;
+    }
+    return distinct;
+}
+
 /* The header promises that a run's progress calls never overlap, even when worker threads
- * report (charts are mapped in parallel). */
+ * report (charts are mapped in parallel): the calls came from more than one thread. */
 static void progress_calls_never_overlap(void** state) {
     (void)state;
     test_mesh mesh = load_shared_mesh("bunny.off");
@@ -481,11 +507,15 @@ static void progress_calls_never_overlap(void** state) {
     assert_status(raps_settings_create(&s), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_THREADS, 4), RAPS_OK);
-    overlap_probe probe = {0, 0, 0};
-    assert_status(raps_settings_set_progress(s, detect_overlap, &probe), RAPS_OK);
+    overlap_probe* probe = calloc(1, sizeof(overlap_probe));
+    assert_non_null(probe);
+    assert_status(raps_settings_set_progress(s, detect_overlap, probe), RAPS_OK);
     raps_result* r = parameterize_ok(m, s);
-    assert_true(probe.calls > 20);
-    assert_int_equal(probe.overlaps, 0);
+    print_message("%d progress calls from %d threads\n", probe->calls, calling_threads(probe));
+    assert_true(probe->calls > 20);
+    assert_true(calling_threads(probe) >= 2);
+    assert_int_equal(probe->overlaps, 0);
+    free(probe);
     raps_result_destroy(r);
     raps_settings_destroy(s);
     raps_mesh_destroy(m);
