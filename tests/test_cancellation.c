@@ -4,6 +4,7 @@
  * sees every cancelled run), and leaves the handles usable: the next run gives exactly the
  * output of a run that was never cancelled. Worker threads report too (the atlas maps charts in
  * parallel), so a cancellation also comes from them. */
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -16,11 +17,14 @@
 #include "raps.h"
 #include "support/test_meshes.h"
 
-/* Cancels at call number cancel_at (0: never), recording every call's phase. */
+/* Cancels at call number cancel_at (0: never), recording every call's phase and whether the
+ * cancelling call came from a thread other than the one running the test (a worker). */
 typedef struct probe {
     int calls;
     int cancel_at;
     int calls_after_cancel;
+    pthread_t runner;
+    int cancelled_on_worker;
     raps_phase phases[4096];
 } probe;
 
@@ -31,6 +35,8 @@ static int32_t probe_progress(void* user, raps_phase phase, double fraction) {
     if (p->cancel_at > 0 && p->calls >= p->cancel_at) ++p->calls_after_cancel;
     if (p->calls < 4096) p->phases[p->calls] = phase;
     ++p->calls;
+    if (p->calls == p->cancel_at)
+        p->cancelled_on_worker = !pthread_equal(pthread_self(), p->runner);
     return p->calls != p->cancel_at;
 }
 
@@ -69,8 +75,10 @@ static void free_output(output* o) {
 }
 
 /* Cancels a run of `mesh` with `s` at each of its progress calls in turn. Returns the number of
- * calls of an uncancelled run; *phases_seen gets a bit per phase reported. */
-static int cancel_at_every_call(const test_mesh* mesh, raps_settings* s, unsigned* phases_seen) {
+ * calls of an uncancelled run; *phases_seen gets a bit per phase reported, *on_workers the
+ * number of cancellations that came from a worker thread. */
+static int cancel_at_every_call(const test_mesh* mesh, raps_settings* s, unsigned* phases_seen,
+                                int* on_workers) {
     raps_mesh* m = to_raps_mesh(mesh);
     raps_result* r = NULL;
     assert_status(raps_result_create(&r), RAPS_OK);
@@ -86,9 +94,11 @@ static int cancel_at_every_call(const test_mesh* mesh, raps_settings* s, unsigne
     for (int c = 0; c < calls; ++c) *phases_seen |= 1u << full->phases[c];
     probe* p = calloc(1, sizeof(probe));
     assert_non_null(p);
+    *on_workers = 0;
     for (int at = 1; at <= calls; ++at) {
         memset(p, 0, sizeof(*p));
         p->cancel_at = at;
+        p->runner = pthread_self();
         assert_status(raps_settings_set_progress(s, probe_progress, p), RAPS_OK);
         const raps_status status = raps_parameterize(m, s, r);
         if (status != RAPS_ERROR_CANCELLED) {
@@ -98,6 +108,7 @@ static int cancel_at_every_call(const test_mesh* mesh, raps_settings* s, unsigne
         }
         assert_int_equal(p->calls, at);
         assert_int_equal(p->calls_after_cancel, 0);
+        *on_workers += p->cancelled_on_worker;
         assert_non_null(strstr(raps_result_last_error(r), "cancelled"));
         assert_int_equal(raps_result_vertex_count(r), 0);
         assert_int_equal(raps_result_index_count(r), 0);
@@ -134,8 +145,10 @@ static void disk_cancels_at_every_call(void** state) {
     raps_settings* s = domain_settings(RAPS_DOMAIN_DISK, 1);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_ITERATIONS, 2), RAPS_OK);
     unsigned seen = 0;
-    const int calls = cancel_at_every_call(&disk, s, &seen);
+    int on_workers = 0;
+    const int calls = cancel_at_every_call(&disk, s, &seen, &on_workers);
     print_message("disk: cancelled at each of %d calls\n", calls);
+    assert_int_equal(on_workers, 0); /* one thread */
     assert_int_equal(seen, PHASE_BIT(RAPS_PHASE_VALIDATE) | PHASE_BIT(RAPS_PHASE_TOPOLOGY) |
                                PHASE_BIT(RAPS_PHASE_INITIAL_MAP) | PHASE_BIT(RAPS_PHASE_ADAPT) |
                                PHASE_BIT(RAPS_PHASE_METRICS));
@@ -154,9 +167,11 @@ static void sphere_cancels_at_every_call(void** state) {
         assert_status(raps_settings_set_int(s, RAPS_PARAM_SPHERE_UV, RAPS_SPHERE_UV_OCTAHEDRAL),
                       RAPS_OK);
         unsigned seen = 0;
-        const int calls = cancel_at_every_call(&sphere, s, &seen);
+        int on_workers = 0;
+        const int calls = cancel_at_every_call(&sphere, s, &seen, &on_workers);
         print_message("sphere (%s): cancelled at each of %d calls\n",
                       methods[i] == RAPS_SPHERE_ROBUST ? "robust" : "literal", calls);
+        assert_int_equal(on_workers, 0); /* 162 vertices: below one thread per 4,096 */
         assert_int_equal(seen, PHASE_BIT(RAPS_PHASE_VALIDATE) | PHASE_BIT(RAPS_PHASE_TOPOLOGY) |
                                    PHASE_BIT(RAPS_PHASE_INITIAL_MAP) | PHASE_BIT(RAPS_PHASE_ADAPT) |
                                    PHASE_BIT(RAPS_PHASE_METRICS));
@@ -171,13 +186,60 @@ static void atlas_cancels_at_every_call(void** state) {
     raps_settings* s = domain_settings(RAPS_DOMAIN_ATLAS, 3);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_ATLAS_RESOLUTION, 128), RAPS_OK);
     unsigned seen = 0;
-    const int calls = cancel_at_every_call(&torus, s, &seen);
-    print_message("atlas: cancelled at each of %d calls\n", calls);
+    int on_workers = 0;
+    const int calls = cancel_at_every_call(&torus, s, &seen, &on_workers);
+    print_message("atlas: cancelled at each of %d calls, %d of them from a worker thread\n", calls,
+                  on_workers);
     assert_int_equal(seen, PHASE_BIT(RAPS_PHASE_VALIDATE) | PHASE_BIT(RAPS_PHASE_TOPOLOGY) |
                                PHASE_BIT(RAPS_PHASE_SEGMENT) | PHASE_BIT(RAPS_PHASE_INITIAL_MAP) |
                                PHASE_BIT(RAPS_PHASE_PACK) | PHASE_BIT(RAPS_PHASE_METRICS));
     raps_settings_destroy(s);
     test_mesh_free(&torus);
+}
+
+/* Cancels at the first call that comes from a thread other than `runner`. */
+typedef struct worker_cancel {
+    pthread_t runner;
+    int calls, cancelled, calls_after;
+} worker_cancel;
+
+static int32_t cancel_on_a_worker(void* user, raps_phase phase, double fraction) {
+    (void)phase;
+    (void)fraction;
+    worker_cancel* w = user; /* calls never overlap (the header), so plain fields do */
+    ++w->calls;
+    if (w->cancelled) {
+        ++w->calls_after;
+        return 0;
+    }
+    w->cancelled = !pthread_equal(pthread_self(), w->runner);
+    return !w->cancelled;
+}
+
+/* A cancellation that comes from a worker thread (the atlas maps charts on them and reports
+ * after each) stops the run as one from the calling thread does: CANCELLED, no further call,
+ * the handles usable. The mesh's charts take long enough to map that workers take some. */
+static void a_cancellation_from_a_worker_thread_stops_the_run(void** state) {
+    (void)state;
+    test_mesh mesh = load_shared_mesh("bunny.off");
+    raps_mesh* m = to_raps_mesh(&mesh);
+    raps_settings* s = domain_settings(RAPS_DOMAIN_ATLAS, 3);
+    worker_cancel w = {pthread_self(), 0, 0, 0};
+    assert_status(raps_settings_set_progress(s, cancel_on_a_worker, &w), RAPS_OK);
+    raps_result* r = NULL;
+    assert_status(raps_result_create(&r), RAPS_OK);
+    assert_status(raps_parameterize(m, s, r), RAPS_ERROR_CANCELLED);
+    print_message("cancelled at call %d, from a worker thread\n", w.calls);
+    assert_true(w.cancelled);
+    assert_int_equal(w.calls_after, 0);
+    assert_int_equal(raps_result_vertex_count(r), 0);
+    assert_non_null(strstr(raps_result_last_error(r), "cancelled"));
+    assert_status(raps_settings_set_progress(s, NULL, NULL), RAPS_OK);
+    assert_status(raps_parameterize(m, s, r), RAPS_OK);
+    raps_result_destroy(r);
+    raps_settings_destroy(s);
+    raps_mesh_destroy(m);
+    test_mesh_free(&mesh);
 }
 
 /* Calls per phase of one run. */
@@ -251,6 +313,7 @@ int main(void) {
         cmocka_unit_test(disk_cancels_at_every_call),
         cmocka_unit_test(sphere_cancels_at_every_call),
         cmocka_unit_test(atlas_cancels_at_every_call),
+        cmocka_unit_test(a_cancellation_from_a_worker_thread_stops_the_run),
         cmocka_unit_test(progress_reports_inside_exactly_the_phases_the_header_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
