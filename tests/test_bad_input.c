@@ -13,6 +13,8 @@
 #include "raps.h"
 #include "support/test_meshes.h"
 
+static const double kQuad[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+
 /* Runs raps_parameterize on (positions, indices) and checks the status and that the message
  * contains `fragment`. */
 static void expect_refusal(const double* xyz, size_t vertex_count, const uint32_t* indices,
@@ -34,6 +36,13 @@ static void expect_refusal(const double* xyz, size_t vertex_count, const uint32_
     assert_int_equal(raps_result_vertex_count(r), 0);
     float uv[2];
     assert_status(raps_result_copy_uvs_f32(r, uv, 1, 0), RAPS_ERROR_INVALID_OPERATION);
+    /* The handles are usable: given a good mesh, the same ones map it. */
+    const uint32_t quad[] = {0, 1, 2, 0, 2, 3};
+    assert_status(raps_mesh_set_positions_f64(m, kQuad, 4, 0), RAPS_OK);
+    assert_status(raps_mesh_set_indices_u32(m, quad, 6), RAPS_OK);
+    assert_status(raps_parameterize(m, NULL, r), RAPS_OK);
+    assert_string_equal(raps_result_last_error(r), "");
+    assert_int_equal(raps_result_vertex_count(r), 4);
     raps_result_destroy(r);
     raps_mesh_destroy(m);
 }
@@ -42,8 +51,6 @@ static void expect_mesh_refusal(const test_mesh* mesh, raps_status expected, con
     expect_refusal(mesh->positions, mesh->vertex_count, mesh->indices, mesh->index_count, expected,
                    fragment);
 }
-
-static const double kQuad[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
 
 static void null_pointers_are_refused(void** state) {
     (void)state;
@@ -265,6 +272,43 @@ static void triangle_limit_is_enforced_before_any_work(void** state) {
     test_mesh_free(&disk);
 }
 
+/* The uvs of a run of `m`, malloc'ed. */
+static double* uvs_of_mesh(const raps_mesh* m) {
+    raps_result* r = parameterize_ok(m, NULL);
+    double* uv = uvs_of(r);
+    raps_result_destroy(r);
+    return uv;
+}
+
+/* A failing setter leaves its mesh as it was (the header): after each kind of refusal the mesh
+ * holds the same counts and maps to the same bits as before. */
+static void failed_setters_leave_the_mesh_as_it_was(void** state) {
+    (void)state;
+    test_mesh disk = make_flat_disk(3, 6, 0.2);
+    raps_mesh* m = to_raps_mesh(&disk);
+    double* before = uvs_of_mesh(m);
+    const double nan_at_1[] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
+    const uint32_t five[] = {0, 1, 2, 0, 2};
+    const uint32_t huge[] = {0, 1, 0xffffffffu};
+    assert_status(raps_mesh_set_positions_f64(m, nan_at_1, 3, 0), RAPS_ERROR_NON_FINITE_POSITION);
+    assert_status(raps_mesh_set_positions_f64(m, kQuad, 4, 8), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_status(raps_mesh_set_positions_f64(m, kQuad, 0, 0), RAPS_ERROR_EMPTY_MESH);
+    assert_status(raps_mesh_set_positions_f32(m, NULL, 4, 0), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_status(raps_mesh_set_indices_u32(m, five, 5), RAPS_ERROR_INDEX_COUNT);
+    assert_status(raps_mesh_set_indices_u32(m, huge, 3), RAPS_ERROR_INDEX_OUT_OF_RANGE);
+    assert_status(raps_mesh_set_indices_u32(m, five, 0), RAPS_ERROR_EMPTY_MESH);
+    assert_status(raps_mesh_set_indices_u16(m, NULL, 3), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_true(strlen(raps_mesh_last_error(m)) > 0);
+    assert_int_equal(raps_mesh_vertex_count(m), disk.vertex_count);
+    assert_int_equal(raps_mesh_triangle_count(m), disk.index_count / 3);
+    double* after = uvs_of_mesh(m);
+    assert_memory_equal(after, before, 2 * disk.vertex_count * sizeof(double));
+    free(before);
+    free(after);
+    raps_mesh_destroy(m);
+    test_mesh_free(&disk);
+}
+
 static void a_failed_run_clears_the_previous_result(void** state) {
     (void)state;
     test_mesh disk = make_flat_disk(3, 6, 0.0);
@@ -302,6 +346,7 @@ int main(void) {
         cmocka_unit_test(meshes_with_handles_are_refused),
         cmocka_unit_test(meshes_too_large_for_their_index_type_are_refused),
         cmocka_unit_test(triangle_limit_is_enforced_before_any_work),
+        cmocka_unit_test(failed_setters_leave_the_mesh_as_it_was),
         cmocka_unit_test(a_failed_run_clears_the_previous_result),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
