@@ -62,75 +62,113 @@ uint64_t element_size(const std::string& type, int component_type) {
     return component_offset(type, component_type, count - 1) + component_size(component_type);
 }
 
-std::string type_name(int t) {
-    switch (t) {
-        case TINYGLTF_TYPE_SCALAR:
-            return "SCALAR";
-        case TINYGLTF_TYPE_VEC2:
-            return "VEC2";
-        case TINYGLTF_TYPE_VEC3:
-            return "VEC3";
-        case TINYGLTF_TYPE_VEC4:
-            return "VEC4";
-        case TINYGLTF_TYPE_MAT2:
-            return "MAT2";
-        case TINYGLTF_TYPE_MAT3:
-            return "MAT3";
-        case TINYGLTF_TYPE_MAT4:
-            return "MAT4";
-        default:
-            return "";
-    }
+AccessorLayout accessor_layout(const Json& doc, int index) {
+    const Json& a = doc["accessors"].at(static_cast<size_t>(index));
+    AccessorLayout out;
+    out.type = a["type"].get<std::string>();
+    out.component_type = a["componentType"].get<int>();
+    out.count = a["count"].get<uint64_t>();
+    out.normalized = a.value("normalized", false);
+    out.view = a.contains("bufferView") ? a["bufferView"].get<int64_t>() : -1;
+    out.offset = a.value("byteOffset", uint64_t(0));
+    out.sparse = a.contains("sparse");
+    return out;
 }
 
-std::vector<uint8_t> read_accessor(const tinygltf::Model& model, int index) {
+namespace {
+
+struct ViewBytes {
+    const std::vector<uint8_t>* buffer;
+    uint64_t offset, length, stride;
+};
+
+ViewBytes view_bytes(const Asset& asset, uint64_t view) {
+    const Json& v = asset.doc["bufferViews"].at(view);
+    return {&asset.buffers.at(v["buffer"].get<size_t>()), v.value("byteOffset", uint64_t(0)),
+            v["byteLength"].get<uint64_t>(), v.value("byteStride", uint64_t(0))};
+}
+
+bool view_has_data(const Asset& asset, uint64_t view) {
+    return asset.buffer_has_data.at(asset.doc["bufferViews"].at(view)["buffer"].get<size_t>());
+}
+
+uint64_t load_index(const uint8_t* p, int size) {
+    return size == 1 ? *p : size == 2 ? load<uint16_t>(p) : load<uint32_t>(p);
+}
+
+}  // namespace
+
+bool accessor_has_data(const Asset& asset, int index) {
+    const AccessorLayout a = accessor_layout(asset.doc, index);
+    if (a.view >= 0 && !view_has_data(asset, static_cast<uint64_t>(a.view))) return false;
+    if (!a.sparse) return true;
+    const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
+    return view_has_data(asset, s["indices"]["bufferView"].get<uint64_t>()) &&
+           view_has_data(asset, s["values"]["bufferView"].get<uint64_t>());
+}
+
+std::vector<uint32_t> read_sparse_indices(const Asset& asset, int index) {
+    const AccessorLayout a = accessor_layout(asset.doc, index);
+    std::vector<uint32_t> out;
+    if (!a.sparse) return out;
+    const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
+    const ViewBytes iv = view_bytes(asset, s["indices"]["bufferView"].get<uint64_t>());
+    const int isize = component_size(s["indices"]["componentType"].get<int>());
+    const uint64_t ibegin = iv.offset + s["indices"].value("byteOffset", uint64_t(0));
+    const uint64_t n = s["count"].get<uint64_t>();
+    if (ibegin + n * isize > iv.buffer->size()) {
+        throw GltfError("accessor", "accessor " + std::to_string(index) +
+                                        ": sparse indices run past their buffer");
+    }
+    int64_t previous = -1;
+    for (uint64_t k = 0; k < n; ++k) {
+        const uint64_t target = load_index(&(*iv.buffer)[ibegin + k * isize], isize);
+        if (static_cast<int64_t>(target) <= previous || target >= a.count) {
+            throw GltfError("accessor", "accessor " + std::to_string(index) + ": sparse index " +
+                                            std::to_string(target) +
+                                            " is out of order or past the count " +
+                                            std::to_string(a.count));
+        }
+        previous = static_cast<int64_t>(target);
+        out.push_back(static_cast<uint32_t>(target));
+    }
+    return out;
+}
+
+std::vector<uint8_t> read_accessor(const Asset& asset, int index) {
     // load_asset checked every range used here against the buffers' sizes.
-    const tinygltf::Accessor& a = model.accessors.at(static_cast<size_t>(index));
-    const std::string type = type_name(a.type);
-    const uint64_t element = element_size(type, a.componentType);
+    const AccessorLayout a = accessor_layout(asset.doc, index);
+    const uint64_t element = element_size(a.type, a.component_type);
     if (element == 0)
         throw GltfError("accessor", "accessor " + std::to_string(index) + ": bad type");
+    if (!accessor_has_data(asset, index)) {
+        throw GltfError("accessor", "accessor " + std::to_string(index) +
+                                        " reads a placeholder buffer, which has no data");
+    }
     std::vector<uint8_t> out(a.count * element, 0);
-    if (a.bufferView >= 0) {
-        const tinygltf::BufferView& view = model.bufferViews.at(static_cast<size_t>(a.bufferView));
-        const std::vector<unsigned char>& buffer = model.buffers.at(view.buffer).data;
-        const uint64_t stride = view.byteStride ? view.byteStride : element;
-        const uint64_t begin = view.byteOffset + a.byteOffset;
-        if (begin + stride * (a.count - 1) + element > buffer.size()) {
+    if (a.view >= 0) {
+        const ViewBytes view = view_bytes(asset, static_cast<uint64_t>(a.view));
+        const uint64_t stride = view.stride ? view.stride : element;
+        const uint64_t begin = view.offset + a.offset;
+        if (begin + stride * (a.count - 1) + element > view.buffer->size()) {
             throw GltfError("accessor",
                             "accessor " + std::to_string(index) + " runs past its buffer");
         }
         for (size_t i = 0; i < a.count; ++i)
-            std::memcpy(&out[i * element], &buffer[begin + i * stride], element);
+            std::memcpy(&out[i * element], &(*view.buffer)[begin + i * stride], element);
     }
-    if (a.sparse.isSparse) {
-        const auto& s = a.sparse;
-        const tinygltf::BufferView& iv = model.bufferViews.at(s.indices.bufferView);
-        const tinygltf::BufferView& vv = model.bufferViews.at(s.values.bufferView);
-        const std::vector<unsigned char>& ib = model.buffers.at(iv.buffer).data;
-        const std::vector<unsigned char>& vb = model.buffers.at(vv.buffer).data;
-        const int isize = component_size(s.indices.componentType);
-        const uint64_t ibegin = iv.byteOffset + uint64_t(s.indices.byteOffset);
-        const uint64_t vbegin = vv.byteOffset + uint64_t(s.values.byteOffset);
-        const uint64_t n = uint64_t(s.count);
-        if (ibegin + n * isize > ib.size() || vbegin + n * element > vb.size()) {
+    if (a.sparse) {
+        const std::vector<uint32_t> targets = read_sparse_indices(asset, index);
+        const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
+        const ViewBytes vv = view_bytes(asset, s["values"]["bufferView"].get<uint64_t>());
+        const uint64_t vbegin = vv.offset + s["values"].value("byteOffset", uint64_t(0));
+        if (vbegin + targets.size() * element > vv.buffer->size()) {
             throw GltfError("accessor", "accessor " + std::to_string(index) +
-                                            ": sparse data runs past its buffer");
+                                            ": sparse values run past their buffer");
         }
-        int64_t previous = -1;
-        for (uint64_t k = 0; k < n; ++k) {
-            const uint8_t* p = &ib[ibegin + k * isize];
-            const uint64_t target = isize == 1   ? *p
-                                    : isize == 2 ? load<uint16_t>(p)
-                                                 : load<uint32_t>(p);
-            if (static_cast<int64_t>(target) <= previous || target >= a.count) {
-                throw GltfError("accessor", "accessor " + std::to_string(index) +
-                                                ": sparse index " + std::to_string(target) +
-                                                " is out of order or past the count " +
-                                                std::to_string(a.count));
-            }
-            previous = static_cast<int64_t>(target);
-            std::memcpy(&out[target * element], &vb[vbegin + k * element], element);
+        for (size_t k = 0; k < targets.size(); ++k) {
+            std::memcpy(&out[uint64_t(targets[k]) * element], &(*vv.buffer)[vbegin + k * element],
+                        element);
         }
     }
     return out;
@@ -160,15 +198,13 @@ double component_value(const uint8_t* element, int component_type, bool normaliz
     }
 }
 
-std::vector<uint32_t> read_indices(const tinygltf::Model& model, int accessor) {
-    const tinygltf::Accessor& a = model.accessors.at(static_cast<size_t>(accessor));
-    const std::vector<uint8_t> data = read_accessor(model, accessor);
-    const int size = component_size(a.componentType);
+std::vector<uint32_t> read_indices(const Asset& asset, int accessor) {
+    const AccessorLayout a = accessor_layout(asset.doc, accessor);
+    const std::vector<uint8_t> data = read_accessor(asset, accessor);
+    const int size = component_size(a.component_type);
     std::vector<uint32_t> out(a.count);
-    for (size_t i = 0; i < a.count; ++i) {
-        const uint8_t* p = &data[i * size];
-        out[i] = size == 1 ? *p : size == 2 ? load<uint16_t>(p) : load<uint32_t>(p);
-    }
+    for (size_t i = 0; i < a.count; ++i)
+        out[i] = static_cast<uint32_t>(load_index(&data[i * size], size));
     return out;
 }
 

@@ -38,8 +38,12 @@ struct PrimitiveReport {
     int index_component_type = 0;
     std::vector<std::string> attributes;  // as written, in order
     std::vector<int> texcoord_sets;       // sets that now hold the new uvs (continuity copies)
-    bool tangents_dropped = false;
+    bool tangents_dropped = false;        // renderers derive them from the new uvs
+    bool tangents_generated = false;      // new ones for the new uvs (tangent_frames.h)
     int targets = 0;
+    // Output vertices whose WEIGHTS_n (summed over the sets) do not add up to 1: the input's own
+    // values, copied as they are (seam copies repeat them).
+    uint64_t unnormalized_weights = 0;
 };
 
 struct GroupReport {

@@ -1,40 +1,36 @@
 // Loading a glTF 2.0 asset (.gltf with external or data-uri buffers, or .glb) for baking.
 //
-// Two views of one document, from the same bytes:
-//   - `doc`, the JSON as written (nlohmann::ordered_json, member order kept). The output is this
-//     document edited in place, so whatever raps-gltf does not understand (extensions, extras,
-//     unknown members, accessor-level extensions) is written back unchanged; tinygltf 2.7 would
-//     drop some of it on a save (see shared/design/gltf.md).
-//   - `model`, tinygltf's typed model, from which geometry is read.
-// Before tinygltf sees anything, the GLB framing, the JSON nesting depth, the required
-// extensions, every uri (confined to the asset's folder), every buffer's size and every
-// bufferView and accessor range are checked on `doc`; tinygltf then loads through file callbacks
-// that cannot leave the folder and an image loader that decodes nothing.
+// The document is kept as written (nlohmann::ordered_json, member order kept): the output is
+// this document edited in place, so whatever raps-gltf does not understand (extensions, extras,
+// unknown members, accessor-level extensions) is written back unchanged. Geometry is read from
+// it and from the buffers' bytes by gltf_accessors, as the specification defines them; no
+// loader's model stands between (tinygltf 2.7 refuses valid assets: accessors without a
+// bufferView used as indices, placeholder buffers, data uris without ;base64, GLB padding).
+// Before any byte of a buffer is read, the GLB framing, the JSON nesting depth, the required
+// extensions and every uri (confined to the asset's folder) are checked; then every buffer's
+// size and every bufferView and accessor range (gltf_document.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include <tiny_gltf.h>
-#include <nlohmann/json.hpp>
+#include "gltf_json.h"
 
 namespace raps_gltf {
-
-using Json = nlohmann::ordered_json;
 
 struct Asset {
     std::string path;    // as given
     std::string folder;  // the asset's folder, real path: every uri must resolve inside it
     bool binary = false;
     Json doc;
-    tinygltf::Model model;
-    std::vector<std::string> warnings;  // tinygltf's warnings, for the report
+    // Each buffer's bytes, byteLength of them. A placeholder buffer (no uri, and not a GLB's BIN
+    // chunk: the specification allows one, e.g. for an extension's fallback) has none: its
+    // entry is empty and buffer_has_data false.
+    std::vector<std::vector<uint8_t>> buffers;
+    std::vector<bool> buffer_has_data;
+    std::vector<std::string> warnings;  // what the loader accepted but a user should know
 };
-
-// Extensions whose presence (used or required) makes raps-gltf refuse the asset: the geometry is
-// compressed, and re-splitting vertices would invalidate the compressed stream.
-const std::vector<std::string>& refused_extensions();
 
 // Loads and checks. Throws GltfError naming the first problem found.
 Asset load_asset(const std::string& path);

@@ -265,6 +265,252 @@ std::string earlier_bin(const std::string& main_path, const std::string& stem) {
     return {};
 }
 
+// Where a bufferView's bytes come from, by its index in the output document as it is renumbered.
+// A view into a placeholder buffer has no bytes: it keeps its offset in that buffer, which the
+// output carries along without data.
+struct ViewSource {
+    const uint8_t* data;
+    uint64_t size;
+    uint64_t old_offset;
+    int64_t placeholder;  // index of the input's placeholder buffer, or -1
+};
+
+std::vector<ViewSource> view_sources(const Asset& asset, const BakeResult& bake) {
+    std::vector<ViewSource> out;
+    const Json& doc = bake.doc;
+    for (size_t i = 0; i < doc["bufferViews"].size(); ++i) {
+        if (i < bake.first_new_view) {
+            const Json& v = asset.doc["bufferViews"][i];
+            const uint64_t offset = v.value("byteOffset", uint64_t(0));
+            const size_t buffer = v["buffer"].get<size_t>();
+            const uint64_t size = v["byteLength"].get<uint64_t>();
+            if (!asset.buffer_has_data.at(buffer)) {
+                out.push_back({nullptr, size, offset, static_cast<int64_t>(buffer)});
+            } else {
+                out.push_back({asset.buffers.at(buffer).data() + offset, size, offset, -1});
+            }
+        } else {
+            const auto& data = bake.new_views[i - bake.first_new_view];
+            out.push_back({data.data(), data.size(), 0, -1});
+        }
+    }
+    return out;
+}
+
+// The first extension the asset uses that might refer to accessors or bufferViews ("" if none).
+std::string unknown_extension(const Json& doc) {
+    for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+        if (!doc.contains(list)) continue;
+        for (const Json& name : doc[list]) {
+            if (!extension_is_known(name.get<std::string>())) return name.get<std::string>();
+        }
+    }
+    return "";
+}
+
+// Animation and skin data may not sit in strided bufferViews (validator errors
+// ANIMATION_SAMPLER_ / SKIN_IBM_ACCESSOR_WITH_BYTESTRIDE). When the stride equals the element
+// size of every accessor in the view, dropping it changes no byte's meaning.
+size_t repair_animation_strides(Json& doc) {
+    std::set<uint64_t> animation_accessors;
+    if (doc.contains("animations")) {
+        for (const Json& animation : doc["animations"]) {
+            for (const Json& s : animation.value("samplers", Json::array())) {
+                for (const char* key : {"input", "output"}) {
+                    if (s.contains(key)) animation_accessors.insert(s[key].get<uint64_t>());
+                }
+            }
+        }
+    }
+    if (doc.contains("skins")) {
+        for (const Json& skin : doc["skins"]) {
+            if (skin.contains("inverseBindMatrices")) {
+                animation_accessors.insert(skin["inverseBindMatrices"].get<uint64_t>());
+            }
+        }
+    }
+    std::map<uint64_t, bool> view_repairable;
+    for (size_t i = 0; i < doc["accessors"].size(); ++i) {
+        const Json& a = doc["accessors"][i];
+        // An accessor of a type glTF does not define (kept, unused) has no element size.
+        if (!a.contains("bufferView") || !a.contains("type") || !a["type"].is_string()) continue;
+        const uint64_t v = a["bufferView"].get<uint64_t>();
+        const Json& view = doc["bufferViews"][v];
+        if (!view.contains("byteStride")) continue;
+        const bool exact =
+            animation_accessors.count(i) &&
+            element_size(a["type"].get<std::string>(), a["componentType"].get<int>()) ==
+                view["byteStride"].get<uint64_t>();
+        auto it = view_repairable.emplace(v, true).first;
+        it->second = it->second && exact;
+    }
+    size_t repaired = 0;
+    for (const auto& entry : view_repairable) {
+        if (!entry.second) continue;
+        doc["bufferViews"][entry.first].erase("byteStride");
+        ++repaired;
+    }
+    return repaired;
+}
+
+// Removes what the bake left unused: accessors and bufferViews referenced before, referenced no
+// more (never one nothing referenced in the input: an unused accessor stays as it was).
+void prune_unused(const Json& original, Json& doc, std::vector<ViewSource>& sources,
+                  WriteReport& report) {
+    const std::set<uint64_t> before = accessor_refs(original), after = accessor_refs(doc);
+    std::set<uint64_t> unused_accessors;
+    for (uint64_t a : before) {
+        if (!after.count(a)) unused_accessors.insert(a);
+    }
+    remove_entries(doc, "accessors", unused_accessors,
+                   [](Json& d, auto visit) { for_each_accessor_ref(d, visit); });
+    report.removed_accessors = unused_accessors.size();
+    const std::set<uint64_t> views_before = view_refs(original), views_after = view_refs(doc);
+    std::set<uint64_t> unused_views;
+    for (uint64_t v : views_before) {
+        if (!views_after.count(v)) unused_views.insert(v);
+    }
+    remove_entries(doc, "bufferViews", unused_views,
+                   [](Json& d, auto visit) { for_each_view_ref(d, visit); });
+    std::vector<ViewSource> kept;
+    for (size_t i = 0; i < sources.size(); ++i) {
+        if (!unused_views.count(i)) kept.push_back(sources[i]);
+    }
+    sources.swap(kept);
+    report.removed_buffer_views = unused_views.size();
+}
+
+std::string percent_decoded(const std::string& uri) {
+    std::string plain;
+    for (size_t k = 0; k < uri.size(); ++k) {
+        if (uri[k] == '%' && k + 2 < uri.size()) {
+            plain += static_cast<char>(std::stoi(uri.substr(k + 1, 2), nullptr, 16));
+            k += 2;
+        } else {
+            plain += uri[k];
+        }
+    }
+    return plain;
+}
+
+// Images given by uri: into a .glb as bufferViews (their bytes kept in `image_bytes`); beside a
+// .gltf as copies, returned as (source, destination) pairs.
+std::vector<std::pair<std::string, std::string>> place_images(
+    const Asset& asset, Json& doc, bool glb, const std::string& out_folder,
+    std::vector<std::vector<uint8_t>>& image_bytes, std::vector<ViewSource>& sources,
+    WriteReport& report) {
+    std::vector<std::pair<std::string, std::string>> copies;
+    if (!doc.contains("images")) return copies;
+    for (size_t i = 0; i < doc["images"].size(); ++i) {
+        Json& image = doc["images"][i];
+        if (!image.contains("uri")) continue;
+        const std::string uri = image["uri"].get<std::string>();
+        const std::string what = "image " + std::to_string(i);
+        if (!glb) {
+            // resolve_inside checked the uri; the copy goes under its percent-decoded name.
+            if (!is_data_uri(uri)) {
+                copies.emplace_back(resolve_inside(asset.folder, uri, what),
+                                    out_folder + "/" + percent_decoded(uri));
+            }
+            continue;
+        }
+        std::vector<uint8_t> bytes;
+        std::string mime;
+        if (is_data_uri(uri)) {
+            DataUri decoded = decode_data_uri(uri, what);
+            bytes = std::move(decoded.bytes);
+            mime = decoded.mime;
+        } else {
+            bytes = read_file(resolve_inside(asset.folder, uri, what), kMaxFileBytes);
+            report.embedded_images.push_back(uri);
+        }
+        if (image.contains("mimeType")) mime = image["mimeType"].get<std::string>();
+        if (mime.empty() || mime == "application/octet-stream") mime = sniff_mime(bytes, uri);
+        if (mime.empty()) {
+            throw GltfError("io", what + ": '" + uri.substr(0, 60) +
+                                      "' is no image type a .glb can embed (PNG, JPEG, WebP, "
+                                      "KTX2); write a .gltf instead");
+        }
+        image.erase("uri");
+        image["mimeType"] = mime;
+        image["bufferView"] = doc["bufferViews"].size();
+        doc["bufferViews"].push_back({{"buffer", 0}, {"byteLength", bytes.size()}});
+        // A vector moved by image_bytes growing keeps its storage: data() stays valid.
+        image_bytes.push_back(std::move(bytes));
+        sources.push_back({image_bytes.back().data(), image_bytes.back().size(), 0, -1});
+    }
+    return copies;
+}
+
+// One data buffer, bufferView by bufferView, each keeping its offset modulo 16; views into
+// placeholder buffers point at those buffers, which follow it without data. Returns the bytes
+// and the output's "buffers" entries after the first (the placeholders).
+std::vector<uint8_t> lay_out_buffer(const Asset& asset, Json& doc,
+                                    const std::vector<ViewSource>& sources, Json* placeholders) {
+    std::vector<uint8_t> buffer;
+    std::map<int64_t, size_t> placeholder_index;
+    *placeholders = Json::array();
+    for (size_t i = 0; i < sources.size(); ++i) {
+        const ViewSource& b = sources[i];
+        Json& view = doc["bufferViews"][i];
+        if (b.placeholder >= 0) {
+            auto it = placeholder_index.find(b.placeholder);
+            if (it == placeholder_index.end()) {
+                it = placeholder_index.emplace(b.placeholder, placeholders->size()).first;
+                placeholders->push_back(asset.doc["buffers"][static_cast<size_t>(b.placeholder)]);
+            }
+            view["buffer"] = 1 + it->second;
+            view["byteOffset"] = b.old_offset;
+            continue;
+        }
+        uint64_t at = buffer.size();
+        while (at % kAlignment != b.old_offset % kAlignment) ++at;
+        buffer.resize(at, 0);
+        buffer.insert(buffer.end(), b.data, b.data + b.size);
+        view["buffer"] = 0;
+        view["byteOffset"] = at;
+    }
+    return buffer;
+}
+
+std::vector<uint8_t> glb_bytes(const Json& doc, std::vector<uint8_t>& buffer) {
+    std::vector<uint8_t> main;
+    std::string json = doc.dump();
+    while (json.size() % 4) json += ' ';
+    while (buffer.size() % 4) buffer.push_back(0);
+    const uint64_t total = 12 + 8 + json.size() + (buffer.empty() ? 0 : 8 + buffer.size());
+    if (total > 0xFFFFFFFFull) throw GltfError("io", "the output is too large for a GLB");
+    auto u32 = [&](uint64_t v) {
+        for (int k = 0; k < 4; ++k) main.push_back(static_cast<uint8_t>(v >> (8 * k)));
+    };
+    main.insert(main.end(), {'g', 'l', 'T', 'F'});
+    u32(2);
+    u32(total);
+    u32(json.size());
+    u32(0x4E4F534A);
+    main.insert(main.end(), json.begin(), json.end());
+    if (!buffer.empty()) {
+        u32(buffer.size());
+        u32(0x004E4942);
+        main.insert(main.end(), buffer.begin(), buffer.end());
+    }
+    return main;
+}
+
+// The input's own files, by real path: never written over.
+std::set<std::string> input_files(const Asset& asset) {
+    std::set<std::string> inputs = {real_or_empty(asset.path)};
+    for (const char* array : {"buffers", "images"}) {
+        if (!asset.doc.contains(array)) continue;
+        for (const Json& item : asset.doc[array]) {
+            if (item.contains("uri") && !is_data_uri(item["uri"].get<std::string>())) {
+                inputs.insert(resolve_inside(asset.folder, item["uri"].get<std::string>(), array));
+            }
+        }
+    }
+    return inputs;
+}
+
 }  // namespace
 
 bool extension_is_known(const std::string& name) {
@@ -290,177 +536,28 @@ WriteReport write_output(const Asset& asset, BakeResult& bake, const std::string
         throw GltfError("io", "the output must end in .glb or .gltf: " + path);
     }
     Json& doc = bake.doc;
-    const Json& original = asset.doc;
-    const size_t original_views = bake.first_new_view;
-
-    // Where each bufferView's bytes come from, by its index in `doc` as it is renumbered.
-    struct Bytes {
-        const uint8_t* data;
-        uint64_t size;
-        uint64_t old_offset;
-    };
-    std::vector<Bytes> view_bytes;
-    for (size_t i = 0; i < doc["bufferViews"].size(); ++i) {
-        if (i < original_views) {
-            const Json& v = original["bufferViews"][i];
-            const uint64_t offset = v.value("byteOffset", uint64_t(0));
-            const auto& data = asset.model.buffers.at(v["buffer"].get<size_t>()).data;
-            view_bytes.push_back({data.data() + offset, v["byteLength"].get<uint64_t>(), offset});
-        } else {
-            const auto& data = bake.new_views[i - original_views];
-            view_bytes.push_back({data.data(), data.size(), 0});
-        }
-    }
-
-    std::string unknown;
-    for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
-        if (!doc.contains(list)) continue;
-        for (const Json& name : doc[list]) {
-            if (!extension_is_known(name.get<std::string>()) && unknown.empty()) {
-                unknown = name.get<std::string>();
-            }
-        }
-    }
+    std::vector<ViewSource> sources = view_sources(asset, bake);
+    const std::string unknown = unknown_extension(doc);
     report.pruned = unknown.empty();
     if (!report.pruned) {
         report.kept_unused_because = "the asset uses " + unknown +
                                      ", which might refer to accessors or bufferViews by index";
     } else {
-        // Animation and skin data may not sit in strided bufferViews (validator errors
-        // ANIMATION_SAMPLER_ / SKIN_IBM_ACCESSOR_WITH_BYTESTRIDE). When the stride equals the
-        // element size of every accessor in the view, dropping it changes no byte's meaning.
-        std::set<uint64_t> animation_accessors;
-        if (doc.contains("animations")) {
-            for (const Json& animation : doc["animations"]) {
-                for (const Json& s : animation.value("samplers", Json::array())) {
-                    for (const char* key : {"input", "output"}) {
-                        if (s.contains(key)) animation_accessors.insert(s[key].get<uint64_t>());
-                    }
-                }
-            }
-        }
-        if (doc.contains("skins")) {
-            for (const Json& skin : doc["skins"]) {
-                if (skin.contains("inverseBindMatrices")) {
-                    animation_accessors.insert(skin["inverseBindMatrices"].get<uint64_t>());
-                }
-            }
-        }
-        std::map<uint64_t, bool> view_repairable;
-        for (size_t i = 0; i < doc["accessors"].size(); ++i) {
-            const Json& a = doc["accessors"][i];
-            if (!a.contains("bufferView")) continue;
-            const uint64_t v = a["bufferView"].get<uint64_t>();
-            const Json& view = doc["bufferViews"][v];
-            if (!view.contains("byteStride")) continue;
-            const bool exact =
-                animation_accessors.count(i) &&
-                element_size(a["type"].get<std::string>(), a["componentType"].get<int>()) ==
-                    view["byteStride"].get<uint64_t>();
-            auto it = view_repairable.emplace(v, true).first;
-            it->second = it->second && exact;
-        }
-        for (const auto& entry : view_repairable) {
-            if (!entry.second) continue;
-            doc["bufferViews"][entry.first].erase("byteStride");
-            ++report.repaired_buffer_views;
-        }
-
-        // Remove what the bake left unused: referenced before, referenced no more.
-        const std::set<uint64_t> before = accessor_refs(original), after = accessor_refs(doc);
-        std::set<uint64_t> unused_accessors;
-        for (uint64_t a : before) {
-            if (!after.count(a)) unused_accessors.insert(a);
-        }
-        remove_entries(doc, "accessors", unused_accessors,
-                       [](Json& d, auto visit) { for_each_accessor_ref(d, visit); });
-        report.removed_accessors = unused_accessors.size();
-        const std::set<uint64_t> views_before = view_refs(original), views_after = view_refs(doc);
-        std::set<uint64_t> unused_views;
-        for (uint64_t v : views_before) {
-            if (!views_after.count(v)) unused_views.insert(v);
-        }
-        remove_entries(doc, "bufferViews", unused_views,
-                       [](Json& d, auto visit) { for_each_view_ref(d, visit); });
-        std::vector<Bytes> kept;
-        for (size_t i = 0; i < view_bytes.size(); ++i) {
-            if (!unused_views.count(i)) kept.push_back(view_bytes[i]);
-        }
-        view_bytes.swap(kept);
-        report.removed_buffer_views = unused_views.size();
+        report.repaired_buffer_views = repair_animation_strides(doc);
+        prune_unused(asset.doc, doc, sources, report);
     }
-
-    // Images given by uri: into the .glb as bufferViews; beside a .gltf as copies.
     std::vector<std::vector<uint8_t>> image_bytes;
-    std::vector<std::pair<std::string, std::string>> image_copies;  // (source, destination)
-    const std::string out_folder = folder_of(absolute_target(path));
-    if (doc.contains("images")) {
-        for (size_t i = 0; i < doc["images"].size(); ++i) {
-            Json& image = doc["images"][i];
-            if (!image.contains("uri")) continue;
-            const std::string uri = image["uri"].get<std::string>();
-            const std::string what = "image " + std::to_string(i);
-            if (glb) {
-                std::vector<uint8_t> bytes;
-                std::string mime;
-                if (is_data_uri(uri)) {
-                    DataUri decoded = decode_data_uri(uri, what);
-                    bytes = std::move(decoded.bytes);
-                    mime = decoded.mime;
-                } else {
-                    bytes = read_file(resolve_inside(asset.folder, uri, what), kMaxFileBytes);
-                    report.embedded_images.push_back(uri);
-                }
-                if (image.contains("mimeType")) mime = image["mimeType"].get<std::string>();
-                if (mime.empty() || mime == "application/octet-stream")
-                    mime = sniff_mime(bytes, uri);
-                if (mime.empty()) {
-                    throw GltfError("io", what + ": '" + uri.substr(0, 60) +
-                                              "' is no image type a .glb can embed (PNG, JPEG, "
-                                              "WebP, KTX2); write a .gltf instead");
-                }
-                image.erase("uri");
-                image["mimeType"] = mime;
-                image["bufferView"] = doc["bufferViews"].size();
-                doc["bufferViews"].push_back({{"buffer", 0}, {"byteLength", bytes.size()}});
-                // A vector moved by image_bytes growing keeps its storage: data() stays valid.
-                image_bytes.push_back(std::move(bytes));
-                view_bytes.push_back({image_bytes.back().data(), image_bytes.back().size(), 0});
-            } else if (!is_data_uri(uri)) {
-                const std::string source = resolve_inside(asset.folder, uri, what);
-                std::string decoded = uri;  // resolve_inside checked it; percent-decode it here
-                std::string plain;
-                for (size_t k = 0; k < decoded.size(); ++k) {
-                    if (decoded[k] == '%' && k + 2 < decoded.size()) {
-                        plain +=
-                            static_cast<char>(std::stoi(decoded.substr(k + 1, 2), nullptr, 16));
-                        k += 2;
-                    } else {
-                        plain += decoded[k];
-                    }
-                }
-                image_copies.emplace_back(source, out_folder + "/" + plain);
-            }
-        }
-    }
-    // One buffer, bufferView by bufferView, each keeping its offset modulo 16.
-    std::vector<uint8_t> buffer;
-    for (size_t i = 0; i < view_bytes.size(); ++i) {
-        const Bytes& b = view_bytes[i];
-        uint64_t at = buffer.size();
-        while (at % kAlignment != b.old_offset % kAlignment) ++at;
-        buffer.resize(at, 0);
-        buffer.insert(buffer.end(), b.data, b.data + b.size);
-        Json& view = doc["bufferViews"][i];
-        view["buffer"] = 0;
-        view["byteOffset"] = at;
-    }
+    const std::string main_path = absolute_target(path);
+    const std::string out_folder = folder_of(main_path);
+    const auto image_copies =
+        place_images(asset, doc, glb, out_folder, image_bytes, sources, report);
+    Json placeholders;
+    std::vector<uint8_t> buffer = lay_out_buffer(asset, doc, sources, &placeholders);
     if (doc.contains("bufferViews") && doc["bufferViews"].empty()) doc.erase("bufferViews");
     Json first_buffer =
         doc.contains("buffers") && !doc["buffers"].empty() ? doc["buffers"][0] : Json::object();
     first_buffer.erase("uri");
     first_buffer["byteLength"] = buffer.size();
-    const std::string main_path = absolute_target(path);
     std::string bin_name, replaced_bin;
     if (!glb && !buffer.empty()) {
         if (options.embed) {
@@ -472,22 +569,14 @@ WriteReport write_output(const Asset& asset, BakeResult& bake, const std::string
             first_buffer["uri"] = bin_name;
         }
     }
-    if (buffer.empty()) {
+    if (buffer.empty() && placeholders.empty()) {
         doc.erase("buffers");
     } else {
         doc["buffers"] = Json::array({first_buffer});
+        for (const Json& p : placeholders) doc["buffers"].push_back(p);
     }
 
-    // Never write over one of the input's own files.
-    std::set<std::string> inputs = {real_or_empty(asset.path)};
-    for (const char* array : {"buffers", "images"}) {
-        if (!original.contains(array)) continue;
-        for (const Json& item : original[array]) {
-            if (item.contains("uri") && !is_data_uri(item["uri"].get<std::string>())) {
-                inputs.insert(resolve_inside(asset.folder, item["uri"].get<std::string>(), array));
-            }
-        }
-    }
+    const std::set<std::string> inputs = input_files(asset);
     auto refuse_input = [&](const std::string& target) {
         const std::string real = real_or_empty(target);
         if (!real.empty() && inputs.count(real)) {
@@ -518,25 +607,7 @@ WriteReport write_output(const Asset& asset, BakeResult& bake, const std::string
 
     std::vector<uint8_t> main;
     if (glb) {
-        std::string json = doc.dump();
-        while (json.size() % 4) json += ' ';
-        while (buffer.size() % 4) buffer.push_back(0);
-        const uint64_t total = 12 + 8 + json.size() + (buffer.empty() ? 0 : 8 + buffer.size());
-        if (total > 0xFFFFFFFFull) throw GltfError("io", "the output is too large for a GLB");
-        auto u32 = [&](uint64_t v) {
-            for (int k = 0; k < 4; ++k) main.push_back(static_cast<uint8_t>(v >> (8 * k)));
-        };
-        main.insert(main.end(), {'g', 'l', 'T', 'F'});
-        u32(2);
-        u32(total);
-        u32(json.size());
-        u32(0x4E4F534A);
-        main.insert(main.end(), json.begin(), json.end());
-        if (!buffer.empty()) {
-            u32(buffer.size());
-            u32(0x004E4942);
-            main.insert(main.end(), buffer.begin(), buffer.end());
-        }
+        main = glb_bytes(doc, buffer);
     } else {
         const std::string json = doc.dump(2) + "\n";
         main.assign(json.begin(), json.end());

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <memory>
 
 #include "gltf_error.h"
@@ -65,40 +66,6 @@ bool is_token(const std::string& s) {
     return true;
 }
 
-// tinygltf's callbacks get absolute paths it built by joining its search folders with the uri;
-// they accept a path only when its real path is a regular file inside the asset's folder.
-bool fs_file_exists(const std::string& path, void* user) {
-    const std::string& folder = *static_cast<const std::string*>(user);
-    const std::string real = real_path(path);
-    return inside(folder, real) && is_regular_file(real);
-}
-
-std::string fs_expand(const std::string& path, void*) {
-    return path;
-}
-
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-             void* user) {
-    const std::string& folder = *static_cast<const std::string*>(user);
-    const std::string real = real_path(path);
-    if (!inside(folder, real)) {
-        if (err) *err += "refused to open " + path + ": outside the asset's folder\n";
-        return false;
-    }
-    try {
-        *out = read_file(real, kMaxFileBytes);
-    } catch (const std::exception& e) {
-        if (err) *err += std::string(e.what()) + "\n";
-        return false;
-    }
-    return true;
-}
-
-bool fs_write(std::string* err, const std::string& path, const std::vector<unsigned char>&, void*) {
-    if (err) *err += "raps-gltf never lets tinygltf write files (" + path + ")\n";
-    return false;
-}
-
 }  // namespace
 
 bool looks_like_glb(const std::vector<uint8_t>& bytes) {
@@ -111,24 +78,26 @@ GlbParts split_glb(const std::vector<uint8_t>& bytes) {
     if (read_u32(bytes, 0) != kGlbMagic) fail("no 'glTF' magic");
     if (read_u32(bytes, 4) != 2)
         fail("container version " + std::to_string(read_u32(bytes, 4)) + " (only 2 is glTF 2.0)");
+    // Bytes after the declared length are not part of the GLB (the validator ignores them too).
     const uint64_t declared = read_u32(bytes, 8);
-    if (declared != bytes.size()) {
+    if (declared > bytes.size()) {
         fail("the header declares " + std::to_string(declared) + " bytes but the file has " +
-             std::to_string(bytes.size()) +
-             (declared > bytes.size() ? " (truncated)" : " (trailing bytes)"));
+             std::to_string(bytes.size()) + " (truncated)");
     }
     GlbParts parts;
+    parts.trailing = bytes.size() - declared;
+    const size_t size = declared;
     size_t at = 12;
     int index = 0;
-    while (at < bytes.size()) {
-        if (bytes.size() - at < 8) fail("chunk " + std::to_string(index) + " header is cut off");
+    while (at < size) {
+        if (size - at < 8) fail("chunk " + std::to_string(index) + " header is cut off");
         const uint64_t length = read_u32(bytes, at);
         const uint32_t type = read_u32(bytes, at + 4);
         at += 8;
-        if (length > bytes.size() - at) {
+        if (length > size - at) {
             fail("chunk " + std::to_string(index) + " declares " + std::to_string(length) +
-                 " bytes but only " + std::to_string(bytes.size() - at) +
-                 " remain in the file (chunk length too big or data truncated)");
+                 " bytes but only " + std::to_string(size - at) +
+                 " remain in the GLB (chunk length too big or data truncated)");
         }
         if (index == 0) {
             if (type != kChunkJson) fail("the first chunk is not JSON");
@@ -204,71 +173,101 @@ bool is_data_uri(const std::string& uri) {
     return uri.compare(0, 5, "data:") == 0;
 }
 
+namespace {
+
+// The media type and its ;name=value parameters (RFC 2397), all RFC 2045 tokens.
+std::string data_uri_media_type(const std::string& media,
+                                const std::function<void(const std::string&)>& fail) {
+    if (media.empty()) return "";
+    std::string mime;
+    size_t start = 0;
+    bool first = true;
+    while (true) {
+        const size_t end = media.find(';', start);
+        const std::string part =
+            media.substr(start, end == std::string::npos ? std::string::npos : end - start);
+        if (first) {
+            const size_t slash = part.find('/');
+            if (slash == std::string::npos || !is_token(part.substr(0, slash)) ||
+                !is_token(part.substr(slash + 1))) {
+                fail("media type '" + part + "'");
+            }
+            mime = part;
+            first = false;
+        } else {
+            const size_t eq = part.find('=');
+            if (eq == std::string::npos || !is_token(part.substr(0, eq)) || part.size() == eq + 1) {
+                fail("parameter '" + part + "'");
+            }
+        }
+        if (end == std::string::npos) break;
+        start = end + 1;
+    }
+    return mime;
+}
+
+std::vector<uint8_t> decode_base64(const std::string& text, size_t begin,
+                                   const std::function<void(const std::string&)>& fail) {
+    size_t length = text.size() - begin;
+    size_t padding = 0;
+    while (length > 0 && padding < 2 && text[begin + length - 1] == '=') {
+        --length;
+        ++padding;
+    }
+    if (length % 4 == 1 || (padding > 0 && (length + padding) % 4 != 0)) fail("base64 length");
+    std::vector<uint8_t> bytes;
+    bytes.reserve(length / 4 * 3 + 2);
+    uint32_t accumulator = 0;
+    int bits = 0;
+    for (size_t i = 0; i < length; ++i) {
+        const int value = base64_value(static_cast<unsigned char>(text[begin + i]));
+        if (value < 0) fail("'" + std::string(1, text[begin + i]) + "' is not base64");
+        accumulator = (accumulator << 6) | uint32_t(value);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            bytes.push_back(static_cast<uint8_t>(accumulator >> bits));
+            accumulator &= (1u << bits) - 1;
+        }
+    }
+    return bytes;
+}
+
+// RFC 2397 without ;base64: the data are the uri's characters, %XX escapes decoded.
+std::vector<uint8_t> decode_percent(const std::string& text, size_t begin,
+                                    const std::function<void(const std::string&)>& fail) {
+    std::vector<uint8_t> bytes;
+    bytes.reserve(text.size() - begin);
+    for (size_t i = begin; i < text.size(); ++i) {
+        if (text[i] != '%') {
+            bytes.push_back(static_cast<uint8_t>(text[i]));
+            continue;
+        }
+        const int hi = i + 2 < text.size() ? hex_value(text[i + 1]) : -1;
+        const int lo = i + 2 < text.size() ? hex_value(text[i + 2]) : -1;
+        if (hi < 0 || lo < 0) fail("bad percent-encoding");
+        bytes.push_back(static_cast<uint8_t>(hi * 16 + lo));
+        i += 2;
+    }
+    return bytes;
+}
+
+}  // namespace
+
 DataUri decode_data_uri(const std::string& uri, const std::string& what) {
-    auto fail = [&](const std::string& why) {
+    const std::function<void(const std::string&)> fail = [&](const std::string& why) {
         throw GltfError("uri", what + ": malformed data uri (" + why + ")");
     };
     const size_t comma = uri.find(',');
     if (comma == std::string::npos) fail("no ','");
     const std::string header = uri.substr(5, comma - 5);
     const std::string marker = ";base64";
-    if (header.size() < marker.size() ||
-        header.compare(header.size() - marker.size(), marker.size(), marker) != 0) {
-        fail("glTF data uris must be ;base64");
-    }
+    const bool base64 = header.size() >= marker.size() &&
+                        header.compare(header.size() - marker.size(), marker.size(), marker) == 0;
     DataUri out;
-    const std::string media = header.substr(0, header.size() - marker.size());
-    if (!media.empty()) {
-        // type/subtype, then ;name=value parameters, all tokens.
-        size_t start = 0;
-        bool first = true;
-        while (true) {
-            const size_t end = media.find(';', start);
-            const std::string part =
-                media.substr(start, end == std::string::npos ? std::string::npos : end - start);
-            if (first) {
-                const size_t slash = part.find('/');
-                if (slash == std::string::npos || !is_token(part.substr(0, slash)) ||
-                    !is_token(part.substr(slash + 1))) {
-                    fail("media type '" + part + "'");
-                }
-                out.mime = part;
-                first = false;
-            } else {
-                const size_t eq = part.find('=');
-                if (eq == std::string::npos || !is_token(part.substr(0, eq)) ||
-                    part.size() == eq + 1) {
-                    fail("parameter '" + part + "'");
-                }
-            }
-            if (end == std::string::npos) break;
-            start = end + 1;
-        }
-    }
-    const size_t begin = comma + 1;
-    size_t length = uri.size() - begin;
-    size_t padding = 0;
-    while (length > 0 && padding < 2 && uri[begin + length - 1] == '=') {
-        --length;
-        ++padding;
-    }
-    if (length % 4 == 1 || (padding > 0 && (length + padding) % 4 != 0)) {
-        fail("base64 length");
-    }
-    out.bytes.reserve(length / 4 * 3 + 2);
-    uint32_t accumulator = 0;
-    int bits = 0;
-    for (size_t i = 0; i < length; ++i) {
-        const int value = base64_value(static_cast<unsigned char>(uri[begin + i]));
-        if (value < 0) fail("'" + std::string(1, uri[begin + i]) + "' is not base64");
-        accumulator = (accumulator << 6) | uint32_t(value);
-        bits += 6;
-        if (bits >= 8) {
-            bits -= 8;
-            out.bytes.push_back(static_cast<uint8_t>(accumulator >> bits));
-            accumulator &= (1u << bits) - 1;
-        }
-    }
+    out.mime = data_uri_media_type(
+        base64 ? header.substr(0, header.size() - marker.size()) : header, fail);
+    out.bytes = base64 ? decode_base64(uri, comma + 1, fail) : decode_percent(uri, comma + 1, fail);
     return out;
 }
 
@@ -313,16 +312,6 @@ std::string resolve_inside(const std::string& folder, const std::string& uri,
     if (!inside(folder, real)) refuse("it resolves (through a link) outside the asset's folder");
     if (!is_regular_file(real)) refuse("not a regular file");
     return real;
-}
-
-tinygltf::FsCallbacks confined_fs_callbacks(const std::string* folder) {
-    tinygltf::FsCallbacks fs;
-    fs.FileExists = &fs_file_exists;
-    fs.ExpandFilePath = &fs_expand;
-    fs.ReadWholeFile = &fs_read;
-    fs.WriteWholeFile = &fs_write;
-    fs.user_data = const_cast<std::string*>(folder);
-    return fs;
 }
 
 }  // namespace raps_gltf

@@ -1,7 +1,6 @@
-// Checks that run before any glTF parser sees a byte: glTF files are untrusted, and Debian's
-// tinygltf 2.7 by itself follows uris out of the asset's folder (syoyo/tinygltf#373), reads image
-// bytes through a bufferView it never range-checks, and recurses through nested JSON without a
-// bound. Everything here refuses with a GltfError naming the problem; nothing here opens a file
+// Checks that run before a glTF document is parsed or any of its data read: glTF files are
+// untrusted (uris that leave the asset's folder, lengths past the file, JSON nested without
+// bound). Everything here refuses with a GltfError naming the problem; nothing here opens a file
 // outside the asset's folder.
 #pragma once
 
@@ -9,8 +8,6 @@
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <tiny_gltf.h>
 
 namespace raps_gltf {
 
@@ -20,10 +17,11 @@ constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;
 constexpr int kMaxJsonDepth = 100;
 
 // The parts of a GLB container, checked against the GLB 2.0 layout: 12-byte header with magic,
-// version 2 and a length equal to the file's size; a JSON chunk first; an optional BIN chunk
-// second; every chunk inside the file. Offsets are into the file's bytes.
+// version 2 and a length no larger than the file (bytes past it are not the GLB's: counted in
+// `trailing`); a JSON chunk first; an optional BIN chunk second; every chunk inside the declared
+// length. Offsets are into the file's bytes.
 struct GlbParts {
-    size_t json_offset = 0, json_size = 0;
+    size_t json_offset = 0, json_size = 0, trailing = 0;
     bool has_bin = false;
     size_t bin_offset = 0, bin_size = 0;
 };
@@ -40,7 +38,8 @@ std::vector<uint8_t> read_file(const std::string& path, uint64_t max_bytes);
 // The absolute, symlink-resolved folder of a file.
 std::string real_folder_of(const std::string& path);
 
-// A data: uri, checked strictly (RFC 2397 with ;base64, RFC 4648 alphabet and padding).
+// A data: uri, checked strictly: RFC 2397's media type and parameters, then either ;base64 (RFC
+// 4648 alphabet and padding) or the percent-encoded octets themselves.
 bool is_data_uri(const std::string& uri);
 struct DataUri {
     std::string mime;  // "" when the uri names none
@@ -55,10 +54,5 @@ DataUri decode_data_uri(const std::string& uri, const std::string& what);
 // "" when the file does not exist inside the folder (the caller decides whether that is an error).
 std::string resolve_inside(const std::string& folder, const std::string& uri,
                            const std::string& what);
-
-// tinygltf file-system callbacks that only ever see files inside `*folder` (a real path that
-// must outlive the loader): FileExists answers false, and ReadWholeFile fails, for anything else,
-// WriteWholeFile always fails, and ExpandFilePath never expands.
-tinygltf::FsCallbacks confined_fs_callbacks(const std::string* folder);
 
 }  // namespace raps_gltf

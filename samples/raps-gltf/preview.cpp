@@ -6,9 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <functional>
 #include <map>
-#include <set>
 
 #include "gltf_error.h"
 #include "gltf_output.h"
@@ -46,19 +44,35 @@ Mat4 multiply(const Mat4& a, const Mat4& b) {
     return r;
 }
 
-Mat4 local_matrix(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
+// node[key] when it is an array of n finite numbers, else empty (a malformed transform draws
+// the node untransformed; the preview is a picture, not a validator).
+std::vector<double> numbers(const Json& node, const char* key, size_t n) {
+    std::vector<double> out;
+    const auto it = node.find(key);
+    if (it == node.end() || !it->is_array() || it->size() != n) return out;
+    for (const Json& v : *it) {
+        if (!v.is_number() || !std::isfinite(v.get<double>())) return {};
+        out.push_back(v.get<double>());
+    }
+    return out;
+}
+
+Mat4 local_matrix(const Json& node) {
+    const std::vector<double> matrix = numbers(node, "matrix", 16);
+    if (!matrix.empty()) {
         Mat4 m;
-        std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
+        std::copy(matrix.begin(), matrix.end(), m.begin());
         return m;
     }
+    const std::vector<double> translation = numbers(node, "translation", 3);
+    const std::vector<double> rotation = numbers(node, "rotation", 4);
+    const std::vector<double> scale = numbers(node, "scale", 3);
     Mat4 t = identity(), r = identity(), s = identity();
-    if (node.translation.size() == 3) {
-        for (int k = 0; k < 3; ++k) t[12 + k] = node.translation[k];
+    if (!translation.empty()) {
+        for (int k = 0; k < 3; ++k) t[12 + k] = translation[k];
     }
-    if (node.rotation.size() == 4) {
-        const double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2],
-                     w = node.rotation[3];
+    if (!rotation.empty()) {
+        const double x = rotation[0], y = rotation[1], z = rotation[2], w = rotation[3];
         r = {1 - 2 * (y * y + z * z),
              2 * (x * y + z * w),
              2 * (x * z - y * w),
@@ -76,8 +90,8 @@ Mat4 local_matrix(const tinygltf::Node& node) {
              0,
              1};
     }
-    if (node.scale.size() == 3) {
-        for (int k = 0; k < 3; ++k) s[k * 5] = node.scale[k];
+    if (!scale.empty()) {
+        for (int k = 0; k < 3; ++k) s[k * 5] = scale[k];
     }
     return multiply(t, multiply(r, s));
 }
@@ -229,25 +243,33 @@ void draw_model(Canvas& canvas, int x0, int size, const Asset& asset, const Bake
         if (std::find(list.begin(), list.end(), p) == list.end()) list.push_back(p);
     }
     std::vector<std::pair<int, Mat4>> instances;
-    const tinygltf::Model& model = asset.model;
-    std::set<int> visited;  // a node cycle in a hostile file must not recurse forever
-    std::function<void(int, const Mat4&, int)> visit = [&](int node, const Mat4& parent,
-                                                           int depth) {
-        if (node < 0 || node >= int(model.nodes.size()) || depth > 64 ||
-            !visited.insert(node).second)
-            return;
-        const tinygltf::Node& n = model.nodes[node];
-        const Mat4 world = multiply(parent, local_matrix(n));
-        if (previews_of_mesh.count(n.mesh)) {
-            for (int p : previews_of_mesh[n.mesh]) instances.emplace_back(p, world);
+    // load_asset checked that the nodes form a forest and that every index is in range. The
+    // walk keeps its own stack (a hierarchy may be as deep as it has nodes) and draws each node
+    // once, however often a scene lists it.
+    const Json& nodes = array_of(asset.doc, "nodes");
+    const Json& scenes = array_of(asset.doc, "scenes");
+    std::vector<std::pair<size_t, Mat4>> stack;
+    std::vector<bool> drawn(nodes.size(), false);
+    if (!scenes.empty()) {
+        const Json& scene = scenes[asset.doc.value("scene", size_t(0))];
+        if (scene.contains("nodes")) {
+            for (const Json& node : scene["nodes"])
+                stack.emplace_back(node.get<size_t>(), identity());
         }
-        for (int child : n.children) visit(child, world, depth + 1);
-    };
-    if (!model.scenes.empty()) {
-        const int scene = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size())
-                              ? model.defaultScene
-                              : 0;
-        for (int node : model.scenes[scene].nodes) visit(node, identity(), 0);
+    }
+    while (!stack.empty()) {
+        const auto [node, parent] = stack.back();
+        stack.pop_back();
+        if (drawn[node]) continue;
+        drawn[node] = true;
+        const Json& n = nodes[node];
+        const Mat4 world = multiply(parent, local_matrix(n));
+        if (n.contains("mesh") && previews_of_mesh.count(n["mesh"].get<int>())) {
+            for (int p : previews_of_mesh[n["mesh"].get<int>()]) instances.emplace_back(p, world);
+        }
+        if (n.contains("children")) {
+            for (const Json& child : n["children"]) stack.emplace_back(child.get<size_t>(), world);
+        }
     }
     if (instances.empty()) {  // no scene shows them: draw each atlas's geometry once
         for (size_t p = 0; p < bake.preview.size(); ++p) instances.emplace_back(int(p), identity());

@@ -119,7 +119,10 @@ Json bake_json(const BakeResult& bake) {
         j["attributes"] = p.attributes;
         j["texcoord_sets"] = p.texcoord_sets;
         j["morph_targets"] = p.targets;
-        j["tangents"] = p.tangents_dropped ? "dropped" : "kept";
+        j["tangents"] = p.tangents_dropped     ? "dropped"
+                        : p.tangents_generated ? "generated"
+                                               : "kept";
+        j["unnormalized_weights"] = p.unnormalized_weights;
         primitives.push_back(j);
     }
     Json skipped = Json::array();

@@ -1,5 +1,5 @@
 """A small, independent glTF 2.0 reader for the tests: JSON, buffers (GLB BIN chunk, external
-files, data uris), accessors as numpy arrays (strides, sparse, matrices are not needed here),
+files, data uris of both encodings; none for a placeholder buffer), accessors as numpy arrays (strides, sparse, matrices are not needed here),
 and image bytes. It trusts its input: the tests only give it the shared assets and raps-gltf's
 outputs."""
 import base64
@@ -34,10 +34,13 @@ class Gltf:
         self.buffers = [self._load(b.get('uri'), b) for b in self.json.get('buffers', [])]
 
     def _load(self, uri, obj):
-        if uri is None:
-            return self.bin
+        if uri is None:  # the GLB's BIN chunk, or None for a placeholder buffer
+            return self.bin if obj is self.json.get('buffers', [None])[0] else None
         if uri.startswith('data:'):
-            return base64.b64decode(uri.split(',', 1)[1])
+            header, payload = uri.split(',', 1)
+            if header.endswith(';base64'):
+                return base64.b64decode(payload)
+            return urllib.parse.unquote_to_bytes(payload)
         with open(os.path.join(self.folder, urllib.parse.unquote(uri)), 'rb') as fh:
             return fh.read()
 

@@ -2,9 +2,9 @@
 // fuzz.glb when it starts with the GLB magic and fuzz.gltf otherwise, alone in a private folder
 // (so every uri it names is either a data uri or a file that does not exist, or an escape that
 // must be refused). It goes through everything raps-gltf does with a file: load_asset (GLB
-// framing, JSON depth, uris, buffer, bufferView and accessor ranges, then tinygltf), bake (every
-// accessor read, strips and fans, morph targets, the library's atlas), write_output, and the
-// written file must load again.
+// framing, JSON depth, uris, buffers, bufferView and accessor ranges, references, the node
+// graph), bake (every accessor read, strips and fans, morph targets, the library's atlas),
+// write_output, and the written file must load again.
 //
 // The promise: a malformed file is a GltfError naming the problem, never a crash, a hang, a
 // read past what was given, a leak, or any other exception (raps-gltf reports those as
