@@ -453,6 +453,25 @@ static void noisy_scan_like_sphere_maps_bijectively_and_centred(void** state) {
  * (it includes the initial relaxation; the refusal check is on what it returns): bijective and
  * centred, and the area monitor lowers the area distortion below the initial maps' figures
  * (measured 8.05, 10.01, 4.96 before the adaptive step, issue 18). */
+/* Hostile triangulations of a round sphere: latitude-longitude spheres of 200 sectors, whose
+ * poles have degree 200; with 60 rings the polar triangles are needles (edge ratio about 30),
+ * with 8 rings every triangle is (about 12 at the equator, 32 at the poles). */
+static void high_degree_vertices_and_needles_map_bijectively_and_centred(void** state) {
+    (void)state;
+    const int rings[] = {60, 8};
+    for (int k = 0; k < 2; ++k) {
+        test_mesh m = make_uv_sphere(rings[k], 200);
+        char name[64];
+        snprintf(name, sizeof(name), "uv sphere %d x 200", rings[k]);
+        const outcome initial = map_or_refuse(name, &m, RAPS_MONITOR_NONE);
+        const outcome adapted = map_or_refuse(name, &m, RAPS_MONITOR_AREA);
+        assert_status(initial.status, RAPS_OK);
+        assert_status(adapted.status, RAPS_OK);
+        assert_below(adapted.check.centre, 0.05);
+        test_mesh_free(&m);
+    }
+}
+
 static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred(void** state) {
     (void)state;
     const char* names[] = {"cow.off", "horse_quad.obj", "decimated-knight.off"};
@@ -474,6 +493,7 @@ int main(void) {
         cmocka_unit_test(dumbbell_with_a_thin_neck_maps_bijectively),
         cmocka_unit_test(starfish_with_five_long_arms_maps_bijectively),
         cmocka_unit_test(noisy_scan_like_sphere_maps_bijectively_and_centred),
+        cmocka_unit_test(high_degree_vertices_and_needles_map_bijectively_and_centred),
         cmocka_unit_test(subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
