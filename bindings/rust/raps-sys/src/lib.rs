@@ -306,8 +306,8 @@ pub struct raps_stats {
     /// Threads the run computed on, the calling thread included: the most that any of its steps
     /// shared work among, counting a worker thread only once it has computed a share. 1 when no
     /// step was large enough to share (see RAPS_PARAM_THREADS) or no worker could start; at most
-    /// RAPS_PARAM_THREADS. It describes the run, not the map (which is the same bits for any
-    /// count), and may differ between runs of one input.
+    /// RAPS_PARAM_THREADS (the hardware's threads for 0). It describes the run, not the map
+    /// (which is the same bits for any count), and may differ between runs of one input.
     pub threads_used: u64,
 }
 
