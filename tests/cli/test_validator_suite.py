@@ -25,6 +25,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 
 RUNNER = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'validate_gltf.js')
 UNDECODED = ('KHR_draco_mesh_compression', 'EXT_meshopt_compression', 'KHR_meshopt_compression')
@@ -105,15 +106,30 @@ def classify(rel, input_report, status, message, output_report, leftovers):
     return 'crash', message, 'exit status %d: %s' % (status, message[-300:])
 
 
+def provenance():
+    """The commit and date of this run (the commit is 'unknown' outside a git checkout)."""
+    try:
+        commit = subprocess.run(['git', 'rev-parse', '--short', 'HEAD'], capture_output=True,
+                                text=True, cwd=os.path.dirname(os.path.abspath(__file__)),
+                                timeout=60).stdout.strip() or 'unknown'
+    except OSError:
+        commit = 'unknown'
+    return commit, time.strftime('%Y-%m-%d', time.gmtime())
+
+
 def record(path, rows, table):
     """Markdown: the per-folder table, then every asset's outcome."""
+    commit, date = provenance()
     lines = ['# raps-gltf on the Khronos glTF-Validator suite', '',
-             'Written by `tests/cli/test_validator_suite.py --record` (CTest `validator_suite`);',
-             'outcomes as defined in that file. "copied": an error code the input already had, more',
-             'often in the output (the input\'s invalid values copied onto vertices split at seams).',
+             'Written by `ctest -R validator_suite` in a build tree (the file lands in',
+             '`build/tests/validator_suite.md`), commit %s, %s. Outcomes as' % (commit, date),
+             '`tests/cli/test_validator_suite.py` defines them; "valid": the validator finds no',
+             'error in the input; "copied": an error code the input already had, more often in the',
+             'output (the input\'s invalid values copied onto vertices split at seams).',
              '', *table, '', '| asset | validator errors in the input | outcome | detail |',
              '|---|---|---|---|']
     for rel, input_errors, outcome, detail, _ in rows:
+        detail = detail.split(rel + ': ', 1)[-1]
         codes = ', '.join(sorted(input_errors)) or '0'
         lines.append('| %s | %s | %s | %s |' % (rel, codes, outcome,
                                                  detail.replace('|', '\\|').replace('\n', ' ')[:160]))
