@@ -351,8 +351,9 @@ namespace Raps
         public const int RAPS_PARAM_SPHERE_TOLERANCE = 13;
         /// <summary>
         /// int. Sphere relaxation: most sweeps of one relaxation, 0..10^7; 0 = the method's own:
-        /// 100 for ROBUST (its distortion is no better with more on the shared meshes; see README),
-        /// 50000 for LITERAL. Default 0.
+        /// 100 for ROBUST (more sweeps take longer and lower the adapted distortion on some shared
+        /// meshes, raise it on others: cheburashka 0.895 at 100, 0.847 at 400; bunny 0.667, 0.703;
+        /// see docs/bench-method.md), 50000 for LITERAL. Default 0.
         /// </summary>
         public const int RAPS_PARAM_SPHERE_MAX_SWEEPS = 14;
         /// <summary>
@@ -364,8 +365,9 @@ namespace Raps
         /// <summary>
         /// int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
         /// raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
-        /// resolution; the estimate lies above the peaks measured on the shared meshes, see README)
-        /// is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0.
+        /// resolution; the estimate lies above the peaks measured on the shared meshes, see
+        /// docs/bench-memory.md) is larger gets RAPS_ERROR_TOO_LARGE before any work is done.
+        /// Default 0.
         /// </summary>
         public const int RAPS_PARAM_MAX_MEMORY_MB = 16;
         /// <summary>
@@ -374,7 +376,7 @@ namespace Raps
         public const int RAPS_PARAM_ATLAS_RESOLUTION = 32;
         /// <summary>
         /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
-        /// charts, more keeps mip levels apart too. Default 1 (as xatlas's bilinear option).
+        /// charts, more keeps mip levels apart too. Default 1.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_PADDING = 33;
         /// <summary>
@@ -428,14 +430,17 @@ namespace Raps
         /// Paper algorithm 7.1 as written: Gauss map (centroid at the origin, project), Gauss-Seidel
         /// sweeps in vertex order moving each vertex by lambda times the tangential Laplacian and
         /// back onto the sphere until converged, then the same with the adaptive weights. One thread,
-        /// no safeguards: it may fold triangles and collapse towards a point (measured: README).
+        /// no safeguards: it may fold triangles (counted in docs/bench-method.md) and collapse
+        /// towards a point.
         /// </summary>
         public const int RAPS_SPHERE_LITERAL = 0;
         /// <summary>
-        /// The same relaxation made robust (README, "The sphere domain"): a bijective initial map
-        /// (puncture, Tutte embedding, inverse stereographic projection), moves that would fold a
-        /// triangle halved or refused, Moebius centring after every sweep, parallel Gauss-Seidel over
-        /// a vertex colouring, over-relaxation, and continuation in alpha. Never folds.
+        /// The same relaxation made robust (docs/method.md, "What the robust method adds"): a
+        /// bijective initial map (puncture, Tutte embedding, inverse stereographic projection), moves
+        /// that would fold a triangle halved or refused, Moebius centring after every sweep, parallel
+        /// Gauss-Seidel over a vertex colouring, over-relaxation, and continuation in alpha. Returns
+        /// no folded triangle: a final map that floating point leaves folded is
+        /// RAPS_ERROR_SOLVER_FAILED.
         /// </summary>
         public const int RAPS_SPHERE_ROBUST = 1;
 
@@ -489,7 +494,8 @@ namespace Raps
         // RAPS_PARAM_ITERATION_MODE values: with K > 1 adaptive solves, the weights of solve k are
         /// <summary>
         /// the weights of solve k-1 times e^alpha measured on map k-1: a fixed-point iteration of the
-        /// equidistribution that keeps lowering the monitor's spread (measured: see README).
+        /// equidistribution that keeps lowering the monitor's spread (measured: docs/bench-method.md,
+        /// "accumulating against re-applying the monitor").
         /// </summary>
         public const int RAPS_ITERATION_ACCUMULATE = 0;
         /// <summary>

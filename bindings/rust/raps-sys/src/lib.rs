@@ -103,8 +103,9 @@ pub const RAPS_PARAM_SPHERE_DAMPING: i32 = 12;
 /// [1e-12, 1]. Default 1e-4.
 pub const RAPS_PARAM_SPHERE_TOLERANCE: i32 = 13;
 /// int. Sphere relaxation: most sweeps of one relaxation, 0..10^7; 0 = the method's own:
-/// 100 for ROBUST (its distortion is no better with more on the shared meshes; see README),
-/// 50000 for LITERAL. Default 0.
+/// 100 for ROBUST (more sweeps take longer and lower the adapted distortion on some shared
+/// meshes, raise it on others: cheburashka 0.895 at 100, 0.847 at 400; bunny 0.667, 0.703;
+/// see docs/bench-method.md), 50000 for LITERAL. Default 0.
 pub const RAPS_PARAM_SPHERE_MAX_SWEEPS: i32 = 14;
 /// int. Robust sphere method: relaxations by which each adaptive iteration reaches its
 /// exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.
@@ -112,13 +113,14 @@ pub const RAPS_PARAM_SPHERE_MAX_SWEEPS: i32 = 14;
 pub const RAPS_PARAM_SPHERE_ALPHA_STEPS: i32 = 15;
 /// int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
 /// raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
-/// resolution; the estimate lies above the peaks measured on the shared meshes, see README)
-/// is larger gets RAPS_ERROR_TOO_LARGE before any work is done. Default 0.
+/// resolution; the estimate lies above the peaks measured on the shared meshes, see
+/// docs/bench-memory.md) is larger gets RAPS_ERROR_TOO_LARGE before any work is done.
+/// Default 0.
 pub const RAPS_PARAM_MAX_MEMORY_MB: i32 = 16;
 /// int. Texels on the atlas's longer side, 16..16384. Default 1024.
 pub const RAPS_PARAM_ATLAS_RESOLUTION: i32 = 32;
 /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
-/// charts, more keeps mip levels apart too. Default 1 (as xatlas's bilinear option).
+/// charts, more keeps mip levels apart too. Default 1.
 pub const RAPS_PARAM_ATLAS_PADDING: i32 = 33;
 /// float. Vertices closer than this (in position units) are welded before charts are made,
 /// >= 0; 0 welds identical positions only. Default 0.
@@ -156,12 +158,15 @@ pub const RAPS_DOMAIN_ATLAS: i32 = 2;
 /// Paper algorithm 7.1 as written: Gauss map (centroid at the origin, project), Gauss-Seidel
 /// sweeps in vertex order moving each vertex by lambda times the tangential Laplacian and
 /// back onto the sphere until converged, then the same with the adaptive weights. One thread,
-/// no safeguards: it may fold triangles and collapse towards a point (measured: README).
+/// no safeguards: it may fold triangles (counted in docs/bench-method.md) and collapse
+/// towards a point.
 pub const RAPS_SPHERE_LITERAL: i32 = 0;
-/// The same relaxation made robust (README, "The sphere domain"): a bijective initial map
-/// (puncture, Tutte embedding, inverse stereographic projection), moves that would fold a
-/// triangle halved or refused, Moebius centring after every sweep, parallel Gauss-Seidel over
-/// a vertex colouring, over-relaxation, and continuation in alpha. Never folds.
+/// The same relaxation made robust (docs/method.md, "What the robust method adds"): a
+/// bijective initial map (puncture, Tutte embedding, inverse stereographic projection), moves
+/// that would fold a triangle halved or refused, Moebius centring after every sweep, parallel
+/// Gauss-Seidel over a vertex colouring, over-relaxation, and continuation in alpha. Returns
+/// no folded triangle: a final map that floating point leaves folded is
+/// RAPS_ERROR_SOLVER_FAILED.
 pub const RAPS_SPHERE_ROBUST: i32 = 1;
 
 // RAPS_PARAM_SPHERE_UV values
@@ -195,7 +200,8 @@ pub const RAPS_MONITOR_ANGLE: i32 = 3;
 
 // RAPS_PARAM_ITERATION_MODE values: with K > 1 adaptive solves, the weights of solve k are
 /// the weights of solve k-1 times e^alpha measured on map k-1: a fixed-point iteration of the
-/// equidistribution that keeps lowering the monitor's spread (measured: see README).
+/// equidistribution that keeps lowering the monitor's spread (measured: docs/bench-method.md,
+/// "accumulating against re-applying the monitor").
 pub const RAPS_ITERATION_ACCUMULATE: i32 = 0;
 /// the base weights times e^alpha measured on map k-1 (each step forgets the previous ones).
 pub const RAPS_ITERATION_REAPPLY: i32 = 1;
