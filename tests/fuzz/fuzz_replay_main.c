@@ -1,8 +1,8 @@
 /* The main() of a fuzz target when it is not linked with libFuzzer (the ordinary GCC build):
  * runs LLVMFuzzerTestOneInput once on every file given, and on every file of every folder given
- * (in name order), so that seeds and the inputs of fixed crashes are regression tests in CTest.
- * A broken promise aborts inside the target; a missing or empty corpus fails here, so a test
- * never passes by replaying nothing. */
+ * and of its sub-folders (in name order; libFuzzer too reads a corpus recursively), so that seeds
+ * and the inputs of fixed crashes are regression tests in CTest. A broken promise aborts inside
+ * the target; a missing or empty corpus fails here, so a test never passes by replaying nothing. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <stdint.h>
@@ -53,7 +53,8 @@ static int compare_names(const void* a, const void* b) {
     return strcmp(*(char* const*)a, *(char* const*)b);
 }
 
-/* Replays every regular file of `folder` in name order; returns how many, or -1. */
+/* Replays every regular file of `folder` and its sub-folders in name order; returns how many, or
+ * -1. */
 static long replay_folder(const char* folder) {
     DIR* dir = opendir(folder);
     if (!dir) return -1;
@@ -79,7 +80,14 @@ static long replay_folder(const char* folder) {
         if (path) {
             snprintf(path, length, "%s/%s", folder, names[i]);
             struct stat info;
-            if (stat(path, &info) == 0 && S_ISREG(info.st_mode)) {
+            if (stat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
+                const long inside = replay_folder(path);  /* libFuzzer reads folders recursively */
+                if (inside < 0) {
+                    replayed = -1;
+                } else if (replayed >= 0) {
+                    replayed += inside;
+                }
+            } else if (stat(path, &info) == 0 && S_ISREG(info.st_mode)) {
                 if (replay_file(path) != 0) {
                     fprintf(stderr, "cannot read %s\n", path);
                     replayed = -1;
