@@ -97,8 +97,8 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
     }
     map.points.resize(points.size());
     for (size_t k = 0; k < order.size(); ++k) map.points[order[k]] = points[k];
-    // The literal method returns what algorithm 7.1 gives, folds and all (README); the robust
-    // one returns a bijection or nothing.
+    // The literal method returns what algorithm 7.1 gives, folds and all (docs/bench-method.md,
+    // "algorithm 7.1 as written", counts them); the robust one returns a bijection or nothing.
     if (!literal) require_bijective_sphere_map(input, map.points);
     if (settings.sphere_uv == SphereUv::kOctahedral) {
         map.unfold = octahedral_unfold(input, map.points, [&](double) {

@@ -16,11 +16,13 @@
 
 namespace raps {
 
-// Sweeps per relaxation when RAPS_PARAM_SPHERE_MAX_SWEEPS is 0. Robust: measured on the shared
-// meshes (README), the adapted area distortion is no better with more (bunny 0.667 at 100,
-// 0.703 at 200 and 400, where all relaxations converge; spot 0.689, 0.688, 0.696), while a
-// 111K-triangle mesh keeps improving (0.90 at 100, 0.76 at 200) at twice the time. Literal:
-// converging took 6,000 to 22,000 sweeps on the shared meshes (the issue: 1,500 to 24,000).
+// Sweeps per relaxation when RAPS_PARAM_SPHERE_MAX_SWEEPS is 0. Robust: 100 bounds the time;
+// more is not uniformly better. docs/bench-method.md ("Sphere domain: most sweeps per
+// relaxation") has the adapted area distortion at 100, 200 and 400 on the shared meshes: lower
+// with more on some (cheburashka 0.895, 0.899, 0.847; fandisk 0.223, 0.221, 0.221), higher on
+// others (bunny 0.667, 0.703, 0.703; decimated-max 0.217, 0.226, 0.222). Literal: all
+// relaxations of one run together took 6,372 to 22,392 sweeps on the shared meshes, each
+// relaxation converging well before 50,000 (docs/bench-method.md, "algorithm 7.1 as written").
 constexpr int64_t kRobustMaxSweeps = 100;
 constexpr int64_t kLiteralMaxSweeps = 50000;
 

@@ -18,7 +18,8 @@
 //   centring that undoes it has a rotation part.
 //
 // Literal (RAPS_SPHERE_LITERAL): exactly that, Gauss-Seidel in vertex order on one thread.
-// Robust (RAPS_SPHERE_ROBUST) adds, each for a case that needed it (numbers in README):
+// Robust (RAPS_SPHERE_ROBUST) adds, each for a case that needed it (docs/method.md, "What the
+// robust method adds"; the literal method's folds are counted in docs/bench-method.md):
 // - Fold rejection with a shape floor. A move that would leave one of the vertex's triangles
 //   flatter than its floor (kShapeFloor times its 3D shape; turned over is flatter than flat)
 //   is halved, then quartered, and otherwise not made. Starting from a bijection, every sweep
@@ -44,9 +45,10 @@
 
 namespace raps {
 
-// Measured on bunny with uniform weights, every relaxation to convergence (README): the initial
-// relaxation took 312 sweeps at omega 1.0, 144 at 1.5, 80 at 1.8; all five relaxations 2,440,
-// 984 and 12,080 - at 1.8 the adaptive ones oscillate until their sweep limit.
+// Measured on bunny with uniform weights, every relaxation to convergence, when omega was chosen
+// (no bench-report table repeats it): the initial relaxation took 312 sweeps at omega 1.0, 144 at
+// 1.5, 80 at 1.8; all five relaxations 2,440, 984 and 12,080 - at 1.8 the adaptive ones oscillate
+// until their sweep limit.
 constexpr double kOverRelaxation = 1.5;
 
 struct RelaxationOptions {
