@@ -7,15 +7,17 @@ namespace raps {
 
 // The model: peak = kFixed + triangles * (a + b * log2(triangles)) per domain, plus, for the
 // atlas, bytes per texel of its resolution squared. The log term follows the sparse factor's
-// fill, which grows as n log n for meshes (nested dissection). The numbers lie above the highest
-// peaks measured by bench/memory_bench.cpp (raps-bench-memory --subdivide 3, default settings,
-// Debian 12, glibc malloc; the table is in the README): the peak resident set one
-// raps_parameterize call added, over the shared meshes subdivided 1-to-4 zero to three times.
-// Bytes per triangle measured:
+// fill, which grows as n log n for meshes (nested dissection). The numbers were set above the
+// highest peaks measured by bench/memory_bench.cpp (raps-bench-memory --subdivide 3, default
+// settings, Debian 12, glibc malloc): the peak resident set one raps_parameterize call added,
+// over the shared meshes subdivided 1-to-4 zero to three times. Bytes per triangle measured then:
 //   disk   (alligator, camelhead, face; 6K to 3.3M triangles): 483 to 860
 //   sphere (spot, bunny; 5.9K to 446K): 681 to 869
 //   atlas  (fandisk, bunny; 7K to 829K): 531 to 2342 (fandisk's many charts)
 // and the atlas's texel grids 1.2 to 1.5 bytes per texel (at 4096 and 16384 texels).
+// docs/bench-memory.md (bench-report: --subdivide 2, atlas resolution 1024) sets the current
+// peaks beside the estimate (its sphere rows reach 892 bytes per triangle, above the range
+// measured then); that table is the one to check after changing anything here.
 namespace {
 
 constexpr double kFixed = 4.0 * 1048576.0;  // thread stacks, allocator arenas, small tables
