@@ -7,9 +7,9 @@
 // skyline (the top of what is already placed, per column of texels) or lower, in a hole under an
 // overhang; three orders of size, several strip widths and two scoring rules are tried and the one
 // giving the smallest rectangle wins (up to 16 charts, its order is then improved by pair swaps).
-// The texel density is then raised until the longer side is `resolution` texels. As in xatlas, uvs
-// are normalised per axis: u = x / width, v = y / height, so a texture of width x height texels
-// maps them at equal density.
+// The texel density is then raised until the longer side is `resolution` texels. uvs are
+// normalised per axis: u = x / width, v = y / height, so a texture of width x height texels maps
+// them at equal density.
 #pragma once
 
 #include <cstdint>

@@ -3,8 +3,8 @@
 // stop at what would make them hard to flatten: a triangle whose normal deviates too far from
 // the chart's mean normal, a hard edge, a cut. Triangles no chart can take become new seeds.
 // Charts that still map badly are split later, by their measured stretch (atlas_charts.h). Lloyd
-// iterations then move every seed to its chart's centre and regrow, which evens the charts out (as
-// xatlas and Cohen-Steiner et al. 2004 do).
+// iterations then move every seed to its chart's centre and regrow, which evens the charts out
+// (the Lloyd relaxation of Cohen-Steiner et al. 2004's variational shape approximation).
 #pragma once
 
 #include <cstdint>
