@@ -1,8 +1,9 @@
 /* The method on the shared real disk meshes (alligator, camelhead, face, lion), through the C
  * ABI: bijective for mean value and uniform weights with every monitor, and the paper's claim
  * that the area-adaptive map has clearly lower area distortion than the mean value map.
- * Thresholds are this implementation's measured values (README) with a small margin; the
- * issue's independent reference is quoted beside each. */
+ * Thresholds are this implementation's measured values (docs/bench-method.md, "Disk domain:
+ * area distortion per setting") with a small margin; the issue's independent reference is
+ * quoted beside each. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

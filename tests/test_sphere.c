@@ -3,7 +3,8 @@
  * icosahedron mapped onto itself; the same bits for any thread count; open, non-manifold and
  * genus > 0 meshes refused with their own status; the octahedral unfold; the literal method;
  * cancellation inside the sphere phases. Thresholds are values measured on this implementation
- * (README, "The sphere domain") with a small margin. */
+ * with a small margin (the current figures per mesh: docs/bench-method.md, "Sphere domain,
+ * robust method"). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -107,9 +108,9 @@ static const char* kSpheres[] = {"bunny.off", "cheburashka.off", "decimated-max.
 
 /* Every shared genus-0 mesh: the initial map (monitor none) and the area-adapted one are
  * bijective and centred, and the area monitor lowers the spherical area distortion. Measured
- * (mean |log r| with exact spherical areas, initial -> area alpha 1): bunny 1.638 -> 0.667,
- * cheburashka 2.456 -> 0.895, decimated-max 0.605 -> 0.214, fandisk 0.729 -> 0.223,
- * spot 2.055 -> 0.689; centre of mass at most 1.6e-3 from the origin. */
+ * (mean |log r| with exact spherical areas, initial -> area alpha 1, as docs/bench-method.md
+ * has them): bunny 1.638 -> 0.667, cheburashka 2.457 -> 0.895, decimated-max 0.604 -> 0.217,
+ * fandisk 0.729 -> 0.223, spot 2.055 -> 0.689; centre of mass at most 1.6e-3 from the origin. */
 static void shared_meshes_map_bijectively_and_the_area_monitor_equidistributes(void** state) {
     (void)state;
     const double initial_at_least[] = {1.58, 2.40, 0.57, 0.70, 2.00};

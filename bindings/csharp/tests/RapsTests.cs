@@ -196,7 +196,7 @@ static class RapsTests
             Expect(first.GetStats().AdaptiveSolves == 0 && second.GetStats().AdaptiveSolves == 1,
                    "0 and 1 adaptive solves");
             double before = first.GetStats().AreaLogMean, after = second.GetStats().AreaLogMean;
-            // The adaptive step equidistributes area: README measures 2.509 -> 0.721.
+            // The adaptive step equidistributes area: docs/bench-method.md measures 2.509 -> 0.721.
             Expect(after < 0.5 * before, "area distortion " + before + " -> " + after);
             Expect(second.PhaseMilliseconds(Phase.Adapt) > 0, "a timed adaptive phase");
         }

@@ -131,7 +131,7 @@ class SharedMesh(unittest.TestCase):
             self.assertEqual(list(result.vertex_remap()), list(range(len(self.positions))))
         self.assertEqual(first.stats().adaptive_solves, 0)
         self.assertEqual(second.stats().adaptive_solves, 1)
-        # The adaptive step equidistributes area: README measures 2.509 -> 0.721.
+        # The adaptive step equidistributes area: docs/bench-method.md measures 2.509 -> 0.721.
         self.assertLess(second.stats().area_log_mean, 0.5 * first.stats().area_log_mean)
         self.assertGreater(second.phase_ms(raps.Phase.ADAPT), 0.0)
         first.close()

@@ -47,7 +47,7 @@ fn area_monitor_is_valid_and_less_distorted_than_none() {
     }
     assert_eq!(first.stats().unwrap().adaptive_solves, 0);
     assert_eq!(second.stats().unwrap().adaptive_solves, 1);
-    // The adaptive step equidistributes area: README measures 2.509 -> 0.721.
+    // The adaptive step equidistributes area: docs/bench-method.md measures 2.509 -> 0.721.
     let (before, after) = (
         first.stats().unwrap().area_log_mean,
         second.stats().unwrap().area_log_mean,
