@@ -1,9 +1,10 @@
 // Dense partial factorizations of a multifrontal front, the kernels where the sparse
 // factorization spends most of its time. Built twice from dense_lu_kernel.inl and
-// dense_cholesky_kernel.inl: for the baseline instruction set and for AVX2 + FMA; the fastest_*
-// functions pick the variant the processor runs, once. The two variants round differently, so
-// results are bit-identical for a given build on processors of the same kind, not across the two
-// kinds.
+// dense_cholesky_kernel.inl: for the baseline instruction set and for AVX2; the fastest_*
+// functions pick the variant the processor runs, once (the environment variable
+// RAPS_KERNELS=baseline forces the baseline one, for testing). Both variants do the same
+// operations in the same order on every element, without fused multiply-add, so they return the
+// same bits (dense_kernels_common.inl, docs/reproducibility.md).
 #pragma once
 
 #include <cstdint>

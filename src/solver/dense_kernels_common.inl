@@ -1,27 +1,95 @@
 // What the dense kernels (dense_lu_kernel.inl, dense_cholesky_kernel.inl) share, included once
-// by each of dense_kernels.cpp and dense_kernels_avx2.cpp. Each variant is compiled with its own
-// private copy of Eigen (the build renames Eigen's namespace per file), so the two never share
-// a template instance.
-#include <algorithm>
+// by each of dense_kernels.cpp (baseline) and dense_kernels_avx2.cpp (AVX2).
+//
+// Both variants are this same source, plain loops: every element of the result gets the same
+// operations in the same order in both (c = c - a * b, one rounding each, over the inner index
+// in increasing order), whatever the tile shape or vector width the compiler uses. The library
+// is compiled with -ffp-contract=off (no fused multiply-add) and never with -ffast-math-like
+// flags (src/CMakeLists.txt), so the AVX2 variant is only wider, never differently rounded, and
+// both give the same bits (docs/reproducibility.md). No Eigen and no std template here: the AVX2
+// object must define nothing a baseline code path could link to (tests/check_avx2_isolation.cmake),
+// and everything below has internal linkage.
 #include <cmath>
+#include <cstdint>
 
-#include <Eigen/Core>
+#ifndef RAPS_KERNEL_TILE_ROWS
+#error "RAPS_KERNEL_TILE_ROWS: rows of a register tile, set by the file including this one"
+#endif
 
 namespace raps {
 namespace {
 
-using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
-using Block = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
+// Register tile of subtract_product: kTileRows x kTileCols accumulators. Only speed depends on
+// it, never the bits (each element is computed by the same sequence of operations).
+constexpr int32_t kTileRows = RAPS_KERNEL_TILE_ROWS;
+constexpr int32_t kTileCols = 4;
 
-// Eigen sizes its matrix-product blocks from the processor's cache sizes, which changes the
-// order of summation from one machine to another. Pinned to Eigen's own x86 defaults, the
-// results depend only on the build, not on the machine's caches.
-void pin_cache_sizes() {
-    static const bool pinned = [] {
-        Eigen::setCpuCacheSizes(32 * 1024, 256 * 1024, 2 * 1024 * 1024);
-        return true;
-    }();
-    (void)pinned;
+inline int32_t smaller(int32_t a, int32_t b) { return a < b ? a : b; }
+inline double magnitude(double x) { return x < 0.0 ? -x : x; }
+
+// One element of subtract_product, in the order every path uses.
+inline double subtract_dot(double c, const double* a, int64_t lda, const double* b, int64_t b_row,
+                           int32_t depth) {
+    for (int32_t p = 0; p < depth; ++p) c -= a[p * lda] * b[p * b_row];
+    return c;
+}
+
+// C -= A * B, with C rows x cols (column stride ldc), A rows x depth (column stride lda) and
+// B(p, j) = b[p * b_row + j * b_col] (b_row 1: B column-major; b_col 1: B is a transposed
+// column-major block). With `lower`, only the elements on and below C's diagonal (row >= column)
+// are read or written. Every element: c = ((c - a_0 b_0) - a_1 b_1) - ..., in that order.
+void subtract_product(double* c, int64_t ldc, const double* a, int64_t lda, const double* b,
+                      int64_t b_row, int64_t b_col, int32_t rows, int32_t cols, int32_t depth,
+                      bool lower) {
+    if (depth <= 0) return;
+    for (int32_t j0 = 0; j0 < cols; j0 += kTileCols) {
+        const int32_t jn = smaller(kTileCols, cols - j0);
+        for (int32_t i0 = lower ? (j0 / kTileRows) * kTileRows : 0; i0 < rows; i0 += kTileRows) {
+            const int32_t in = smaller(kTileRows, rows - i0);
+            const bool full = in == kTileRows && jn == kTileCols && (!lower || i0 >= j0 + kTileCols - 1);
+            if (!full) {
+                for (int32_t jj = 0; jj < jn; ++jj) {
+                    const int32_t j = j0 + jj;
+                    for (int32_t ii = 0; ii < in; ++ii) {
+                        const int32_t i = i0 + ii;
+                        if (lower && i < j) continue;
+                        double* target = c + i + static_cast<int64_t>(j) * ldc;
+                        *target = subtract_dot(*target, a + i, lda, b + j * b_col, b_row, depth);
+                    }
+                }
+                continue;
+            }
+            double acc[kTileCols][kTileRows];
+            for (int32_t jj = 0; jj < kTileCols; ++jj)
+                for (int32_t ii = 0; ii < kTileRows; ++ii)
+                    acc[jj][ii] = c[i0 + ii + static_cast<int64_t>(j0 + jj) * ldc];
+            for (int32_t p = 0; p < depth; ++p) {
+                const double* column = a + i0 + p * lda;
+                const double* row = b + p * b_row + j0 * b_col;
+                for (int32_t jj = 0; jj < kTileCols; ++jj) {
+                    const double factor = row[jj * b_col];
+                    for (int32_t ii = 0; ii < kTileRows; ++ii) acc[jj][ii] -= column[ii] * factor;
+                }
+            }
+            for (int32_t jj = 0; jj < kTileCols; ++jj)
+                for (int32_t ii = 0; ii < kTileRows; ++ii)
+                    c[i0 + ii + static_cast<int64_t>(j0 + jj) * ldc] = acc[jj][ii];
+        }
+    }
+}
+
+// X = L^-1 X in place, L n x n unit lower triangular (column stride ldl), X n x cols (column
+// stride ldx): forward substitution, column by column.
+void solve_unit_lower(const double* l, int64_t ldl, int32_t n, double* x, int64_t ldx,
+                      int32_t cols) {
+    for (int32_t j = 0; j < cols; ++j) {
+        double* column = x + static_cast<int64_t>(j) * ldx;
+        for (int32_t p = 0; p < n; ++p) {
+            const double factor = column[p];
+            const double* l_column = l + static_cast<int64_t>(p) * ldl;
+            for (int32_t i = p + 1; i < n; ++i) column[i] -= l_column[i] * factor;
+        }
+    }
 }
 
 }  // namespace

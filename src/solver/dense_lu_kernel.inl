@@ -10,7 +10,7 @@ bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count, int32_
     for (int32_t j = first; j < first + count; ++j) {
         double* column = front + static_cast<int64_t>(j) * m;
         const double pivot = column[j];
-        if (!(std::abs(pivot) > 1e-13 * pivot_scale[j])) return false;
+        if (!(magnitude(pivot) > 1e-13 * pivot_scale[j])) return false;
         const double inverse = 1.0 / pivot;
         for (int32_t i = j + 1; i < m; ++i) column[i] *= inverse;
         for (int32_t c = j + 1; c < update_end; ++c) {
@@ -33,13 +33,12 @@ bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count,
         return unblocked_lu(front, m, first, count, first + count, pivot_scale);
     const int32_t left = count / 2, right = count - left, mid = first + left;
     if (!recursive_lu(front, m, first, left, pivot_scale)) return false;
-    Block l11(front + first + static_cast<int64_t>(first) * m, left, left, Eigen::OuterStride<>(m));
-    Block a12(front + first + static_cast<int64_t>(mid) * m, left, right, Eigen::OuterStride<>(m));
-    l11.triangularView<Eigen::UnitLower>().solveInPlace(a12);
-    Block l21(front + mid + static_cast<int64_t>(first) * m, m - mid, left,
-              Eigen::OuterStride<>(m));
-    Block a22(front + mid + static_cast<int64_t>(mid) * m, m - mid, right, Eigen::OuterStride<>(m));
-    a22.noalias() -= l21 * a12;
+    // A12 = L11^-1 A12, then A22 -= L21 A12 (A22 and L21 from row mid to the front's end).
+    double* a12 = front + first + static_cast<int64_t>(mid) * m;
+    solve_unit_lower(front + first + static_cast<int64_t>(first) * m, m, left, a12, m, right);
+    subtract_product(front + mid + static_cast<int64_t>(mid) * m, m,
+                     front + mid + static_cast<int64_t>(first) * m, m, a12, 1, m, m - mid, right,
+                     left, false);
     return recursive_lu(front, m, mid, right, pivot_scale);
 }
 
@@ -52,17 +51,15 @@ bool RAPS_PARTIAL_LU(double* front, int32_t m, int32_t k, const double* pivot_sc
     // than in arithmetic at these sizes.
     constexpr int32_t kSmallFront = 64;
     if (m <= kSmallFront) return unblocked_lu(front, m, 0, k, m, pivot_scale);
-    pin_cache_sizes();
     if (!recursive_lu(front, m, 0, k, pivot_scale)) return false;
     const int32_t rest = m - k;
     if (rest == 0) return true;
-    // The Schur complement as one product of inner dimension k.
-    Block l11(front, k, k, Eigen::OuterStride<>(m));
-    Block u12(front + static_cast<int64_t>(k) * m, k, rest, Eigen::OuterStride<>(m));
-    l11.triangularView<Eigen::UnitLower>().solveInPlace(u12);
-    Block l21(front + k, rest, k, Eigen::OuterStride<>(m));
-    Block f22(front + k + static_cast<int64_t>(k) * m, rest, rest, Eigen::OuterStride<>(m));
-    f22.noalias() -= l21 * u12;
+    // The Schur complement as one product of inner dimension k: U12 = L11^-1 F12, then
+    // F22 -= L21 U12.
+    double* u12 = front + static_cast<int64_t>(k) * m;
+    solve_unit_lower(front, m, k, u12, m, rest);
+    subtract_product(front + k + static_cast<int64_t>(k) * m, m, front + k, m, u12, 1, m, rest,
+                     rest, k, false);
     return true;
 }
 
