@@ -55,6 +55,23 @@
  *     result empty (zero counts) with its message set.
  *   - Units: positions are in any consistent unit (all distortion figures are scale-free); UVs
  *     are in texture space, [0,1]^2; times are milliseconds of wall clock; angles are degrees.
+ *   - Reproducibility: one build of libraps returns the same bits (uvs, sphere points, indices,
+ *     remap, chart ids, every raps_stats field but threads_used) for the same input and
+ *     settings on every run and for every RAPS_PARAM_THREADS value. Its own code gives the same
+ *     bits on every x86-64 processor: the dense factorization kernels exist twice, for AVX2 and
+ *     for baseline x86-64, picked at run time, and do the same operations in the same order
+ *     without fused multiply-add (the atlas packing's AVX2 path is integer arithmetic); the
+ *     library's files are compiled with -ffp-contract=off -fno-fast-math, and configuring with
+ *     -ffast-math, -Ofast or a similar flag in CMAKE_C_FLAGS/CMAKE_CXX_FLAGS is refused. Not
+ *     promised (yet): the C library's part. The results' path calls libm's atan2, log, exp,
+ *     sin, cos, tan and pow, whose last bit may differ between C libraries and architectures,
+ *     and glibc picks FMA variants of some of them at run time on x86-64 processors that have
+ *     FMA. Nor: other compilers' or architectures' builds (aarch64 is untested), or a process
+ *     that changes the floating-point environment (a rounding mode other than to-nearest, or
+ *     flush-to-zero as an application linked with -ffast-math sets). docs/reproducibility.md
+ *     has the details. For testing only: with the environment variable RAPS_KERNELS=baseline
+ *     (read once, at a process's first factorization) the baseline kernels run on an AVX2
+ *     processor too.
  */
 #ifndef RAPS_H
 #define RAPS_H
@@ -229,9 +246,10 @@ enum {
      * before any work is done. Default 2^31-1. */
     RAPS_PARAM_MAX_TRIANGLES = 8,
     /* int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-     * bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
-     * vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
-     * triangles there); raps_stats.threads_used says how many a run computed on. Default 0. */
+     * bit-identical for every value (see Reproducibility at the top). Used by the sphere
+     * relaxation (at most one thread per 4,096 vertices), the atlas, and the statistics of every
+     * domain (at most one thread per 16,384 triangles there); raps_stats.threads_used says how
+     * many a run computed on. Default 0. */
     RAPS_PARAM_THREADS = 9,
 
     /* Sphere domain (RAPS_DOMAIN_SPHERE); ignored by the others. */
