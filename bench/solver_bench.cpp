@@ -845,8 +845,9 @@ int main(int argc, char** argv) {
         "GCC contracts to FMA on aarch64 by default, so even it gives other bits there unless "
         "built with -ffp-contract=off). Pinned to the reference BLAS, CHOLMOD took %.2f to "
         "%.2f times the own solver's total here: %s. The own solver "
-        "keeps the bits for any thread count today; its remaining processor dependence is the "
-        "AVX2/FMA dense kernel variant (issue 19), which the project controls.\n",
+        "keeps the bits for any thread count, and its dense kernels (with and without AVX2) "
+        "are the project's own code, under issue 19's floating-point discipline; a BLAS's "
+        "kernels are not.\n",
         differing, compared, ref_low, ref_high,
         ref_low > 1 ? "pinned, it wins on none of these systems"
                     : "pinned, it still wins on some, by less than with OpenBLAS");
