@@ -5,6 +5,7 @@
 
 // 4 rows x 4 columns of accumulators: 8 of the 16 xmm registers of baseline x86-64.
 #define RAPS_KERNEL_TILE_ROWS 4
+#define RAPS_KERNEL_VECTOR_DOUBLES 2
 #include "solver/dense_kernels_common.inl"
 #define RAPS_PARTIAL_LU partial_lu_baseline
 #include "solver/dense_lu_kernel.inl"

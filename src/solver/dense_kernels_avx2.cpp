@@ -8,6 +8,7 @@
 
 // 8 rows x 4 columns of accumulators: 8 of the 16 ymm registers.
 #define RAPS_KERNEL_TILE_ROWS 8
+#define RAPS_KERNEL_VECTOR_DOUBLES 4
 #include "solver/dense_kernels_common.inl"
 #define RAPS_PARTIAL_LU partial_lu_avx2
 #include "solver/dense_lu_kernel.inl"

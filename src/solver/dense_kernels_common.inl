@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdint>
 
-#ifndef RAPS_KERNEL_TILE_ROWS
-#error "RAPS_KERNEL_TILE_ROWS: rows of a register tile, set by the file including this one"
+#if !defined(RAPS_KERNEL_TILE_ROWS) || !defined(RAPS_KERNEL_VECTOR_DOUBLES)
+#error "RAPS_KERNEL_TILE_ROWS, RAPS_KERNEL_VECTOR_DOUBLES: set by the file including this one"
 #endif
 
 namespace raps {
@@ -23,9 +23,19 @@ namespace {
 // it, never the bits (each element is computed by the same sequence of operations).
 constexpr int32_t kTileRows = RAPS_KERNEL_TILE_ROWS;
 constexpr int32_t kTileCols = 4;
+// The tile's columns as vectors of the variant's width (GCC/clang vector extension: element-wise
+// IEEE operations, the same as the scalar ones, and never fused with -ffp-contract=off).
+typedef double Vector __attribute__((vector_size(RAPS_KERNEL_VECTOR_DOUBLES * sizeof(double))));
+constexpr int32_t kVectorDoubles = RAPS_KERNEL_VECTOR_DOUBLES;
+constexpr int32_t kTileVectors = kTileRows / kVectorDoubles;
+static_assert(kTileRows % kVectorDoubles == 0, "a tile column is whole vectors");
 
-inline int32_t smaller(int32_t a, int32_t b) { return a < b ? a : b; }
-inline double magnitude(double x) { return x < 0.0 ? -x : x; }
+inline int32_t smaller(int32_t a, int32_t b) {
+    return a < b ? a : b;
+}
+inline double magnitude(double x) {
+    return x < 0.0 ? -x : x;
+}
 
 // One element of subtract_product, in the order every path uses.
 inline double subtract_dot(double c, const double* a, int64_t lda, const double* b, int64_t b_row,
@@ -46,7 +56,8 @@ void subtract_product(double* c, int64_t ldc, const double* a, int64_t lda, cons
         const int32_t jn = smaller(kTileCols, cols - j0);
         for (int32_t i0 = lower ? (j0 / kTileRows) * kTileRows : 0; i0 < rows; i0 += kTileRows) {
             const int32_t in = smaller(kTileRows, rows - i0);
-            const bool full = in == kTileRows && jn == kTileCols && (!lower || i0 >= j0 + kTileCols - 1);
+            const bool full =
+                in == kTileRows && jn == kTileCols && (!lower || i0 >= j0 + kTileCols - 1);
             if (!full) {
                 for (int32_t jj = 0; jj < jn; ++jj) {
                     const int32_t j = j0 + jj;
@@ -59,21 +70,29 @@ void subtract_product(double* c, int64_t ldc, const double* a, int64_t lda, cons
                 }
                 continue;
             }
-            double acc[kTileCols][kTileRows];
+            Vector acc[kTileCols][kTileVectors];
             for (int32_t jj = 0; jj < kTileCols; ++jj)
-                for (int32_t ii = 0; ii < kTileRows; ++ii)
-                    acc[jj][ii] = c[i0 + ii + static_cast<int64_t>(j0 + jj) * ldc];
+                for (int32_t v = 0; v < kTileVectors; ++v)
+                    __builtin_memcpy(
+                        &acc[jj][v],
+                        c + i0 + v * kVectorDoubles + static_cast<int64_t>(j0 + jj) * ldc,
+                        sizeof(Vector));
             for (int32_t p = 0; p < depth; ++p) {
-                const double* column = a + i0 + p * lda;
+                Vector column[kTileVectors];
+                for (int32_t v = 0; v < kTileVectors; ++v)
+                    __builtin_memcpy(&column[v], a + i0 + v * kVectorDoubles + p * lda,
+                                     sizeof(Vector));
                 const double* row = b + p * b_row + j0 * b_col;
                 for (int32_t jj = 0; jj < kTileCols; ++jj) {
                     const double factor = row[jj * b_col];
-                    for (int32_t ii = 0; ii < kTileRows; ++ii) acc[jj][ii] -= column[ii] * factor;
+                    for (int32_t v = 0; v < kTileVectors; ++v) acc[jj][v] -= column[v] * factor;
                 }
             }
             for (int32_t jj = 0; jj < kTileCols; ++jj)
-                for (int32_t ii = 0; ii < kTileRows; ++ii)
-                    c[i0 + ii + static_cast<int64_t>(j0 + jj) * ldc] = acc[jj][ii];
+                for (int32_t v = 0; v < kTileVectors; ++v)
+                    __builtin_memcpy(
+                        c + i0 + v * kVectorDoubles + static_cast<int64_t>(j0 + jj) * ldc,
+                        &acc[jj][v], sizeof(Vector));
         }
     }
 }
