@@ -324,9 +324,10 @@ namespace Raps
         public const int RAPS_PARAM_MAX_TRIANGLES = 8;
         /// <summary>
         /// int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-        /// bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
-        /// vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
-        /// triangles there); raps_stats.threads_used says how many a run computed on. Default 0.
+        /// bit-identical for every value (see Reproducibility at the top). Used by the sphere
+        /// relaxation (at most one thread per 4,096 vertices), the atlas, and the statistics of every
+        /// domain (at most one thread per 16,384 triangles there); raps_stats.threads_used says how
+        /// many a run computed on. Default 0.
         /// </summary>
         public const int RAPS_PARAM_THREADS = 9;
         /// <summary>

@@ -84,9 +84,10 @@ RAPS_PARAM_BOUNDARY = 7
 #   before any work is done. Default 2^31-1.
 RAPS_PARAM_MAX_TRIANGLES = 8
 #   int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-#   bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
-#   vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
-#   triangles there); raps_stats.threads_used says how many a run computed on. Default 0.
+#   bit-identical for every value (see Reproducibility at the top). Used by the sphere
+#   relaxation (at most one thread per 4,096 vertices), the atlas, and the statistics of every
+#   domain (at most one thread per 16,384 triangles there); raps_stats.threads_used says how
+#   many a run computed on. Default 0.
 RAPS_PARAM_THREADS = 9
 #   int. How the sphere domain computes its map, see RAPS_SPHERE_*. Default ROBUST.
 RAPS_PARAM_SPHERE_METHOD = 10

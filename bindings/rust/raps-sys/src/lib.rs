@@ -86,9 +86,10 @@ pub const RAPS_PARAM_BOUNDARY: i32 = 7;
 /// before any work is done. Default 2^31-1.
 pub const RAPS_PARAM_MAX_TRIANGLES: i32 = 8;
 /// int. Threads a run may use, 0..1024; 0 = one per hardware thread. The output is
-/// bit-identical for every value. Used by the sphere relaxation (at most one thread per 4,096
-/// vertices), the atlas, and the statistics of every domain (at most one thread per 16,384
-/// triangles there); raps_stats.threads_used says how many a run computed on. Default 0.
+/// bit-identical for every value (see Reproducibility at the top). Used by the sphere
+/// relaxation (at most one thread per 4,096 vertices), the atlas, and the statistics of every
+/// domain (at most one thread per 16,384 triangles there); raps_stats.threads_used says how
+/// many a run computed on. Default 0.
 pub const RAPS_PARAM_THREADS: i32 = 9;
 /// int. How the sphere domain computes its map, see RAPS_SPHERE_*. Default ROBUST.
 pub const RAPS_PARAM_SPHERE_METHOD: i32 = 10;
