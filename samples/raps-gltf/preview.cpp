@@ -10,23 +10,14 @@
 
 #include "gltf_error.h"
 #include "gltf_output.h"
+#include "vec3.h"
 
 namespace raps_gltf {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
 using Mat4 = std::array<double, 16>;  // column-major, as glTF stores matrices
 
-Vec3 sub(const Vec3& a, const Vec3& b) {
-    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 Vec3 normalized(const Vec3& a) {
     const double n = std::sqrt(dot(a, a));
     return n > 0 ? Vec3{a[0] / n, a[1] / n, a[2] / n} : Vec3{0, 0, 0};

@@ -1,28 +1,15 @@
 #include "tangent_frames.h"
 
-#include <array>
 #include <cmath>
+
+#include "vec3.h"
 
 namespace raps_gltf {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
 Vec3 at(const std::vector<float>& v, uint32_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
-}
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
-double dot(const Vec3& a, const Vec3& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
 bool normalize(Vec3& v) {
