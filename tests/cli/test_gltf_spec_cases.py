@@ -8,7 +8,6 @@ usage: test_gltf_spec_cases.py RAPS_GLTF VALIDATOR_PREFIX NODE
 import json
 import os
 import struct
-import subprocess
 import sys
 import tempfile
 import unittest
@@ -18,23 +17,19 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gltf_reader import Gltf  # noqa: E402
+from gltf_tools import grid as shared_grid, run_tool, validator_report  # noqa: E402
 
 RAPS_GLTF = VALIDATOR = NODE = None
-RUNNER = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'validate_gltf.js')
 FLOAT, UINT8, UINT16, UINT32 = 5126, 5121, 5123, 5125
 
 
 def run(*args):
-    p = subprocess.run([RAPS_GLTF, '--no-progress', *args], capture_output=True, text=True,
-                       timeout=300)
-    return p.returncode, p.stdout, p.stderr
+    return run_tool(RAPS_GLTF, *args, timeout=300)
 
 
 def error_codes(path):
-    p = subprocess.run([NODE, RUNNER, VALIDATOR, path], capture_output=True, text=True, timeout=300)
-    if p.returncode != 0:
-        raise AssertionError('validator did not run: ' + p.stderr)
-    return {m['code'] for m in json.loads(p.stdout)['messages'] if m['severity'] == 0}
+    report = validator_report(NODE, VALIDATOR, path, timeout=300)
+    return {m['code'] for m in report['messages'] if m['severity'] == 0}
 
 
 class Builder:
@@ -109,13 +104,7 @@ class Builder:
 
 
 def grid(n, m):
-    xs, ys = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, m + 1))
-    pos = np.column_stack([xs.ravel(), ys.ravel(), 0.2 * np.sin(3 * xs.ravel()) * ys.ravel()])
-    tris = []
-    for j in range(m):
-        for i in range(n):
-            a = j * (n + 1) + i
-            tris += [a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]
+    pos, tris = shared_grid(n, m)
     return pos.astype(np.float32), tris
 
 

@@ -23,9 +23,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gltf_reader import Gltf  # noqa: E402
+from gltf_tools import grid, run_tool, validator_report  # noqa: E402
 
 RAPS_GLTF = DATA = VALIDATOR = NODE = None
-RUNNER = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'validate_gltf.js')
 
 # Every file of shared/data/gltf-invalid and what raps-gltf must answer: exit status and a piece
 # of the message that names the problem. A file missing from this table fails the test.
@@ -53,16 +53,11 @@ INVALID = {
 
 
 def run(*args):
-    p = subprocess.run([RAPS_GLTF, '--no-progress', *args], capture_output=True, text=True,
-                       timeout=600)
-    return p.returncode, p.stdout, p.stderr
+    return run_tool(RAPS_GLTF, *args)
 
 
 def validate(path):
-    p = subprocess.run([NODE, RUNNER, VALIDATOR, path], capture_output=True, text=True, timeout=600)
-    if p.returncode != 0:
-        raise AssertionError('validator did not run: ' + p.stderr)
-    return json.loads(p.stdout)
+    return validator_report(NODE, VALIDATOR, path)
 
 
 def digest_tree(folder):
@@ -127,17 +122,6 @@ def write_asset(path, positions, indices=None, mode=4, extra=None, index_type=51
         extra(doc)
     with open(path, 'w') as fh:
         json.dump(doc, fh)
-
-
-def grid(n, m):
-    xs, ys = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, m + 1))
-    pos = np.column_stack([xs.ravel(), ys.ravel(), 0.2 * np.sin(3 * xs.ravel()) * ys.ravel()])
-    tris = []
-    for j in range(m):
-        for i in range(n):
-            a = j * (n + 1) + i
-            tris += [a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]
-    return pos, tris
 
 
 class RapsGltfTest(unittest.TestCase):
