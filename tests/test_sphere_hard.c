@@ -28,37 +28,6 @@
 
 /* ---- building meshes ----------------------------------------------------------------------- */
 
-typedef struct grow_mesh {
-    test_mesh m;
-    size_t vertex_capacity, index_capacity;
-} grow_mesh;
-
-static uint32_t push_vertex(grow_mesh* g, double x, double y, double z) {
-    if (g->m.vertex_count == g->vertex_capacity) {
-        g->vertex_capacity = g->vertex_capacity ? 2 * g->vertex_capacity : 1024;
-        g->m.positions = realloc(g->m.positions, 3 * g->vertex_capacity * sizeof(double));
-        assert_non_null(g->m.positions);
-    }
-    double* p = g->m.positions + 3 * g->m.vertex_count;
-    p[0] = x;
-    p[1] = y;
-    p[2] = z;
-    return (uint32_t)g->m.vertex_count++;
-}
-
-static void push_triangle(grow_mesh* g, uint32_t a, uint32_t b, uint32_t c) {
-    if (g->m.index_count + 3 > g->index_capacity) {
-        g->index_capacity = g->index_capacity ? 2 * g->index_capacity : 3072;
-        g->m.indices = realloc(g->m.indices, g->index_capacity * sizeof(uint32_t));
-        assert_non_null(g->m.indices);
-    }
-    uint32_t* t = g->m.indices + g->m.index_count;
-    t[0] = a;
-    t[1] = b;
-    t[2] = c;
-    g->m.index_count += 3;
-}
-
 /* Reverses every triangle if the signed volume is negative, so that triangles run
  * counter-clockwise seen from outside. */
 static void orient_outwards(test_mesh* m) {
@@ -99,11 +68,11 @@ static test_mesh make_revolution(profile_fn profile, const void* shape, int sect
         prev_rho = rho;
         prev_z = z;
     }
-    grow_mesh g;
+    test_mesh_builder g;
     memset(&g, 0, sizeof(g));
     double rho, z;
     profile(0.0, shape, &rho, &z);
-    const uint32_t north = push_vertex(&g, 0.0, 0.0, z);
+    const uint32_t north = (uint32_t)test_mesh_add_vertex(&g, 0.0, 0.0, z);
     int rings = 0;
     double at = 0.0;
     int k = 0;
@@ -116,32 +85,33 @@ static test_mesh make_revolution(profile_fn profile, const void* shape, int sect
         const double twist = (rings % 2) * M_PI / sectors;
         for (int j = 0; j < sectors; ++j) {
             const double phi = 2.0 * M_PI * j / sectors + twist;
-            push_vertex(&g, rho * cos(phi), rho * sin(phi), z);
+            test_mesh_add_vertex(&g, rho * cos(phi), rho * sin(phi), z);
         }
         ++rings;
     }
     profile(1.0, shape, &rho, &z);
-    const uint32_t south = push_vertex(&g, 0.0, 0.0, z);
+    const uint32_t south = (uint32_t)test_mesh_add_vertex(&g, 0.0, 0.0, z);
     const uint32_t n = (uint32_t)sectors;
-    for (uint32_t j = 0; j < n; ++j) push_triangle(&g, north, 1 + j, 1 + (j + 1) % n);
+    for (uint32_t j = 0; j < n; ++j) test_mesh_add_triangle(&g, north, 1 + j, 1 + (j + 1) % n);
     for (int r = 0; r + 1 < rings; ++r) {
         const uint32_t a = 1 + (uint32_t)r * n, b = a + n;
         for (uint32_t j = 0; j < n; ++j) {
             const uint32_t j1 = (j + 1) % n;
             if (r % 2 == 0) { /* ring r+1 is turned by half a sector */
-                push_triangle(&g, a + j, b + j, a + j1);
-                push_triangle(&g, a + j1, b + j, b + j1);
+                test_mesh_add_triangle(&g, a + j, b + j, a + j1);
+                test_mesh_add_triangle(&g, a + j1, b + j, b + j1);
             } else {
-                push_triangle(&g, a + j, b + j, b + j1);
-                push_triangle(&g, a + j, b + j1, a + j1);
+                test_mesh_add_triangle(&g, a + j, b + j, b + j1);
+                test_mesh_add_triangle(&g, a + j, b + j1, a + j1);
             }
         }
     }
     const uint32_t last = 1 + (uint32_t)(rings - 1) * n;
-    for (uint32_t j = 0; j < n; ++j) push_triangle(&g, last + (j + 1) % n, last + j, south);
+    for (uint32_t j = 0; j < n; ++j)
+        test_mesh_add_triangle(&g, last + (j + 1) % n, last + j, south);
     free(arc);
-    orient_outwards(&g.m);
-    return g.m;
+    orient_outwards(&g.mesh);
+    return g.mesh;
 }
 
 /* Capsule of radius 1 and total length 2 * aspect (aspect = length / diameter). */
@@ -195,10 +165,11 @@ static test_mesh subdivide(const test_mesh* m, int onto_sphere) {
     assert_non_null(keys);
     assert_non_null(values);
     for (size_t s = 0; s < slots; ++s) keys[s] = UINT64_MAX;
-    grow_mesh g;
+    test_mesh_builder g;
     memset(&g, 0, sizeof(g));
     for (size_t i = 0; i < m->vertex_count; ++i) {
-        push_vertex(&g, m->positions[3 * i], m->positions[3 * i + 1], m->positions[3 * i + 2]);
+        test_mesh_add_vertex(&g, m->positions[3 * i], m->positions[3 * i + 1],
+                             m->positions[3 * i + 2]);
     }
     for (size_t t = 0; t < m->index_count; t += 3) {
         uint32_t mid[3];
@@ -217,19 +188,19 @@ static test_mesh subdivide(const test_mesh* m, int onto_sphere) {
                     for (int q = 0; q < 3; ++q) p[q] /= n;
                 }
                 keys[s] = key;
-                values[s] = push_vertex(&g, p[0], p[1], p[2]);
+                values[s] = (uint32_t)test_mesh_add_vertex(&g, p[0], p[1], p[2]);
             }
             mid[e] = values[s];
         }
         const uint32_t* c = m->indices + t;
-        push_triangle(&g, c[0], mid[0], mid[2]);
-        push_triangle(&g, mid[0], c[1], mid[1]);
-        push_triangle(&g, mid[2], mid[1], c[2]);
-        push_triangle(&g, mid[0], mid[1], mid[2]);
+        test_mesh_add_triangle(&g, c[0], mid[0], mid[2]);
+        test_mesh_add_triangle(&g, mid[0], c[1], mid[1]);
+        test_mesh_add_triangle(&g, mid[2], mid[1], c[2]);
+        test_mesh_add_triangle(&g, mid[0], mid[1], mid[2]);
     }
     free(keys);
     free(values);
-    return g.m;
+    return g.mesh;
 }
 
 static test_mesh subdivided(test_mesh mesh, int levels, int onto_sphere) {
@@ -366,21 +337,23 @@ static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t mo
         o.check = check_sphere_map(mesh, u);
         o.area_log_mean = stats_of(result).area_log_mean;
         free(u);
-        print_message("%-26s %s: %zu triangles, OK, area |log r| %.3f, centre %.3f, "
-                      "|r-1| %.1e, area sum - 4pi %.1e\n",
-                      name, label, mesh->index_count / 3, o.area_log_mean, o.check.centre,
-                      o.check.worst_norm, o.check.area_sum - 4.0 * M_PI);
+        print_message(
+            "%-26s %s: %zu triangles, OK, area |log r| %.3f, centre %.3f, "
+            "|r-1| %.1e, area sum - 4pi %.1e\n",
+            name, label, mesh->index_count / 3, o.area_log_mean, o.check.centre, o.check.worst_norm,
+            o.check.area_sum - 4.0 * M_PI);
         if (o.check.folded != 0 || o.check.worst_norm > 1e-12 ||
             fabs(o.check.area_sum - 4.0 * M_PI) > 1e-6) {
-            fail_msg("%s: RAPS_OK with %zu folded triangles, |r - 1| up to %.2g, spherical "
-                     "areas summing to %.9f",
-                     name, o.check.folded, o.check.worst_norm, o.check.area_sum);
+            fail_msg(
+                "%s: RAPS_OK with %zu folded triangles, |r - 1| up to %.2g, spherical "
+                "areas summing to %.9f",
+                name, o.check.folded, o.check.worst_norm, o.check.area_sum);
         }
         assert_int_equal(stats_of(result).flipped_triangles, 0);
     } else {
         const char* message = raps_result_last_error(result);
-        print_message("%-26s %s: %zu triangles, refused: %s\n", name, label,
-                      mesh->index_count / 3, message);
+        print_message("%-26s %s: %zu triangles, refused: %s\n", name, label, mesh->index_count / 3,
+                      message);
         assert_status(o.status, RAPS_ERROR_SOLVER_FAILED);
         assert_non_null(strstr(message, "fold"));
         assert_int_equal(raps_result_vertex_count(result), 0);

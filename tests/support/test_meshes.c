@@ -13,13 +13,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* A growable mesh under construction. */
-typedef struct builder {
-    test_mesh mesh;
-    size_t vertex_capacity, index_capacity;
-} builder;
-
-static size_t add_vertex(builder* b, double x, double y, double z) {
+size_t test_mesh_add_vertex(test_mesh_builder* b, double x, double y, double z) {
     if (b->mesh.vertex_count == b->vertex_capacity) {
         b->vertex_capacity = b->vertex_capacity ? 2 * b->vertex_capacity : 64;
         b->mesh.positions = realloc(b->mesh.positions, 3 * b->vertex_capacity * sizeof(double));
@@ -32,7 +26,7 @@ static size_t add_vertex(builder* b, double x, double y, double z) {
     return b->mesh.vertex_count++;
 }
 
-static void add_triangle(builder* b, size_t i, size_t j, size_t k) {
+void test_mesh_add_triangle(test_mesh_builder* b, size_t i, size_t j, size_t k) {
     if (b->mesh.index_count + 3 > b->index_capacity) {
         b->index_capacity = b->index_capacity ? 2 * b->index_capacity : 192;
         b->mesh.indices = realloc(b->mesh.indices, b->index_capacity * sizeof(uint32_t));
@@ -61,7 +55,7 @@ static double jitter_value(uint32_t* state) {
  * rings are stitched by walking both in angle order. first_ring = 0 adds the centre vertex. */
 static test_mesh polar_disk(int rings, int sectors, double jitter, int first_ring,
                             double (*height)(double, double), double cone_height) {
-    builder b;
+    test_mesh_builder b;
     memset(&b, 0, sizeof(b));
     size_t* ring_start = calloc((size_t)rings + 2, sizeof(size_t));
     int* ring_size = calloc((size_t)rings + 2, sizeof(int));
@@ -81,7 +75,7 @@ static test_mesh polar_disk(int rings, int sectors, double jitter, int first_rin
             }
             double z = height ? height(x, y) : 0.0;
             if (cone_height > 0) z = cone_height * (1.0 - r);
-            add_vertex(&b, x, y, z);
+            test_mesh_add_vertex(&b, x, y, z);
         }
     }
     for (int k = first_ring; k < rings; ++k) {
@@ -89,8 +83,8 @@ static test_mesh polar_disk(int rings, int sectors, double jitter, int first_rin
         const int n_in = ring_size[k], n_out = ring_size[k + 1];
         if (k == 0) { /* the centre's fan */
             for (int o = 0; o < n_out; ++o) {
-                add_triangle(&b, 0, ring_start[1] + (size_t)o,
-                             ring_start[1] + (size_t)((o + 1) % n_out));
+                test_mesh_add_triangle(&b, 0, ring_start[1] + (size_t)o,
+                                       ring_start[1] + (size_t)((o + 1) % n_out));
             }
             continue;
         }
@@ -100,10 +94,11 @@ static test_mesh polar_disk(int rings, int sectors, double jitter, int first_rin
             const size_t in0 = ring_start[k] + (size_t)(i % n_in);
             const size_t out0 = ring_start[k + 1] + (size_t)(o % n_out);
             if (o < n_out && (i >= n_in || next_out <= next_in)) {
-                add_triangle(&b, in0, out0, ring_start[k + 1] + (size_t)((o + 1) % n_out));
+                test_mesh_add_triangle(&b, in0, out0,
+                                       ring_start[k + 1] + (size_t)((o + 1) % n_out));
                 ++o;
             } else {
-                add_triangle(&b, in0, out0, ring_start[k] + (size_t)((i + 1) % n_in));
+                test_mesh_add_triangle(&b, in0, out0, ring_start[k] + (size_t)((i + 1) % n_in));
                 ++i;
             }
         }
@@ -134,23 +129,24 @@ test_mesh make_annulus(int rings, int sectors) {
 }
 
 test_mesh make_grid(int nx, int ny, double width, double height) {
-    builder b;
+    test_mesh_builder b;
     memset(&b, 0, sizeof(b));
     for (int j = 0; j <= ny; ++j) {
-        for (int i = 0; i <= nx; ++i) add_vertex(&b, width * i / nx, height * j / ny, 0.0);
+        for (int i = 0; i <= nx; ++i)
+            test_mesh_add_vertex(&b, width * i / nx, height * j / ny, 0.0);
     }
     for (int j = 0; j < ny; ++j) {
         for (int i = 0; i < nx; ++i) {
             const size_t a = (size_t)j * (nx + 1) + i, c = a + (size_t)nx + 1;
-            add_triangle(&b, a, a + 1, c + 1);
-            add_triangle(&b, a, c + 1, c);
+            test_mesh_add_triangle(&b, a, a + 1, c + 1);
+            test_mesh_add_triangle(&b, a, c + 1, c);
         }
     }
     return b.mesh;
 }
 
 test_mesh make_icosphere(int subdivisions) {
-    builder b;
+    test_mesh_builder b;
     memset(&b, 0, sizeof(b));
     const double t = (1.0 + sqrt(5.0)) / 2.0;
     const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
@@ -162,18 +158,18 @@ test_mesh make_icosphere(int subdivisions) {
                           {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (int i = 0; i < 12; ++i) {
         const double n = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
-        add_vertex(&b, v[i][0] / n, v[i][1] / n, v[i][2] / n);
+        test_mesh_add_vertex(&b, v[i][0] / n, v[i][1] / n, v[i][2] / n);
     }
-    for (int i = 0; i < 20; ++i) add_triangle(&b, f[i][0], f[i][1], f[i][2]);
+    for (int i = 0; i < 20; ++i) test_mesh_add_triangle(&b, f[i][0], f[i][1], f[i][2]);
     for (int s = 0; s < subdivisions; ++s) {
         /* 1-to-4 split with midpoints projected to the sphere; midpoints found by a linear
          * scan of the new vertices (tiny meshes only). */
         test_mesh old = b.mesh;
-        builder next;
+        test_mesh_builder next;
         memset(&next, 0, sizeof(next));
         for (size_t i = 0; i < old.vertex_count; ++i) {
-            add_vertex(&next, old.positions[3 * i], old.positions[3 * i + 1],
-                       old.positions[3 * i + 2]);
+            test_mesh_add_vertex(&next, old.positions[3 * i], old.positions[3 * i + 1],
+                                 old.positions[3 * i + 2]);
         }
         for (size_t t3 = 0; t3 < old.index_count; t3 += 3) {
             size_t mid[3];
@@ -191,14 +187,15 @@ test_mesh make_icosphere(int subdivisions) {
                         found = q;
                     }
                 }
-                mid[e] =
-                    found != (size_t)-1 ? found : add_vertex(&next, p[0] / n, p[1] / n, p[2] / n);
+                mid[e] = found != (size_t)-1
+                             ? found
+                             : test_mesh_add_vertex(&next, p[0] / n, p[1] / n, p[2] / n);
             }
             const uint32_t* c = old.indices + t3;
-            add_triangle(&next, c[0], mid[0], mid[2]);
-            add_triangle(&next, mid[0], c[1], mid[1]);
-            add_triangle(&next, mid[2], mid[1], c[2]);
-            add_triangle(&next, mid[0], mid[1], mid[2]);
+            test_mesh_add_triangle(&next, c[0], mid[0], mid[2]);
+            test_mesh_add_triangle(&next, mid[0], c[1], mid[1]);
+            test_mesh_add_triangle(&next, mid[2], mid[1], c[2]);
+            test_mesh_add_triangle(&next, mid[0], mid[1], mid[2]);
         }
         test_mesh_free(&old);
         b = next;
@@ -207,41 +204,42 @@ test_mesh make_icosphere(int subdivisions) {
 }
 
 test_mesh make_uv_sphere(int rings, int sectors) {
-    builder b;
+    test_mesh_builder b;
     memset(&b, 0, sizeof(b));
-    add_vertex(&b, 0, 0, 1); /* north pole: vertex 0 */
+    test_mesh_add_vertex(&b, 0, 0, 1); /* north pole: vertex 0 */
     for (int i = 1; i < rings; ++i) {
         const double polar = M_PI * i / rings;
         for (int j = 0; j < sectors; ++j) {
             const double azimuth = 2.0 * M_PI * j / sectors;
-            add_vertex(&b, sin(polar) * cos(azimuth), sin(polar) * sin(azimuth), cos(polar));
+            test_mesh_add_vertex(&b, sin(polar) * cos(azimuth), sin(polar) * sin(azimuth),
+                                 cos(polar));
         }
     }
-    const size_t south = add_vertex(&b, 0, 0, -1);
+    const size_t south = test_mesh_add_vertex(&b, 0, 0, -1);
     for (int j = 0; j < sectors; ++j) { /* counter-clockwise seen from outside */
         const size_t next = (size_t)(j + 1) % (size_t)sectors;
-        add_triangle(&b, 0, 1 + (size_t)j, 1 + next);
+        test_mesh_add_triangle(&b, 0, 1 + (size_t)j, 1 + next);
         const size_t last = 1 + (size_t)(rings - 2) * (size_t)sectors;
-        add_triangle(&b, south, last + next, last + (size_t)j);
+        test_mesh_add_triangle(&b, south, last + next, last + (size_t)j);
     }
     for (int i = 1; i + 1 < rings; ++i) {
         const size_t row = 1 + (size_t)(i - 1) * (size_t)sectors, below = row + (size_t)sectors;
         for (int j = 0; j < sectors; ++j) {
             const size_t next = (size_t)(j + 1) % (size_t)sectors;
-            add_triangle(&b, row + (size_t)j, below + (size_t)j, below + next);
-            add_triangle(&b, row + (size_t)j, below + next, row + next);
+            test_mesh_add_triangle(&b, row + (size_t)j, below + (size_t)j, below + next);
+            test_mesh_add_triangle(&b, row + (size_t)j, below + next, row + next);
         }
     }
     return b.mesh;
 }
 
 static test_mesh make_torus(int nu, int nv, int punctured) {
-    builder b;
+    test_mesh_builder b;
     memset(&b, 0, sizeof(b));
     for (int i = 0; i < nu; ++i) {
         for (int j = 0; j < nv; ++j) {
             const double u = 2.0 * M_PI * i / nu, w = 2.0 * M_PI * j / nv;
-            add_vertex(&b, (2.0 + cos(w)) * cos(u), (2.0 + cos(w)) * sin(u), sin(w));
+            test_mesh_add_vertex(&b, (2.0 + cos(w)) * cos(u), (2.0 + cos(w)) * sin(u), sin(w));
         }
     }
     for (int i = 0; i < nu; ++i) {
@@ -250,8 +248,8 @@ static test_mesh make_torus(int nu, int nv, int punctured) {
             const size_t a = (size_t)i * nv + j, c = (size_t)((i + 1) % nu) * nv + j;
             const size_t a1 = (size_t)i * nv + (j + 1) % nv,
                          c1 = (size_t)((i + 1) % nu) * nv + (j + 1) % nv;
-            add_triangle(&b, a, c, c1);
-            add_triangle(&b, a, c1, a1);
+            test_mesh_add_triangle(&b, a, c, c1);
+            test_mesh_add_triangle(&b, a, c1, a1);
         }
     }
     return b.mesh;
@@ -266,22 +264,23 @@ test_mesh make_closed_torus(int nu, int nv) {
 }
 
 test_mesh join_meshes(const test_mesh* a, const test_mesh* b, double dx, double dy, double dz) {
-    builder out;
+    test_mesh_builder out;
     memset(&out, 0, sizeof(out));
     for (size_t i = 0; i < a->vertex_count; ++i) {
-        add_vertex(&out, a->positions[3 * i], a->positions[3 * i + 1], a->positions[3 * i + 2]);
+        test_mesh_add_vertex(&out, a->positions[3 * i], a->positions[3 * i + 1],
+                             a->positions[3 * i + 2]);
     }
     for (size_t i = 0; i < b->vertex_count; ++i) {
-        add_vertex(&out, b->positions[3 * i] + dx, b->positions[3 * i + 1] + dy,
-                   b->positions[3 * i + 2] + dz);
+        test_mesh_add_vertex(&out, b->positions[3 * i] + dx, b->positions[3 * i + 1] + dy,
+                             b->positions[3 * i + 2] + dz);
     }
     for (size_t t = 0; t < a->index_count; t += 3) {
-        add_triangle(&out, a->indices[t], a->indices[t + 1], a->indices[t + 2]);
+        test_mesh_add_triangle(&out, a->indices[t], a->indices[t + 1], a->indices[t + 2]);
     }
     const size_t offset = a->vertex_count;
     for (size_t t = 0; t < b->index_count; t += 3) {
-        add_triangle(&out, offset + b->indices[t], offset + b->indices[t + 1],
-                     offset + b->indices[t + 2]);
+        test_mesh_add_triangle(&out, offset + b->indices[t], offset + b->indices[t + 1],
+                               offset + b->indices[t + 2]);
     }
     return out.mesh;
 }

@@ -21,6 +21,15 @@ typedef struct test_mesh {
 
 void test_mesh_free(test_mesh* mesh);
 
+/* A mesh built vertex by vertex: start from {0}, add, then take .mesh (test_mesh_free frees it).
+ * The add functions return the new vertex's index and fail the test when memory runs out. */
+typedef struct test_mesh_builder {
+    test_mesh mesh;
+    size_t vertex_capacity, index_capacity;
+} test_mesh_builder;
+size_t test_mesh_add_vertex(test_mesh_builder* b, double x, double y, double z);
+void test_mesh_add_triangle(test_mesh_builder* b, size_t i, size_t j, size_t k);
+
 /* A flat disk in the z = 0 plane: a centre vertex, `rings` rings of `sectors * k` vertices at
  * radius k / rings (ring k, k = 1..rings), the outer ring equally spaced on the unit circle.
  * With jitter > 0 the interior vertices are moved by up to jitter * ring spacing (a fixed
