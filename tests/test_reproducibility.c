@@ -3,8 +3,8 @@
  * domains, every output compared through a 64-bit hash of its bytes (uvs, sphere points,
  * indices, remap, chart ids, statistics but threads_used). The baseline kernels run in a child
  * process (this executable again, with RAPS_KERNELS=baseline: the library reads it once per
- * process). Thread counts are checked to have really run workers: per domain, some case used
- * 2 and some 3 threads. */
+ * process). Thread counts are checked to have really run workers: per domain, some run used
+ * 2 and some 3 threads, each compared with the 1-thread bits. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -112,24 +112,46 @@ static void compute_digests(void) {
     g_computed = 1;
 }
 
+/* A worker counts in threads_used once it has computed a share, which a busy scheduler may deny
+ * it when the shared part of a run is short (the disk domain shares only its statistics: a few
+ * milliseconds on face.obj). So where no case of a domain showed t threads, the case that shared
+ * most (or, if none shared, the domain's last) runs again at t threads until one does, each run
+ * compared with the 1-thread bits too; 20 runs without a worker computing fail. */
+enum { kRetries = 20 };
+
+static void check_same_bits(int c, int32_t threads, const digest* d) {
+    for (int f = 0; f < kFields; ++f) {
+        if (d->field[f] != g_digests[c][0].field[f])
+            fail_msg("%s (domain %d): %s differ between 1 and %d threads", kCases[c].name,
+                     kCases[c].domain, kFieldNames[f], threads);
+    }
+}
+
 static void thread_counts_give_the_same_bits(void** state) {
     (void)state;
     compute_digests();
     int used[3][kMaxThreads + 1] = {{0}};
+    int retried[3] = {-1, -1, -1}; /* per domain: the case that shared most, else its last */
+    uint64_t most[3] = {0, 0, 0};
     for (int c = 0; c < kCaseCount; ++c) {
+        const int domain = kCases[c].domain;
         for (int t = 2; t <= kMaxThreads; ++t) {
-            for (int f = 0; f < kFields; ++f) {
-                if (g_digests[c][t - 1].field[f] != g_digests[c][0].field[f])
-                    fail_msg("%s (domain %d): %s differ between 1 and %d threads", kCases[c].name,
-                             kCases[c].domain, kFieldNames[f], t);
-            }
+            check_same_bits(c, t, &g_digests[c][t - 1]);
             const uint64_t u = g_digests[c][t - 1].threads_used;
-            if (u <= kMaxThreads) used[kCases[c].domain][u] = 1;
+            if (u <= kMaxThreads) used[domain][u] = 1;
+            if (u > most[domain] || (most[domain] <= 1 && u <= 1)) retried[domain] = c;
+            if (u > most[domain]) most[domain] = u;
         }
     }
     /* Workers really ran: otherwise the comparison above is of one thread with itself. */
     for (int domain = 0; domain < 3; ++domain) {
         for (int t = 2; t <= kMaxThreads; ++t) {
+            const int c = retried[domain];
+            for (int retry = 0; !used[domain][t] && c >= 0 && retry < kRetries; ++retry) {
+                const digest d = run_case(&kCases[c], t);
+                check_same_bits(c, t, &d);
+                if (d.threads_used <= kMaxThreads) used[domain][d.threads_used] = 1;
+            }
             if (!used[domain][t]) fail_msg("domain %d: no case ran on %d threads", domain, t);
         }
     }
