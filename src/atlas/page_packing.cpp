@@ -133,11 +133,22 @@ void prepare(const PackInput& input, const OrientedChart& o, double scale, const
     }
 }
 
-// The pages and where each chart went.
+// Pages still searched for room: the last few. An older page is closed (its occupancy freed),
+// which bounds the search per chart and the memory (a page of 16384 x 16384 cells holds 32 MiB)
+// however many pages an atlas takes.
+constexpr size_t kOpenPages = 8;
+
+// The pages (closed ones null) and where each chart went.
 struct Layout {
     std::vector<std::unique_ptr<SkylineStrip>> pages;
     std::vector<int32_t> page;
     std::vector<Placement> place;
+
+    size_t first_open() const { return pages.size() > kOpenPages ? pages.size() - kOpenPages : 0; }
+    void open_page(const PageGrid& grid) {
+        pages.push_back(std::make_unique<SkylineStrip>(grid.strip, false, true));
+        if (pages.size() > kOpenPages) pages[pages.size() - kOpenPages - 1].reset();
+    }
 };
 
 // Places the chart on `page` if the page has room for it below its last row.
@@ -148,21 +159,17 @@ bool place_on(SkylineStrip& page, const PreparedChart& chart, int32_t rows, Plac
     return true;
 }
 
-std::unique_ptr<SkylineStrip> empty_page(const PageGrid& grid) {
-    return std::make_unique<SkylineStrip>(grid.strip, false, true);
-}
-
 // Each chart in `order` on the first page with room for it, or a new one.
 void place_first_fit(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
                      const PageGrid& grid, Layout& layout) {
     for (size_t c : order) {
         bool placed = false;
-        for (size_t p = 0; p < layout.pages.size() && !placed; ++p) {
+        for (size_t p = layout.first_open(); p < layout.pages.size() && !placed; ++p) {
             placed = place_on(*layout.pages[p], prepared[c], grid.rows, layout.place[c]);
             if (placed) layout.page[c] = static_cast<int32_t>(p);
         }
         if (placed) continue;
-        layout.pages.push_back(empty_page(grid));
+        layout.open_page(grid);
         if (!place_on(*layout.pages.back(), prepared[c], grid.rows, layout.place[c]))
             throw Error(ErrorCode::kInternal, "a chart shrunk to fit a page does not fit one");
         layout.page[c] = static_cast<int32_t>(layout.pages.size() - 1);
@@ -230,12 +237,12 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
                 if (charts[c].part == part) members.push_back(c);
             }
             if (members.empty()) continue;
-            size_t p = 0;
+            size_t p = layout.first_open();
             while (p < layout.pages.size() &&
                    !place_all_on(layout.pages[p], prepared, members, grid, layout))
                 ++p;
             if (p == layout.pages.size()) {
-                layout.pages.push_back(empty_page(grid));
+                layout.open_page(grid);
                 for (int attempt = 0;
                      !place_all_on(layout.pages.back(), prepared, members, grid, layout);
                      ++attempt) {
