@@ -327,9 +327,9 @@ enum {
      * charts from sharing a texel). Default 0. */
     RAPS_PARAM_ATLAS_TEXELS_PER_UNIT = 38,
     /* int, 16..16384. With a density: the largest page width and height in texels. Every page
-     * of an atlas has one size, what its fullest page needs, up to these. A run whose pages
-     * leave no more than the padding inside the margin is refused (INVALID_ARGUMENT).
-     * Default 4096. */
+     * of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+     * margin), up to these. A run whose pages leave no more than the padding inside the margin
+     * is refused (INVALID_ARGUMENT). Default 4096. */
     RAPS_PARAM_ATLAS_MAX_WIDTH = 39,
     RAPS_PARAM_ATLAS_MAX_HEIGHT = 40,
     /* int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY. */
@@ -674,7 +674,8 @@ typedef struct raps_stats {
 RAPS_API raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats);
 
 /* One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
- * struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended. */
+ * struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+ * like the map, the records are the same bits for every RAPS_PARAM_THREADS value. */
 typedef struct raps_chart {
     uint32_t struct_size;
     uint32_t mesh;  /* the input mesh it belongs to (0 for raps_parameterize) */

@@ -174,7 +174,8 @@ namespace Raps
 
     /// <summary>
     /// One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
-    /// struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended.
+    /// struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+    /// like the map, the records are the same bits for every RAPS_PARAM_THREADS value.
     /// </summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct Chart
@@ -487,9 +488,9 @@ namespace Raps
         public const int RAPS_PARAM_ATLAS_TEXELS_PER_UNIT = 38;
         /// <summary>
         /// int, 16..16384. With a density: the largest page width and height in texels. Every page
-        /// of an atlas has one size, what its fullest page needs, up to these. A run whose pages
-        /// leave no more than the padding inside the margin is refused (INVALID_ARGUMENT).
-        /// Default 4096.
+        /// of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+        /// margin), up to these. A run whose pages leave no more than the padding inside the margin
+        /// is refused (INVALID_ARGUMENT). Default 4096.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_MAX_WIDTH = 39;
         public const int RAPS_PARAM_ATLAS_MAX_HEIGHT = 40;

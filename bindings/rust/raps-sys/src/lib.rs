@@ -151,9 +151,9 @@ pub const RAPS_PARAM_ATLAS_MAX_LINF_STRETCH: i32 = 37;
 /// charts from sharing a texel). Default 0.
 pub const RAPS_PARAM_ATLAS_TEXELS_PER_UNIT: i32 = 38;
 /// int, 16..16384. With a density: the largest page width and height in texels. Every page
-/// of an atlas has one size, what its fullest page needs, up to these. A run whose pages
-/// leave no more than the padding inside the margin is refused (INVALID_ARGUMENT).
-/// Default 4096.
+/// of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+/// margin), up to these. A run whose pages leave no more than the padding inside the margin
+/// is refused (INVALID_ARGUMENT). Default 4096.
 pub const RAPS_PARAM_ATLAS_MAX_WIDTH: i32 = 39;
 pub const RAPS_PARAM_ATLAS_MAX_HEIGHT: i32 = 40;
 /// int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY.
@@ -375,7 +375,8 @@ pub struct raps_stats {
 }
 
 /// One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
-/// struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended.
+/// struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+/// like the map, the records are the same bits for every RAPS_PARAM_THREADS value.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct raps_chart {
