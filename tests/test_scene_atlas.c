@@ -194,7 +194,8 @@ static void mark_triangle(const scene_atlas* a, size_t t, int32_t* owner, int re
                     const int32_t other = owner[(size_t)cy * cw + cx];
                     if (other >= 0 && (uint32_t)other != chart)
                         fail_msg(
-                            "charts %u and %d have fewer than %d texel(s) between them at "
+                            "charts %u and %d have fewer than %d free cell(s) between them at "
+                            "texel "
                             "(%d, %d)",
                             chart, other, reach, col, row);
                 }
