@@ -184,6 +184,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_MARGIN, "atlas_margin", false, 0, 1024, 0},
     {RAPS_PARAM_ATLAS_BLOCK_ALIGN, "atlas_block_align", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -263,6 +264,8 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.atlas_block_align ? 1 : 0;
         case RAPS_PARAM_ATLAS_MESH_PER_PAGE:
             return s.atlas_mesh_per_page ? 1 : 0;
+        case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
+            return s.atlas_whole_texels ? 1 : 0;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -332,6 +335,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
             break;
         case RAPS_PARAM_ATLAS_MESH_PER_PAGE:
             s.atlas_mesh_per_page = v != 0;
+            break;
+        case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
+            s.atlas_whole_texels = v != 0;
             break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");

@@ -76,6 +76,7 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_PARAM_ATLAS_MARGIN, 42);
     assert_int_equal(RAPS_PARAM_ATLAS_BLOCK_ALIGN, 43);
     assert_int_equal(RAPS_PARAM_ATLAS_MESH_PER_PAGE, 44);
+    assert_int_equal(RAPS_PARAM_ATLAS_WHOLE_TEXELS, 45);
     assert_int_equal(RAPS_ROTATION_ANY, 0);
     assert_int_equal(RAPS_ROTATION_QUARTER, 1);
     assert_int_equal(RAPS_ROTATION_NONE, 2);
@@ -214,7 +215,7 @@ static void every_parameter_round_trips(void** state) {
                           RAPS_ERROR_INVALID_ARGUMENT);
         }
     }
-    assert_int_equal(known, 29);
+    assert_int_equal(known, 30);
     raps_settings_destroy(s);
 }
 

@@ -605,6 +605,38 @@ static void blocks_and_margins(void** state) {
     test_mesh_free(&cone);
 }
 
+/* Whole texels at a resolution: one page within the resolution at the largest density that
+ * fits, the padding exact at its texels, copies moved by whole texels. */
+static void whole_texels_at_a_resolution_fill_one_page(void** state) {
+    (void)state;
+    three_meshes t;
+    make_three_meshes(&t);
+    t.sc.meshes[2] = &t.cone; /* a second cone, moved: the copies check below */
+    set_scale_move(t.sc.transforms[2], 1.0, 4.0, 0.0, 0.0);
+    t.sc.meshes[1] = &t.cone;
+    set_identity(t.sc.transforms[1]);
+    raps_settings* s = atlas_settings(0, 2);
+    assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_RESOLUTION, 256), RAPS_OK);
+    assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), RAPS_OK);
+    assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_ROTATION, RAPS_ROTATION_NONE),
+                     RAPS_OK);
+    scene_atlas a = run_scene(&t.sc, s);
+    print_message("%llu charts on %llux%llu at %.2f texels per unit, utilization %.3f\n",
+                  (unsigned long long)a.stats.chart_count, (unsigned long long)a.stats.atlas_width,
+                  (unsigned long long)a.stats.atlas_height, a.stats.texels_per_unit,
+                  a.stats.utilization);
+    assert_int_equal(a.stats.page_count, 1);
+    assert_int_equal(a.stats.scaled_down_charts, 0);
+    check_pages(&a, a.stats.texels_per_unit, 256, 256);
+    check_gaps(&a, 2, 1);
+    check_whole_texel_copies(&a, 1, RAPS_ROTATION_NONE);
+    /* The largest density that fits, give or take the search's 1%: the page is mostly used. */
+    assert_true(a.stats.utilization > 0.4);
+    scene_atlas_free(&a);
+    raps_settings_destroy(s);
+    free_three_meshes(&t);
+}
+
 /* Runs a scene of `count` handles and checks the status and that the message names `what`. */
 static void expect_refused(const raps_mesh* const* meshes, size_t count,
                            const raps_settings* settings, raps_status status, const char* what) {
@@ -691,6 +723,11 @@ static void bad_scenes_are_refused_with_their_status(void** state) {
     pair[1] = good;
     expect_refused(pair, 2, cramped, RAPS_ERROR_INVALID_ARGUMENT, "inside its margin");
     raps_settings_destroy(cramped);
+    cramped = atlas_settings(1, 20);
+    assert_int_equal(raps_settings_set_int(cramped, RAPS_PARAM_ATLAS_RESOLUTION, 16), RAPS_OK);
+    assert_int_equal(raps_settings_set_int(cramped, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), RAPS_OK);
+    expect_refused(pair, 2, cramped, RAPS_ERROR_INVALID_ARGUMENT, "inside its margin");
+    raps_settings_destroy(cramped);
 
     /* Reading: a mesh range or chart beyond the result's, a chart of a disk map. */
     raps_result* r = NULL;
@@ -731,6 +768,7 @@ int main(void) {
         cmocka_unit_test(one_meshs_charts_share_a_page_when_asked),
         cmocka_unit_test(charts_sit_on_whole_texels_under_each_rotation_policy),
         cmocka_unit_test(blocks_and_margins),
+        cmocka_unit_test(whole_texels_at_a_resolution_fill_one_page),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -499,14 +499,14 @@ namespace Raps
         /// </summary>
         public const int RAPS_PARAM_ATLAS_ROTATION = 41;
         /// <summary>
-        /// int, 0..1024. With a density: texels kept free between the charts and each page's
-        /// border (rounded up to whole blocks with block alignment). Default 0.
+        /// int, 0..1024. With a density (or whole texels): texels kept free between the charts and
+        /// each page's border (rounded up to whole blocks with block alignment). Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_MARGIN = 42;
         /// <summary>
-        /// int, 0 or 1. With a density: 1 places charts on whole 4x4 blocks of texels, no block
-        /// shared by two charts (block compression then never mixes them), padding rounded up to
-        /// whole blocks. Default 0.
+        /// int, 0 or 1. With a density (or whole texels): 1 places charts on whole 4x4 blocks of
+        /// texels, no block shared by two charts (block compression then never mixes them), padding
+        /// rounded up to whole blocks. Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_BLOCK_ALIGN = 43;
         /// <summary>
@@ -515,6 +515,16 @@ namespace Raps
         /// Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_MESH_PER_PAGE = 44;
+        /// <summary>
+        /// int, 0 or 1. Without a density (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT 0): 1 places the charts
+        /// as a density does (whole texels, the padding exact at the final texels, margin, block
+        /// alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
+        /// RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
+        /// chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
+        /// size. The atlas may then be smaller than the resolution on both sides. Refused
+        /// (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45;
 
         // RAPS_PARAM_ATLAS_ROTATION values
         /// <summary>

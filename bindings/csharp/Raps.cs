@@ -75,7 +75,8 @@ namespace Raps
         AtlasRotation = Native.RAPS_PARAM_ATLAS_ROTATION,
         AtlasMargin = Native.RAPS_PARAM_ATLAS_MARGIN,
         AtlasBlockAlign = Native.RAPS_PARAM_ATLAS_BLOCK_ALIGN,
-        AtlasMeshPerPage = Native.RAPS_PARAM_ATLAS_MESH_PER_PAGE
+        AtlasMeshPerPage = Native.RAPS_PARAM_ATLAS_MESH_PER_PAGE,
+        AtlasWholeTexels = Native.RAPS_PARAM_ATLAS_WHOLE_TEXELS
     }
 
     /// <summary>Which turns the atlas's packing may give a chart (Param.AtlasRotation).</summary>

@@ -82,11 +82,16 @@ atlas options:
   --max-size N               with a density: pages of at most N x N texels, 16..16384
                              (default 4096); a chart larger than a page is shrunk to fit
   --rotate any|quarter|none  turns the packing may give a chart (default any)
-  --margin N                 with a density: texels free at each page's border (default 0)
-  --block-align              with a density: charts on whole 4x4 blocks, none shared
+  --margin N                 with a density or whole texels: texels free at each page's
+                             border (default 0)
+  --block-align              with a density or whole texels: charts on whole 4x4 blocks
   --mesh-per-page            with a density: each input's charts on one page
+  --whole-texels             without a density: charts on whole texels (as with a density,
+                             --margin and --block-align too) on one page of --resolution, at
+                             the largest density that fits
   --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
-                             --mesh-per-page (later flags override); needs --texels-per-unit
+                             --mesh-per-page --whole-texels (--padding and --rotate given
+                             override theirs)
 sphere options:
   --sphere-method literal|robust
                              literal: the paper's algorithm 7.1 as written (Gauss map,
@@ -213,8 +218,9 @@ void set_number(raps_settings* settings, const char* flag, raps_param param,
 }
 
 // --lightmap: a lightmap's settings (Unity asks for at least 2 texels of padding; a mesh's
-// charts on one page; quarter turns only, so texel rows stay texel rows). Set before the other
-// flags are read, so that any of them given too overrides its part.
+// charts on one page; quarter turns only, so texel rows stay texel rows; charts on whole texels,
+// which a density gives, and which at a resolution whole texels ask for). Set before the other
+// flags are read, so that --padding and --rotate given too override these.
 void apply_lightmap_preset(raps_settings* settings) {
     check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
           [&] { return raps_settings_last_error(settings); });
@@ -223,6 +229,7 @@ void apply_lightmap_preset(raps_settings* settings) {
     check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_ROTATION, RAPS_ROTATION_QUARTER),
           [&] { return raps_settings_last_error(settings); });
     set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
+    set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
 }
 
 // Reads the command line into the settings; returns the files. Exits early (returning false)
@@ -261,6 +268,8 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
             set_switch(settings, RAPS_PARAM_ATLAS_BLOCK_ALIGN);
         } else if (arg == "--mesh-per-page") {
             set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
+        } else if (arg == "--whole-texels") {
+            set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
         } else if (const raps_samples::ParameterFlag* flag =
                        raps_samples::find_parameter_flag(arg)) {
             const std::string error =
@@ -275,17 +284,10 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
     if (options.inputs.empty()) throw UsageError("no input file");
     if (options.output.empty()) throw UsageError("no output file (-o OUT.obj)");
     int64_t domain = 0;
-    double texels_per_unit = 0;
     raps_settings_get_int(settings, RAPS_PARAM_DOMAIN, &domain);
-    raps_settings_get_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, &texels_per_unit);
     if (options.inputs.size() > 1 && domain != RAPS_DOMAIN_ATLAS) {
         throw UsageError("more than one input file (" + options.inputs[0] + ", " +
                          options.inputs[1] + "): only --atlas packs several into one atlas");
-    }
-    if (lightmap && texels_per_unit <= 0) {
-        throw UsageError(
-            "--lightmap needs --texels-per-unit T: a lightmap's charts are placed "
-            "on whole texels at a density");
     }
     return true;
 }

@@ -258,20 +258,27 @@ void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
     }
 }
 
-// At a density, onto pages; otherwise into one atlas of the resolution.
+// The page settings at a density, or, for whole texels at a resolution, of the one page.
+PageSettings page_settings(const Settings& settings) {
+    PageSettings pages;
+    pages.texels_per_unit = settings.atlas_texels_per_unit;
+    const bool at_density = settings.atlas_texels_per_unit > 0;
+    pages.max_width = at_density ? settings.atlas_max_width : settings.atlas_resolution;
+    pages.max_height = at_density ? settings.atlas_max_height : settings.atlas_resolution;
+    pages.padding = settings.atlas_padding;
+    pages.margin = settings.atlas_margin;
+    pages.block_align = settings.atlas_block_align;
+    pages.rotation = settings.atlas_rotation;
+    pages.part_per_page = settings.atlas_mesh_per_page;
+    return pages;
+}
+
+// At a density, onto pages; on whole texels at a resolution, onto one page at the largest
+// density that fits; otherwise into one atlas filling the resolution.
 PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, ThreadPool& pool) {
-    if (settings.atlas_texels_per_unit > 0) {
-        PageSettings pages;
-        pages.texels_per_unit = settings.atlas_texels_per_unit;
-        pages.max_width = settings.atlas_max_width;
-        pages.max_height = settings.atlas_max_height;
-        pages.padding = settings.atlas_padding;
-        pages.margin = settings.atlas_margin;
-        pages.block_align = settings.atlas_block_align;
-        pages.rotation = settings.atlas_rotation;
-        pages.part_per_page = settings.atlas_mesh_per_page;
-        return pack_pages(inputs, pages, pool);
-    }
+    if (settings.atlas_texels_per_unit > 0)
+        return pack_pages(inputs, page_settings(settings), pool);
+    if (settings.atlas_whole_texels) return pack_one_page(inputs, page_settings(settings), pool);
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
     pack_settings.padding = settings.atlas_padding;
@@ -281,18 +288,18 @@ PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, 
 
 // A page must keep room for a chart inside its margin: refused before any work is done.
 void check_page_settings(const Settings& settings) {
-    if (settings.atlas_texels_per_unit <= 0) return;
-    const int32_t block = settings.atlas_block_align ? 4 : 1;
-    const int32_t margin = (settings.atlas_margin + block - 1) / block * block;
-    const int32_t inner =
-        std::min(settings.atlas_max_width, settings.atlas_max_height) - 2 * margin;
-    if (inner < block || inner <= settings.atlas_padding) {
+    if (settings.atlas_texels_per_unit <= 0 && !settings.atlas_whole_texels) return;
+    const PageSettings pages = page_settings(settings);
+    const int32_t block = pages.block_align ? 4 : 1;
+    const int32_t margin = (pages.margin + block - 1) / block * block;
+    const int32_t inner = std::min(pages.max_width, pages.max_height) - 2 * margin;
+    if (inner < block || inner <= pages.padding) {
         throw Error(ErrorCode::kInvalidArgument,
-                    "a page of at most " + std::to_string(settings.atlas_max_width) + " x " +
-                        std::to_string(settings.atlas_max_height) + " texels leaves " +
+                    "a page of at most " + std::to_string(pages.max_width) + " x " +
+                        std::to_string(pages.max_height) + " texels leaves " +
                         std::to_string(std::max(inner, 0)) + " texels inside its margin of " +
                         std::to_string(margin) + ", no more than the padding of " +
-                        std::to_string(settings.atlas_padding) + ": no chart fits");
+                        std::to_string(pages.padding) + ": no chart fits");
     }
 }
 

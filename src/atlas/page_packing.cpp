@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <string>
 
 #include "atlas/chart_raster.h"
 #include "atlas/skyline_packing.h"
@@ -159,9 +160,10 @@ bool place_on(SkylineStrip& page, const PreparedChart& chart, int32_t rows, Plac
     return true;
 }
 
-// Each chart in `order` on the first page with room for it, or a new one.
-void place_first_fit(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                     const PageGrid& grid, Layout& layout) {
+// Each chart in `order` on the first page with room for it, or a new one. With one_page, a
+// chart that does not fit the first page fails the layout (returns false).
+bool place_first_fit(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                     const PageGrid& grid, bool one_page, Layout& layout) {
     for (size_t c : order) {
         bool placed = false;
         for (size_t p = layout.first_open(); p < layout.pages.size() && !placed; ++p) {
@@ -169,11 +171,13 @@ void place_first_fit(const std::vector<PreparedChart>& prepared, const std::vect
             if (placed) layout.page[c] = static_cast<int32_t>(p);
         }
         if (placed) continue;
+        if (one_page && !layout.pages.empty()) return false;
         layout.open_page(grid);
         if (!place_on(*layout.pages.back(), prepared[c], grid.rows, layout.place[c]))
             throw Error(ErrorCode::kInternal, "a chart shrunk to fit a page does not fit one");
         layout.page[c] = static_cast<int32_t>(layout.pages.size() - 1);
     }
+    return true;
 }
 
 // All of `charts` on `page`, or none (the page is then unchanged).
@@ -189,10 +193,76 @@ bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<Prepare
     return true;
 }
 
-}  // namespace
+// The charts turned, at their densities (the atlas's, or less for one larger than a page),
+// rasterised, and the order they are placed in.
+struct PreparedCharts {
+    std::vector<OrientedChart> oriented;
+    std::vector<double> scale;
+    std::vector<PreparedChart> prepared;
+    std::vector<size_t> order;  // largest first, by the longer side of the box (ties by index)
+};
 
-PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
-                      ThreadPool& pool) {
+PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSettings& settings,
+                              const PageGrid& grid, ThreadPool& pool) {
+    const size_t count = charts.size();
+    PreparedCharts set;
+    set.oriented.resize(count);
+    set.scale.resize(count);
+    for (size_t c = 0; c < count; ++c) {
+        set.oriented[c] = orient(charts[c], settings.rotation);
+        set.scale[c] = fitting_scale(set.oriented[c], settings.texels_per_unit, grid);
+    }
+    set.prepared.resize(count);
+    parallel_for_each(pool, count, [&](size_t c) {
+        prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
+    });
+    set.order.resize(count);
+    std::iota(set.order.begin(), set.order.end(), 0);
+    auto longer = [&](size_t c) { return set.oriented[c].extent.maxCoeff() * set.scale[c]; };
+    std::stable_sort(set.order.begin(), set.order.end(),
+                     [&](size_t a, size_t b) { return longer(a) > longer(b); });
+    return set;
+}
+
+// One mesh's charts together: on the first page with room for all of them, or a new page;
+// shrunk together while even an empty page has too little room.
+void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& grid,
+                          ThreadPool& pool, PreparedCharts& set, Layout& layout) {
+    int32_t parts = 0;
+    for (const PackInput& chart : charts) parts = std::max(parts, chart.part + 1);
+    for (int32_t part = 0; part < parts; ++part) {
+        std::vector<size_t> members;
+        for (size_t c : set.order) {
+            if (charts[c].part == part) members.push_back(c);
+        }
+        if (members.empty()) continue;
+        size_t p = layout.first_open();
+        while (p < layout.pages.size() &&
+               !place_all_on(layout.pages[p], set.prepared, members, grid, layout))
+            ++p;
+        if (p == layout.pages.size()) {
+            layout.open_page(grid);
+            for (int attempt = 0;
+                 !place_all_on(layout.pages.back(), set.prepared, members, grid, layout);
+                 ++attempt) {
+                if (attempt == 100)
+                    throw Error(ErrorCode::kInternal, "a mesh's charts fit no page");
+                for (size_t c : members) set.scale[c] *= 0.9;
+                parallel_for_each(pool, members.size(), [&](size_t k) {
+                    const size_t c = members[k];
+                    prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
+                });
+            }
+        }
+        for (size_t c : members) layout.page[c] = static_cast<int32_t>(p);
+    }
+}
+
+// The uvs of the laid-out charts: texel positions (the profile's place, less its padding,
+// inside the margin: whole cells), every page as large as any page's charts reach with the
+// margin, then normalised to it.
+PackResult layout_uvs(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      const PageGrid& grid, const PreparedCharts& set, const Layout& layout) {
     const size_t count = charts.size();
     PackResult result;
     result.uv.resize(count);
@@ -200,73 +270,14 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
     result.scaled_down.assign(count, 0);
     result.rotation_deg.assign(count, 0);
     result.texels_per_unit = settings.texels_per_unit;
-    const PageGrid grid = page_grid(settings);
-    if (grid.strip <= 2 * grid.pad_cells || grid.rows <= 2 * grid.pad_cells)
-        throw Error(ErrorCode::kInternal, "the page has no room inside its margin");
-
-    std::vector<OrientedChart> oriented(count);
-    std::vector<double> scale(count);
-    for (size_t c = 0; c < count; ++c) {
-        oriented[c] = orient(charts[c], settings.rotation);
-        scale[c] = fitting_scale(oriented[c], settings.texels_per_unit, grid);
-    }
-    std::vector<PreparedChart> prepared(count);
-    parallel_for_each(pool, count, [&](size_t c) {
-        prepare(charts[c], oriented[c], scale[c], grid, prepared[c]);
-    });
-    // Largest first, by the longer side of the box (ties by index).
-    std::vector<size_t> order(count);
-    std::iota(order.begin(), order.end(), 0);
-    auto longer = [&](size_t c) { return oriented[c].extent.maxCoeff() * scale[c]; };
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return longer(a) > longer(b); });
-
-    Layout layout;
-    layout.page.assign(count, 0);
-    layout.place.resize(count);
-    if (!settings.part_per_page) {
-        place_first_fit(prepared, order, grid, layout);
-    } else {
-        // One mesh's charts together: on the first page with room for all of them, or a new
-        // page; shrunk together while even an empty page has too little room.
-        int32_t parts = 0;
-        for (const PackInput& chart : charts) parts = std::max(parts, chart.part + 1);
-        for (int32_t part = 0; part < parts; ++part) {
-            std::vector<size_t> members;
-            for (size_t c : order) {
-                if (charts[c].part == part) members.push_back(c);
-            }
-            if (members.empty()) continue;
-            size_t p = layout.first_open();
-            while (p < layout.pages.size() &&
-                   !place_all_on(layout.pages[p], prepared, members, grid, layout))
-                ++p;
-            if (p == layout.pages.size()) {
-                layout.open_page(grid);
-                for (int attempt = 0;
-                     !place_all_on(layout.pages.back(), prepared, members, grid, layout);
-                     ++attempt) {
-                    if (attempt == 100)
-                        throw Error(ErrorCode::kInternal, "a mesh's charts fit no page");
-                    for (size_t c : members) scale[c] *= 0.9;
-                    parallel_for_each(pool, members.size(), [&](size_t k) {
-                        const size_t c = members[k];
-                        prepare(charts[c], oriented[c], scale[c], grid, prepared[c]);
-                    });
-                }
-            }
-            for (size_t c : members) layout.page[c] = static_cast<int32_t>(p);
-        }
-    }
-
-    // Texel positions: the profile's place, less its padding, inside the margin; whole cells.
     Eigen::Vector2d high(0, 0);
     for (size_t c = 0; c < count; ++c) {
         const Placement& place = layout.place[c];
-        const Profile& unturned = prepared[c].profiles[0];
+        const Profile& unturned = set.prepared[c].profiles[0];
         result.uv[c].resize(charts[c].uv->size());
         for (size_t v = 0; v < result.uv[c].size(); ++v) {
-            Eigen::Vector2d at = raster_point(oriented[c], scale[c], grid, (*charts[c].uv)[v]);
+            Eigen::Vector2d at =
+                raster_point(set.oriented[c], set.scale[c], grid, (*charts[c].uv)[v]);
             int32_t height = unturned.height * grid.cell;
             for (int k = 0; k < place.quarter; ++k) {  // (x, y) -> (h - y, x), as the raster
                 at = Eigen::Vector2d(height - at.y(), at.x());
@@ -278,10 +289,9 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
             high = high.cwiseMax(at);
         }
         result.page[c] = layout.page[c];
-        result.scaled_down[c] = scale[c] < settings.texels_per_unit;
-        result.rotation_deg[c] = turn_degrees(oriented[c].rotation, place.quarter);
+        result.scaled_down[c] = set.scale[c] < settings.texels_per_unit;
+        result.rotation_deg[c] = turn_degrees(set.oriented[c].rotation, place.quarter);
     }
-    // Every page as large as the largest page's charts need, the margin kept on the far sides.
     auto page_side = [&](double extent, int32_t most) {
         const int32_t side = static_cast<int32_t>(std::ceil(extent - 1e-9)) + grid.margin;
         return std::clamp((side + grid.cell - 1) / grid.cell * grid.cell, 1, most);
@@ -296,6 +306,94 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
         }
     }
     return result;
+}
+
+PageGrid checked_grid(const PageSettings& settings) {
+    const PageGrid grid = page_grid(settings);
+    if (grid.strip <= 2 * grid.pad_cells || grid.rows <= 2 * grid.pad_cells)
+        throw Error(ErrorCode::kInternal, "the page has no room inside its margin");
+    return grid;
+}
+
+// The layout of every chart on one page at `settings.texels_per_unit`, unshrunk, if there is
+// one.
+bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      const PageGrid& grid, ThreadPool& pool, PackResult& result) {
+    const PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+    for (double scale : set.scale) {
+        if (scale < settings.texels_per_unit) return false;
+    }
+    Layout layout;
+    layout.page.assign(charts.size(), 0);
+    layout.place.resize(charts.size());
+    if (!place_first_fit(set.prepared, set.order, grid, true, layout)) return false;
+    result = layout_uvs(charts, settings, grid, set, layout);
+    return true;
+}
+
+}  // namespace
+
+PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      ThreadPool& pool) {
+    const PageGrid grid = checked_grid(settings);
+    PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+    Layout layout;
+    layout.page.assign(charts.size(), 0);
+    layout.place.resize(charts.size());
+    if (settings.part_per_page) {
+        place_parts_per_page(charts, grid, pool, set, layout);
+    } else {
+        place_first_fit(set.prepared, set.order, grid, false, layout);
+    }
+    return layout_uvs(charts, settings, grid, set, layout);
+}
+
+PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
+                         ThreadPool& pool) {
+    const PageGrid grid = checked_grid(settings);
+    // Above this density the charts' area alone overflows the page, or the longest chart its
+    // longer side.
+    double area = 0, longest = 0;
+    for (const PackInput& chart : charts) {
+        const OrientedChart o = orient(chart, settings.rotation);
+        longest = std::max(longest, o.extent.maxCoeff());
+        for (const Triangle& t : *chart.triangles) {
+            const Eigen::Vector2d a = (*chart.uv)[t[1]] - (*chart.uv)[t[0]];
+            const Eigen::Vector2d b = (*chart.uv)[t[2]] - (*chart.uv)[t[0]];
+            area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+        }
+    }
+    const double side = std::max(settings.max_width, settings.max_height);
+    double high = longest > 0 ? side / longest : 1.0;
+    if (area > 0) high = std::min(high, std::sqrt(settings.max_width * settings.max_height / area));
+    // Down by a fifth until the charts fit, then halve the gap to the last density that did
+    // not until it is within 1%.
+    PackResult best;
+    double low = high;
+    for (int attempt = 0;; ++attempt) {
+        low *= 0.8;
+        settings.texels_per_unit = low;
+        if (pack_on_one_page(charts, settings, grid, pool, best)) break;
+        high = low;
+        if (attempt == 60) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        "the " + std::to_string(charts.size()) +
+                            " charts do not fit one page of the resolution at any density with "
+                            "their padding: raise RAPS_PARAM_ATLAS_RESOLUTION or lower the "
+                            "padding");
+        }
+    }
+    while (high > 1.01 * low) {
+        settings.texels_per_unit = std::sqrt(low * high);
+        PackResult tried;
+        if (pack_on_one_page(charts, settings, grid, pool, tried)) {
+            low = settings.texels_per_unit;
+            best = std::move(tried);
+        } else {
+            high = settings.texels_per_unit;
+        }
+    }
+    return best;
 }
 
 }  // namespace raps

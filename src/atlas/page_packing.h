@@ -30,9 +30,17 @@ struct PageSettings {
     bool part_per_page = false;
 };
 
-// Every page is as large as the largest page's charts need (with the margin), uvs normalised
-// to it per axis. Charts are rasterised on `pool`; the result does not depend on its size.
+// Every page is as large as the charts of any page reach (with the margin), uvs normalised to
+// it per axis. Charts are rasterised on `pool`; the result does not depend on its size.
 PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
                       ThreadPool& pool);
+
+// The same placement on one page of at most max_width x max_height at the largest density
+// (within 1%, settings.texels_per_unit ignored) at which every chart fits it unshrunk: a
+// search from the density at which the charts' area would fill the page, down by a fifth
+// until they fit, then by halving the gap. part_per_page is moot on one page. Throws
+// kInvalidArgument when no density fits them (too many charts for the page with their padding).
+PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
+                         ThreadPool& pool);
 
 }  // namespace raps

@@ -51,6 +51,7 @@ struct Settings {
     int32_t atlas_margin = 0;          // texels at the page border, with a density
     bool atlas_block_align = false;    // charts on whole 4x4 blocks, with a density
     bool atlas_mesh_per_page = false;  // a scene's mesh on one page, with a density
+    bool atlas_whole_texels = false;   // without a density: whole texels on one page
 };
 
 }  // namespace raps

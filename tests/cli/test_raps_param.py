@@ -238,7 +238,7 @@ class RapsParamTest(unittest.TestCase):
                      '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
                      '--tolerance', '--max-sweeps', '--alpha-steps', '--texels-per-unit',
                      '--max-size', '--rotate', '--margin', '--block-align', '--mesh-per-page',
-                     '--lightmap'):
+                     '--whole-texels', '--lightmap'):
             self.assertIn(flag, out)
 
     def test_sphere_writes_the_points_on_the_unit_sphere(self):
@@ -396,6 +396,22 @@ class RapsParamTest(unittest.TestCase):
         for page in d['pages']:
             self.assertTrue(0 < page['utilization'] <= 1)
 
+    def test_lightmap_at_a_resolution_packs_whole_texels_on_one_page(self):
+        rc, out, err = run('--atlas', self.mesh('teapot.obj'), self.mesh('spot.obj'), '-o', self.out,
+                           '--lightmap', '--resolution', '256')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        s, st = d['settings'], d['stats']
+        self.assertEqual((s['whole_texels'], s['texels_per_unit'], s['rotate'], s['padding']),
+                         (True, 0, 'quarter', 2))
+        self.assertEqual((st['pages'], st['scaled_down_charts']), (1, 0))
+        self.assertLessEqual(max(st['atlas_width'], st['atlas_height']), 256)
+        self.assertGreater(st['texels_per_unit'], 0)
+        for chart in d['charts']:
+            self.assertEqual(chart['rotation_deg'] % 90, 0)
+            self.assertAlmostEqual(chart['area_texels'] / chart['area_3d'], st['texels_per_unit'] ** 2,
+                                   delta=0.02 * st['texels_per_unit'] ** 2)
+
     def test_block_alignment_margin_and_no_rotation_are_echoed_and_kept(self):
         rc, out, err = run('--atlas', self.mesh('spot.obj'), '-o', self.out, '--texels-per-unit', '200',
                            '--max-size', '512', '--block-align', '--margin', '3', '--rotate', 'none')
@@ -412,7 +428,6 @@ class RapsParamTest(unittest.TestCase):
     def test_scene_usage_errors_exit_2(self):
         spot, teapot = self.mesh('spot.obj'), self.mesh('teapot.obj')
         for args in ([spot, teapot, '-o', self.out],  # several inputs need --atlas
-                     ['--atlas', spot, '-o', self.out, '--lightmap'],  # without a density
                      ['--atlas', spot, '-o', self.out, '--rotate', 'sideways'],
                      ['--atlas', spot, '-o', self.out, '--max-size', '8'],
                      ['--atlas', spot, '-o', self.out, '--texels-per-unit', '-2']):

@@ -158,17 +158,25 @@ pub const RAPS_PARAM_ATLAS_MAX_WIDTH: i32 = 39;
 pub const RAPS_PARAM_ATLAS_MAX_HEIGHT: i32 = 40;
 /// int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY.
 pub const RAPS_PARAM_ATLAS_ROTATION: i32 = 41;
-/// int, 0..1024. With a density: texels kept free between the charts and each page's
-/// border (rounded up to whole blocks with block alignment). Default 0.
+/// int, 0..1024. With a density (or whole texels): texels kept free between the charts and
+/// each page's border (rounded up to whole blocks with block alignment). Default 0.
 pub const RAPS_PARAM_ATLAS_MARGIN: i32 = 42;
-/// int, 0 or 1. With a density: 1 places charts on whole 4x4 blocks of texels, no block
-/// shared by two charts (block compression then never mixes them), padding rounded up to
-/// whole blocks. Default 0.
+/// int, 0 or 1. With a density (or whole texels): 1 places charts on whole 4x4 blocks of
+/// texels, no block shared by two charts (block compression then never mixes them), padding
+/// rounded up to whole blocks. Default 0.
 pub const RAPS_PARAM_ATLAS_BLOCK_ALIGN: i32 = 43;
 /// int, 0 or 1. With a density: 1 puts all charts of one mesh of a scene on one page (as a
 /// lightmap needs), shrinking a mesh's charts together when they do not fit one page.
 /// Default 0.
 pub const RAPS_PARAM_ATLAS_MESH_PER_PAGE: i32 = 44;
+/// int, 0 or 1. Without a density (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT 0): 1 places the charts
+/// as a density does (whole texels, the padding exact at the final texels, margin, block
+/// alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
+/// RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
+/// chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
+/// size. The atlas may then be smaller than the resolution on both sides. Refused
+/// (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
+pub const RAPS_PARAM_ATLAS_WHOLE_TEXELS: i32 = 45;
 
 // RAPS_PARAM_ATLAS_ROTATION values
 /// Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
