@@ -1,8 +1,9 @@
 // raps-bench-scene: the ten shared meshes of issue 23 as one scene (raps_parameterize_scene):
 // time, charts, atlas size, pages, utilization and how uniform the texel density is across the
-// charts. Two rows: resolution-driven (the atlas fills --resolution, as xatlas is asked to in the
-// issue), and at a density (--texels-per-unit, by default the density the first row found, on
-// pages of at most --max-size). Times are medians of --runs runs. No other tool runs here.
+// charts. Three rows: resolution-driven (the atlas fills --resolution, as xatlas is asked to in
+// the issue), whole texels on one page of --resolution (RAPS_PARAM_ATLAS_WHOLE_TEXELS), and at a
+// density (--texels-per-unit, by default the density the first row found, on pages of at most
+// --max-size). Times are medians of --runs runs. No other tool runs here.
 //
 //   raps-bench-scene [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
 //                    [--texels-per-unit T] [--max-size N]
@@ -120,6 +121,12 @@ int run(const Options& options) {
     const Row by_resolution = measure(meshes, settings, options.runs);
     const std::string resolution_mode = "resolution " + std::to_string(options.resolution);
     print_row(resolution_mode.c_str(), by_resolution);
+
+    require(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), "whole texels");
+    const Row whole_texels = measure(meshes, settings, options.runs);
+    const std::string whole_mode = "whole texels, " + std::to_string(options.resolution);
+    print_row(whole_mode.c_str(), whole_texels);
+    require(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 0), "whole texels");
 
     const double density =
         options.texels_per_unit > 0 ? options.texels_per_unit : by_resolution.stats.texels_per_unit;
