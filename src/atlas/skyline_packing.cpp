@@ -195,6 +195,8 @@ SkylineStrip::SkylineStrip(const SkylineStrip& other)
       skyline_sum_(other.skyline_sum_) {}
 
 bool SkylineStrip::find(const PreparedChart& chart, Placement& place) {
+    // The state under the names the search had when it was one function, so that its lines
+    // (and the layouts they make) stayed as they were.
     const std::vector<int32_t>& skyline = skyline_;
     Occupancy& occupancy = *occupancy_;
     const SkylineKernels& kernels = kernels_;
