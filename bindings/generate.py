@@ -143,14 +143,18 @@ def comment_text(token):
 
 
 class CType:
-    """A C type as raps.h writes it: [const] base, then zero or more '*'."""
+    """A C type as raps.h writes it: [const] base, then zero or more '*'; or, for an array of
+    handles, const base* const* (pointer_const: the pointers in the array are const too)."""
 
-    def __init__(self, base, const, pointers):
+    def __init__(self, base, const, pointers, pointer_const=False):
         self.base = base
         self.const = const  # the pointee (or the value) is const
         self.pointers = pointers
+        self.pointer_const = pointer_const
 
     def __str__(self):
+        if self.pointer_const:
+            return "const %s* const*" % self.base
         return ("const " if self.const else "") + self.base + "*" * self.pointers
 
 
@@ -378,12 +382,17 @@ def parse_type(words, header, line):
         raise HeaderError(line, "cannot read the type %r" % " ".join(t.text for t in words))
     base = texts[0]
     rest = texts[1:]
+    pointer_const = const and rest == ["*", "const", "*"]
+    if pointer_const:
+        rest = ["*", "*"]
     if any(t != "*" for t in rest):
         raise HeaderError(line, "unsupported type %r (only [const] T followed by '*')" %
                           " ".join(t.text for t in words))
     if not header.known_type(base):
         raise HeaderError(line, "unsupported type %r (not a fixed-width type of raps.h)" % base)
-    ctype = CType(base, const, len(rest))
+    ctype = CType(base, const, len(rest), pointer_const)
+    if pointer_const and base not in header.opaque:
+        raise HeaderError(line, "const T* const* is only for arrays of handles")
     if base == "void" and ctype.pointers == 0 and const:
         raise HeaderError(line, "const void")
     if base == "char" and not (const and ctype.pointers >= 1):
@@ -631,6 +640,8 @@ def classify(header, function, param):
             return "handle"
         if ctype.pointers == 2 and out and not ctype.const:
             return "handle_out"
+        if ctype.pointer_const and not out:
+            return "handle_array"
     elif base == "char":
         if ctype.pointers == 1 and not out:
             return "string_in"
@@ -710,6 +721,9 @@ def cs_param(header, function, param):
         return "IntPtr %s" % name
     if kind == "handle_out":
         return "out %sHandle %s" % (pascal(base), name)
+    if kind == "handle_array":
+        # The handles' raw pointers (SafeHandle.DangerousGetHandle), kept alive by the caller.
+        return "IntPtr[] %s" % name
     if kind == "string_in":
         # NUL-terminated UTF-8, which neither Mono nor .NET Framework marshal from string.
         return "byte[] %s" % name
@@ -833,6 +847,8 @@ def rust_type(header, ctype):
         inner = base
     if ctype.pointers == 0:
         return inner
+    if ctype.pointer_const:
+        return "*const *const " + inner
     # The first '*' from the right is the pointee's const; pointers in between are mutable.
     text = ("*const " if ctype.const else "*mut ") + inner
     for _ in range(ctype.pointers - 1):

@@ -169,7 +169,10 @@ enum {
     /* A bug in raps. Please report it with the message. */
     RAPS_ERROR_INTERNAL = 21,
     /* Sphere domain: the mesh is not closed (it has boundary loops; the message counts them). */
-    RAPS_ERROR_OPEN_MESH = 22
+    RAPS_ERROR_OPEN_MESH = 22,
+    /* raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
+     * (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths). */
+    RAPS_ERROR_INVALID_TRANSFORM = 23
 };
 
 /* A short static description of a status ("invalid argument", ...); "unknown status" for values
@@ -210,6 +213,16 @@ RAPS_API raps_status raps_mesh_set_indices_u16(raps_mesh* mesh, const uint16_t* 
                                                size_t index_count);
 RAPS_API raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* indices,
                                                size_t index_count);
+
+/* Places the mesh in world units for raps_parameterize_scene (every other call ignores it): a
+ * point p goes to A p + t, with m = {A00, A01, A02, t0, A10, A11, A12, t1, A20, A21, A22, t2}
+ * (3x4, row-major, as a node's world matrix without its last row). A uniform scale s is
+ * {s,0,0,0, 0,s,0,0, 0,0,s,0}. Texel density is measured in world units, so meshes modelled at
+ * different scales get texels in proportion to the surface they cover in the scene. NULL sets
+ * the identity (the default). A mirroring transform (det < 0) is allowed.
+ * Errors: INVALID_ARGUMENT (mesh NULL), INVALID_TRANSFORM (a non-finite coefficient, or the
+ * 3x3 part singular; the mesh keeps its transform). */
+RAPS_API raps_status raps_mesh_set_transform(raps_mesh* mesh, const double* m);
 
 /* Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers. */
 RAPS_API size_t raps_mesh_vertex_count(const raps_mesh* mesh);
@@ -300,7 +313,57 @@ enum {
     RAPS_PARAM_ATLAS_MAX_L2_STRETCH = 36,
     /* float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
      * larger ones are split. Default 2.9. */
-    RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37
+    RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37,
+    /* float, texels per world unit (positions' units, after raps_mesh_set_transform), >= 0.
+     * 0: the density that fills RAPS_PARAM_ATLAS_RESOLUTION with one page (the atlas's longer
+     * side is exactly that many texels; raps_stats.texels_per_unit reports the density found).
+     * Above 0: every chart gets this density (a chart's area in texels is its surface area
+     * times the square of it) and is placed on whole texels, on pages of at most
+     * RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
+     * do not fit a page go on further pages, and a chart larger than a page is shrunk until it
+     * fits (RAPS_CHART_SCALED_DOWN, raps_stats.scaled_down_charts), never dropped. Then the
+     * padding holds exactly at the final texels: at least RAPS_PARAM_ATLAS_PADDING texels lie
+     * between the texels that any two charts' triangles touch (2 keeps bilinear lookups of two
+     * charts from sharing a texel). Default 0. */
+    RAPS_PARAM_ATLAS_TEXELS_PER_UNIT = 38,
+    /* int, 16..16384. With a density: the largest page width and height in texels. Every page
+     * of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+     * margin), up to these. A run whose pages leave no more than the padding inside the margin
+     * is refused (INVALID_ARGUMENT). Default 4096. */
+    RAPS_PARAM_ATLAS_MAX_WIDTH = 39,
+    RAPS_PARAM_ATLAS_MAX_HEIGHT = 40,
+    /* int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY. */
+    RAPS_PARAM_ATLAS_ROTATION = 41,
+    /* int, 0..1024. With a density (or whole texels): texels kept free between the charts and
+     * each page's border (rounded up to whole blocks with block alignment). Default 0. */
+    RAPS_PARAM_ATLAS_MARGIN = 42,
+    /* int, 0 or 1. With a density (or whole texels): 1 places charts on whole 4x4 blocks of
+     * texels, no block shared by two charts (block compression then never mixes them), padding
+     * rounded up to whole blocks. Default 0. */
+    RAPS_PARAM_ATLAS_BLOCK_ALIGN = 43,
+    /* int, 0 or 1. With a density: 1 puts all charts of one mesh of a scene on one page (as a
+     * lightmap needs), shrinking a mesh's charts together when they do not fit one page.
+     * Default 0. */
+    RAPS_PARAM_ATLAS_MESH_PER_PAGE = 44,
+    /* int, 0 or 1. Without a density (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT 0): 1 places the charts
+     * as a density does (whole texels, the padding exact at the final texels, margin, block
+     * alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
+     * RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
+     * chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
+     * size. The atlas may then be smaller than the resolution on both sides. Refused
+     * (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0. */
+    RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45
+};
+
+/* RAPS_PARAM_ATLAS_ROTATION values */
+enum {
+    /* Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
+     * that packs best. */
+    RAPS_ROTATION_ANY = 0,
+    /* Quarter turns of the chart's map only (0, 90, 180 or 270 degrees). */
+    RAPS_ROTATION_QUARTER = 1,
+    /* None: each chart keeps its map's orientation. */
+    RAPS_ROTATION_NONE = 2
 };
 
 /* RAPS_PARAM_DOMAIN values */
@@ -495,6 +558,26 @@ RAPS_API void raps_result_destroy(raps_result* result);
 RAPS_API raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
                                        raps_result* result);
 
+/* Parameterizes several meshes into one atlas (settings must set RAPS_PARAM_DOMAIN to
+ * RAPS_DOMAIN_ATLAS): each mesh is placed in world units by its transform
+ * (raps_mesh_set_transform), cut into charts of its own (no chart joins two meshes, even where
+ * they touch) and every chart is packed at one texel density. The same mesh handle may appear
+ * more than once (it is then packed once per appearance). meshes and settings are only read,
+ * as for raps_parameterize; the result is replaced.
+ * The result holds the meshes' outputs one after another, in the order given:
+ * raps_result_mesh_range gives each mesh's output vertices and indices, and within a mesh's
+ * range everything reads as a one-mesh result would: its indices number the mesh's own output
+ * vertices (from 0 at the range's first vertex) and raps_result_copy_vertex_remap gives the
+ * mesh's own input vertices. Chart ids and chart records (raps_result_get_chart) are the
+ * atlas's, numbered over all meshes. The copy functions copy all meshes at once.
+ * Errors: those of raps_parameterize (a mesh's own problems name the mesh: "mesh 2: ...") and
+ * INVALID_ARGUMENT (meshes or result NULL, meshes[i] NULL, settings NULL or not the atlas
+ * domain), EMPTY_MESH (mesh_count 0, or a mesh without positions or indices),
+ * NON_FINITE_POSITION (a vertex beyond 1e30 once transformed), TOO_LARGE (more than 2^31 - 1
+ * vertices or 2^28 triangles together, or the limits of the settings on the whole scene). */
+RAPS_API raps_status raps_parameterize_scene(const raps_mesh* const* meshes, size_t mesh_count,
+                                             const raps_settings* settings, raps_result* result);
+
 /* The message of the last failed call on this result (raps_parameterize, a copy, the stats), ""
  * after raps_parameterize succeeds; never NULL. */
 RAPS_API const char* raps_result_last_error(const raps_result* result);
@@ -526,6 +609,17 @@ RAPS_API raps_status raps_result_copy_sphere_points_f32(const raps_result* resul
                                                         size_t capacity, size_t stride_bytes);
 RAPS_API raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,
                                                         size_t capacity, size_t stride_bytes);
+/* Input meshes the result holds: 1 after raps_parameterize, mesh_count after
+ * raps_parameterize_scene, 0 for NULL or an empty result. */
+RAPS_API size_t raps_result_mesh_count(const raps_result* result);
+/* Where mesh `mesh` (0 .. raps_result_mesh_count - 1) lies in the output: its output vertices
+ * first_vertex .. first_vertex + vertex_count - 1 and its indices first_index .. first_index +
+ * index_count - 1 (three per triangle, its triangles in its input order; chart ids: triangle
+ * first_index / 3 on). Any out pointer may be NULL. Errors: INVALID_ARGUMENT (result NULL, mesh
+ * out of range), INVALID_OPERATION (the result holds no map). */
+RAPS_API raps_status raps_result_mesh_range(const raps_result* result, size_t mesh,
+                                            uint64_t* first_vertex, uint64_t* vertex_count,
+                                            uint64_t* first_index, uint64_t* index_count);
 /* Copy the output triangles (indices into the output vertices), capacity >= index_count. */
 RAPS_API raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,
                                                   size_t capacity);
@@ -575,11 +669,54 @@ typedef struct raps_stats {
      * RAPS_PARAM_THREADS (the hardware's threads for 0). It describes the run, not the map
      * (which is the same bits for any count), and may differ between runs of one input. */
     uint64_t threads_used;
+    /* Atlas domain (0 otherwise). Pages: every page is atlas_width x atlas_height texels; a
+     * chart's page is in its record (raps_result_get_chart); 1 unless
+     * RAPS_PARAM_ATLAS_TEXELS_PER_UNIT is set. utilization is then the mean over pages. */
+    uint64_t page_count;
+    uint64_t scaled_down_charts; /* charts shrunk below the density to fit a page */
+    double texels_per_unit;      /* the atlas's density: texels per world (position) unit */
 } raps_stats;
 
 /* Fills stats (see raps_stats). Errors (the message in result, when it is not NULL):
  * INVALID_ARGUMENT (NULL, struct_size < 8), INVALID_OPERATION (the result holds no map). */
 RAPS_API raps_status raps_result_get_stats(const raps_result* result, raps_stats* stats);
+
+/* One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
+ * struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+ * like the map, the records are the same bits for every RAPS_PARAM_THREADS value. */
+typedef struct raps_chart {
+    uint32_t struct_size;
+    uint32_t mesh;  /* the input mesh it belongs to (0 for raps_parameterize) */
+    uint32_t page;  /* 0 .. raps_stats.page_count - 1 */
+    uint32_t flags; /* RAPS_CHART_* bits */
+    /* The texels its uv triangles touch on its page (a texture of atlas_width x atlas_height
+     * texels mapping the uvs): columns x .. x + width - 1, rows y .. y + height - 1, row 0 at
+     * v = 0. */
+    uint32_t x;
+    uint32_t y;
+    uint32_t width;
+    uint32_t height;
+    double rotation_deg;     /* counter-clockwise turn the packing gave the chart, [0, 360) */
+    uint64_t triangle_count; /* output triangles with this chart id */
+    double area_3d;          /* surface area, world units squared */
+    double area_texels;      /* uv area, texels squared */
+    /* Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
+     * that gathers degenerate triangles with no chart beside them. */
+    double stretch_l2;
+} raps_chart;
+
+/* raps_chart.flags bits */
+enum {
+    /* The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
+     * texels per world unit are below raps_stats.texels_per_unit). */
+    RAPS_CHART_SCALED_DOWN = 1
+};
+
+/* Fills `chart` with chart number `index` (a chart id, 0 .. raps_stats.chart_count - 1).
+ * Errors (the message in result, when it is not NULL): INVALID_ARGUMENT (NULL, struct_size < 8,
+ * index out of range), INVALID_OPERATION (the result holds no atlas). */
+RAPS_API raps_status raps_result_get_chart(const raps_result* result, size_t index,
+                                           raps_chart* chart);
 
 /* Wall-clock milliseconds the run that filled this result spent in a phase (RAPS_PHASE_*); 0 for
  * a phase it did not enter, for an empty result, for NULL or for an unknown phase. */

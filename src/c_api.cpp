@@ -12,15 +12,21 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/LU>  // determinant
+
 #include "core/error.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
 #include "parameterization.h"
 #include "raps.h"
 
-static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8 + 8, "raps_stats layout is ABI");
+static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8 + 8 + 3 * 8,
+              "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, relaxation_sweeps) == 104, "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, threads_used) == 144, "raps_stats layout is ABI");
+static_assert(offsetof(raps_stats, texels_per_unit) == 168, "raps_stats layout is ABI");
+static_assert(sizeof(raps_chart) == 32 + 8 + 8 + 3 * 8, "raps_chart layout is ABI");
+static_assert(offsetof(raps_chart, rotation_deg) == 32, "raps_chart layout is ABI");
 
 #define RAPS_CHECK_CODE(name, value) \
     static_assert(static_cast<int32_t>(raps::ErrorCode::name) == (value), #value)
@@ -46,10 +52,12 @@ RAPS_CHECK_CODE(kSolverFailed, RAPS_ERROR_SOLVER_FAILED);
 RAPS_CHECK_CODE(kInvalidOperation, RAPS_ERROR_INVALID_OPERATION);
 RAPS_CHECK_CODE(kInternal, RAPS_ERROR_INTERNAL);
 RAPS_CHECK_CODE(kOpenMesh, RAPS_ERROR_OPEN_MESH);
+RAPS_CHECK_CODE(kInvalidTransform, RAPS_ERROR_INVALID_TRANSFORM);
 #undef RAPS_CHECK_CODE
 
 struct raps_mesh {
     raps::TriangleMesh mesh;
+    Eigen::Matrix<double, 3, 4> transform = Eigen::Matrix<double, 3, 4>::Identity();
     bool indices_are_u16 = false;  // then at most 65536 vertices can be reached
     std::string last_error;
 };
@@ -168,6 +176,15 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_HARD_EDGE_ANGLE, "hard_edge_angle", true, 0.0, 180.0, 180.0},
     {RAPS_PARAM_ATLAS_MAX_L2_STRETCH, "atlas_max_l2_stretch", true, 1.0, 10.0, 1.01},
     {RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, "atlas_max_linf_stretch", true, 1.0, 1000.0, 2.9},
+    {RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, "atlas_texels_per_unit", true, 0.0, 1e15, 0.0},
+    {RAPS_PARAM_ATLAS_MAX_WIDTH, "atlas_max_width", false, 16, 16384, 4096},
+    {RAPS_PARAM_ATLAS_MAX_HEIGHT, "atlas_max_height", false, 16, 16384, 4096},
+    {RAPS_PARAM_ATLAS_ROTATION, "atlas_rotation", false, RAPS_ROTATION_ANY, RAPS_ROTATION_NONE,
+     RAPS_ROTATION_ANY},
+    {RAPS_PARAM_ATLAS_MARGIN, "atlas_margin", false, 0, 1024, 0},
+    {RAPS_PARAM_ATLAS_BLOCK_ALIGN, "atlas_block_align", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -235,6 +252,20 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.sphere_alpha_steps;
         case RAPS_PARAM_MAX_MEMORY_MB:
             return s.max_memory_mb;
+        case RAPS_PARAM_ATLAS_MAX_WIDTH:
+            return s.atlas_max_width;
+        case RAPS_PARAM_ATLAS_MAX_HEIGHT:
+            return s.atlas_max_height;
+        case RAPS_PARAM_ATLAS_ROTATION:
+            return static_cast<int64_t>(s.atlas_rotation);
+        case RAPS_PARAM_ATLAS_MARGIN:
+            return s.atlas_margin;
+        case RAPS_PARAM_ATLAS_BLOCK_ALIGN:
+            return s.atlas_block_align ? 1 : 0;
+        case RAPS_PARAM_ATLAS_MESH_PER_PAGE:
+            return s.atlas_mesh_per_page ? 1 : 0;
+        case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
+            return s.atlas_whole_texels ? 1 : 0;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -287,6 +318,27 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
         case RAPS_PARAM_MAX_MEMORY_MB:
             s.max_memory_mb = v;
             break;
+        case RAPS_PARAM_ATLAS_MAX_WIDTH:
+            s.atlas_max_width = static_cast<int32_t>(v);
+            break;
+        case RAPS_PARAM_ATLAS_MAX_HEIGHT:
+            s.atlas_max_height = static_cast<int32_t>(v);
+            break;
+        case RAPS_PARAM_ATLAS_ROTATION:
+            s.atlas_rotation = static_cast<raps::ChartRotation>(v);
+            break;
+        case RAPS_PARAM_ATLAS_MARGIN:
+            s.atlas_margin = static_cast<int32_t>(v);
+            break;
+        case RAPS_PARAM_ATLAS_BLOCK_ALIGN:
+            s.atlas_block_align = v != 0;
+            break;
+        case RAPS_PARAM_ATLAS_MESH_PER_PAGE:
+            s.atlas_mesh_per_page = v != 0;
+            break;
+        case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
+            s.atlas_whole_texels = v != 0;
+            break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -310,6 +362,8 @@ auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
             return &s.atlas_target_l2;
         case RAPS_PARAM_ATLAS_MAX_LINF_STRETCH:
             return &s.atlas_max_linf;
+        case RAPS_PARAM_ATLAS_TEXELS_PER_UNIT:
+            return &s.atlas_texels_per_unit;
         default:
             throw Error(ErrorCode::kInternal, "float parameter without a field");
     }
@@ -484,8 +538,78 @@ void copy_stats(const raps::Parameterization& map, raps_stats* stats) {
     full.utilization = map.utilization;
     full.relaxation_sweeps = static_cast<uint64_t>(map.relaxation_sweeps);
     full.threads_used = static_cast<uint64_t>(map.threads_used);
+    if (!map.charts.empty()) {
+        full.page_count = static_cast<uint64_t>(map.page_count);
+        for (const raps::AtlasChartRecord& chart : map.charts)
+            full.scaled_down_charts += chart.scaled_down ? 1 : 0;
+        full.texels_per_unit = map.texels_per_unit;
+    }
     // Only what fits the caller's (possibly older, shorter) struct.
     std::memcpy(stats, &full, full.struct_size);
+}
+
+// A transform that would flatten the mesh (or is not a number) has no world units to measure
+// texels in. The bound is Hadamard's: |det A| <= the product of A's rows' lengths.
+Eigen::Matrix<double, 3, 4> checked_transform(const double* m) {
+    Eigen::Matrix<double, 3, 4> transform;
+    for (int i = 0; i < 12; ++i) {
+        if (!std::isfinite(m[i])) {
+            char text[32];
+            std::snprintf(text, sizeof(text), "%g", m[i]);
+            throw Error(ErrorCode::kInvalidTransform,
+                        "transform coefficient m[" + std::to_string(i) + "] is " + text);
+        }
+        transform(i / 4, i % 4) = m[i];
+    }
+    const Eigen::Matrix3d linear = transform.leftCols<3>();
+    const double rows = linear.row(0).norm() * linear.row(1).norm() * linear.row(2).norm();
+    if (!(std::abs(linear.determinant()) > 1e-12 * rows)) {
+        throw Error(ErrorCode::kInvalidTransform,
+                    "the transform's 3x3 part is singular: it would flatten the mesh");
+    }
+    return transform;
+}
+
+// Fills the fields of raps_chart that fit the caller's struct_size.
+void copy_chart(const raps::AtlasChartRecord& record, raps_chart* chart) {
+    raps_chart full;
+    std::memset(&full, 0, sizeof(full));
+    full.struct_size = static_cast<uint32_t>(std::min<size_t>(chart->struct_size, sizeof(full)));
+    full.mesh = static_cast<uint32_t>(record.part);
+    full.page = static_cast<uint32_t>(record.page);
+    full.flags = record.scaled_down ? static_cast<uint32_t>(RAPS_CHART_SCALED_DOWN) : 0u;
+    full.x = static_cast<uint32_t>(record.x);
+    full.y = static_cast<uint32_t>(record.y);
+    full.width = static_cast<uint32_t>(record.width);
+    full.height = static_cast<uint32_t>(record.height);
+    full.rotation_deg = record.rotation_deg;
+    full.triangle_count = static_cast<uint64_t>(record.triangle_count);
+    full.area_3d = record.area_3d;
+    full.area_texels = record.area_texels;
+    full.stretch_l2 = record.stretch_l2;
+    std::memcpy(chart, &full, full.struct_size);
+}
+
+// The progress callback of `settings` (none for NULL) as the library takes it.
+raps::Progress::Callback progress_of(const raps_settings* settings) {
+    raps::Progress::Callback callback;
+    if (settings && settings->progress) {
+        const raps_progress_fn fn = settings->progress;
+        void* user = settings->progress_user;
+        callback = [fn, user](raps::Phase phase, double fraction) {
+            return fn(user, static_cast<raps_phase>(phase), fraction) != 0;
+        };
+    }
+    return callback;
+}
+
+void check_u16_reach(const raps_mesh* mesh, const std::string& name) {
+    if (mesh->indices_are_u16 && mesh->mesh.positions.size() > 65536) {
+        throw Error(ErrorCode::kTooLarge, name + " has " +
+                                              std::to_string(mesh->mesh.positions.size()) +
+                                              " vertices but uint16 indices reach only 65536; use "
+                                              "raps_mesh_set_indices_u32");
+    }
 }
 
 // guarded() for a call on a const handle: a failure's message goes into the handle (none for
@@ -565,6 +689,8 @@ const char* raps_status_string(raps_status status) {
             return "internal error";
         case RAPS_ERROR_OPEN_MESH:
             return "open mesh (the sphere domain needs a closed one)";
+        case RAPS_ERROR_INVALID_TRANSFORM:
+            return "invalid transform";
         default:
             return "unknown status";
     }
@@ -602,6 +728,13 @@ raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* indices,
                                       size_t index_count) {
     return guarded(mesh ? &mesh->last_error : nullptr,
                    [&] { read_indices(mesh, indices, index_count); });
+}
+
+raps_status raps_mesh_set_transform(raps_mesh* mesh, const double* m) {
+    return guarded(mesh ? &mesh->last_error : nullptr, [&] {
+        require(mesh != nullptr, "mesh is NULL");
+        mesh->transform = m ? checked_transform(m) : Eigen::Matrix<double, 3, 4>::Identity();
+    });
 }
 
 size_t raps_mesh_vertex_count(const raps_mesh* mesh) {
@@ -722,24 +855,35 @@ raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settin
     result->map = raps::Parameterization();
     return guarded(&result->last_error, [&] {
         require(mesh != nullptr, "mesh is NULL");
-        if (mesh->indices_are_u16 && mesh->mesh.positions.size() > 65536) {
-            throw Error(ErrorCode::kTooLarge,
-                        "the mesh has " + std::to_string(mesh->mesh.positions.size()) +
-                            " vertices but uint16 indices reach only 65536; use "
-                            "raps_mesh_set_indices_u32");
-        }
+        check_u16_reach(mesh, "the mesh");
         const raps::Settings defaults;
         const raps::Settings& chosen = settings ? settings->settings : defaults;
-        raps::Progress::Callback callback;
-        if (settings && settings->progress) {
-            const raps_progress_fn fn = settings->progress;
-            void* user = settings->progress_user;
-            callback = [fn, user](raps::Phase phase, double fraction) {
-                return fn(user, static_cast<raps_phase>(phase), fraction) != 0;
-            };
-        }
-        const raps::Progress progress(std::move(callback));
+        const raps::Progress progress(progress_of(settings));
         result->map = raps::parameterize(mesh->mesh, chosen, progress);
+        result->has_map = true;
+    });
+}
+
+raps_status raps_parameterize_scene(const raps_mesh* const* meshes, size_t mesh_count,
+                                    const raps_settings* settings, raps_result* result) {
+    if (!result) return RAPS_ERROR_INVALID_ARGUMENT;
+    result->has_map = false;
+    result->map = raps::Parameterization();
+    return guarded(&result->last_error, [&] {
+        require(meshes != nullptr || mesh_count == 0, "meshes is NULL");
+        require(settings != nullptr,
+                "settings is NULL: a scene needs settings with RAPS_PARAM_DOMAIN = "
+                "RAPS_DOMAIN_ATLAS");
+        std::vector<raps::ScenePart> parts(mesh_count);
+        for (size_t i = 0; i < mesh_count; ++i) {
+            const std::string name = "meshes[" + std::to_string(i) + "]";
+            if (!meshes[i]) throw Error(ErrorCode::kInvalidArgument, name + " is NULL");
+            check_u16_reach(meshes[i], name);
+            parts[i].mesh = &meshes[i]->mesh;
+            parts[i].transform = meshes[i]->transform;
+        }
+        const raps::Progress progress(progress_of(settings));
+        result->map = raps::parameterize_scene(parts, settings->settings, progress);
         result->has_map = true;
     });
 }
@@ -774,6 +918,53 @@ raps_status raps_result_copy_sphere_points_f32(const raps_result* result, float*
 raps_status raps_result_copy_sphere_points_f64(const raps_result* result, double* dst,
                                                size_t capacity, size_t stride_bytes) {
     return guarded_read(result, [&] { copy_sphere_points(result, dst, capacity, stride_bytes); });
+}
+
+size_t raps_result_mesh_count(const raps_result* result) {
+    return result && result->has_map ? result->map.ranges.size() : 0;
+}
+
+raps_status raps_result_mesh_range(const raps_result* result, size_t mesh, uint64_t* first_vertex,
+                                   uint64_t* vertex_count, uint64_t* first_index,
+                                   uint64_t* index_count) {
+    return guarded_read(result, [&] {
+        require(result != nullptr, "result is NULL");
+        if (!result->has_map) throw Error(ErrorCode::kInvalidOperation, "the result holds no map");
+        const std::vector<raps::OutputRange>& ranges = result->map.ranges;
+        if (mesh >= ranges.size()) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        "mesh " + std::to_string(mesh) + " is out of range: the result holds " +
+                            std::to_string(ranges.size()) + " mesh(es)");
+        }
+        const raps::OutputRange& range = ranges[mesh];
+        if (first_vertex) *first_vertex = static_cast<uint64_t>(range.first_vertex);
+        if (vertex_count) *vertex_count = static_cast<uint64_t>(range.vertex_count);
+        if (first_index) *first_index = static_cast<uint64_t>(range.first_index);
+        if (index_count) *index_count = static_cast<uint64_t>(range.index_count);
+    });
+}
+
+raps_status raps_result_get_chart(const raps_result* result, size_t index, raps_chart* chart) {
+    return guarded_read(result, [&] {
+        require(result != nullptr, "result is NULL");
+        require(chart != nullptr, "chart is NULL");
+        if (chart->struct_size < 8) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        "chart->struct_size " + std::to_string(chart->struct_size) +
+                            " is below 8: set it to sizeof(raps_chart)");
+        }
+        if (!result->has_map || result->map.charts.empty()) {
+            throw Error(ErrorCode::kInvalidOperation,
+                        "the result holds no atlas (only RAPS_DOMAIN_ATLAS has chart records)");
+        }
+        const std::vector<raps::AtlasChartRecord>& charts = result->map.charts;
+        if (index >= charts.size()) {
+            throw Error(ErrorCode::kInvalidArgument, "chart " + std::to_string(index) +
+                                                         " is out of range: the atlas has " +
+                                                         std::to_string(charts.size()) + " charts");
+        }
+        copy_chart(charts[index], chart);
+    });
 }
 
 raps_status raps_result_copy_indices_u32(const raps_result* result, uint32_t* dst,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "atlas/atlas_pipeline.h"
+#include "atlas/scene_mesh.h"
 #include "core/error.h"
 #include "core/memory_estimate.h"
 #include "parallel/thread_pool.h"
@@ -27,16 +28,22 @@ void identity_output(const TriangleMesh& mesh, Parameterization& out) {
     }
 }
 
-// Total uv area of `triangles`: the fraction of [0,1]^2 the map covers. A map that tiles the
-// whole square (the octahedral unfold) sums to 1 give or take rounding; the fraction covered
-// cannot exceed 1, so neither does the figure.
-double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles) {
+// Total uv area of `triangles`.
+double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles) {
     double area = 0;
     for (const Triangle& t : triangles) {
         const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
         area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
     }
-    return std::min(area, 1.0);
+    return area;
+}
+
+// The fraction of [0,1]^2 the map covers (per page for an atlas of several). A map that tiles
+// the whole square (the octahedral unfold) sums to 1 give or take rounding; the fraction covered
+// cannot exceed 1, so neither does the figure.
+double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles,
+               int32_t pages = 1) {
+    return std::min(uv_area_sum(uv, triangles) / pages, 1.0);
 }
 
 // The statistics of a map measured alone (the disk and sphere domains, which keep no pool):
@@ -52,15 +59,8 @@ DistortionStats measure_alone(const Settings& settings,
     return stats;
 }
 
-}  // namespace
-
-Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings,
-                              const Progress& progress) {
-    if (mesh.positions.empty() || mesh.triangles.empty()) {
-        throw Error(ErrorCode::kEmptyMesh, mesh.positions.empty()
-                                               ? "the mesh has no vertices (set its positions)"
-                                               : "the mesh has no triangles (set its indices)");
-    }
+// Refuses a run past the caller's limits before any work is done.
+void check_limits(const TriangleMesh& mesh, const Settings& settings) {
     if (mesh.triangle_count() > settings.max_triangles) {
         throw Error(ErrorCode::kTooLarge, "the mesh has " + std::to_string(mesh.triangle_count()) +
                                               " triangles, more than RAPS_PARAM_MAX_TRIANGLES = " +
@@ -76,6 +76,59 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                             std::to_string(settings.max_memory_mb));
         }
     }
+}
+
+// The atlas of `mesh` made of `parts`; indices and remap global (into the whole mesh).
+Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
+                           const Settings& settings, const Progress& progress) {
+    Parameterization out;
+    // One pool of threads for the whole atlas and its statistics: starting threads for
+    // each parallel loop (17 of them on cheburashka) cost about 2% of the atlas.
+    ThreadPool pool(settings.threads);
+    AtlasOutput atlas = build_atlas(mesh, parts, settings, progress, out.phase_ms, pool);
+    PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+    // Statistics in texel space, where the map is isotropic: uv scaled back per axis.
+    std::vector<Eigen::Vector3d> positions(atlas.remap.size());
+    std::vector<Eigen::Vector2d> texels(atlas.uv.size());
+    for (size_t v = 0; v < atlas.remap.size(); ++v) {
+        positions[v] = mesh.positions[atlas.remap[v]];
+        texels[v] = Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
+    }
+    std::vector<Triangle> triangles(mesh.triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        for (int k = 0; k < 3; ++k)
+            triangles[t][k] = static_cast<int32_t>(atlas.indices[3 * t + k]);
+    }
+    out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool);
+    out.utilization = uv_area(atlas.uv, triangles, atlas.page_count);
+    out.uv = std::move(atlas.uv);
+    out.indices = std::move(atlas.indices);
+    out.vertex_remap = std::move(atlas.remap);
+    out.chart_ids = std::move(atlas.chart_of);
+    out.chart_count = atlas.chart_count();
+    out.charts = std::move(atlas.charts);
+    out.adaptive_solves = atlas.adaptive_solves;
+    out.atlas_width = atlas.width;
+    out.atlas_height = atlas.height;
+    out.page_count = atlas.page_count;
+    out.texels_per_unit = atlas.texels_per_unit;
+    out.threads_used = pool.threads_used();
+    for (int32_t p = 0; p < parts.count(); ++p) {
+        OutputRange range;
+        range.first_vertex = atlas.first_output_vertex[p];
+        range.vertex_count = atlas.first_output_vertex[p + 1] - range.first_vertex;
+        range.first_index = 3 * static_cast<int64_t>(parts.first_triangle[p]);
+        range.index_count =
+            3 * static_cast<int64_t>(parts.first_triangle[p + 1]) - range.first_index;
+        out.ranges.push_back(range);
+    }
+    timer.finish();
+    return out;
+}
+
+// The disk or sphere map of `mesh` (checked against the limits).
+Parameterization disk_or_sphere_map(const TriangleMesh& mesh, const Settings& settings,
+                                    const Progress& progress) {
     Parameterization out;
     if (settings.domain == Domain::kSphere) {
         SphereMap map = parameterize_sphere(mesh, settings, progress, out.phase_ms);
@@ -116,39 +169,6 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
         timer.finish();
         return out;
     }
-    if (settings.domain == Domain::kAtlas) {
-        // One pool of threads for the whole atlas and its statistics: starting threads for
-        // each parallel loop (17 of them on cheburashka) cost about 2% of the atlas.
-        ThreadPool pool(settings.threads);
-        AtlasOutput atlas = build_atlas(mesh, settings, progress, out.phase_ms, pool);
-        PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
-        // Statistics in texel space, where the map is isotropic: uv scaled back per axis.
-        std::vector<Eigen::Vector3d> positions(atlas.remap.size());
-        std::vector<Eigen::Vector2d> texels(atlas.uv.size());
-        for (size_t v = 0; v < atlas.remap.size(); ++v) {
-            positions[v] = mesh.positions[atlas.remap[v]];
-            texels[v] =
-                Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
-        }
-        std::vector<Triangle> triangles(mesh.triangles.size());
-        for (size_t t = 0; t < triangles.size(); ++t) {
-            for (int k = 0; k < 3; ++k)
-                triangles[t][k] = static_cast<int32_t>(atlas.indices[3 * t + k]);
-        }
-        out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool);
-        out.utilization = uv_area(atlas.uv, triangles);
-        out.uv = std::move(atlas.uv);
-        out.indices = std::move(atlas.indices);
-        out.vertex_remap = std::move(atlas.remap);
-        out.chart_ids = std::move(atlas.chart_of);
-        out.chart_count = atlas.chart_count;
-        out.adaptive_solves = atlas.adaptive_solves;
-        out.atlas_width = atlas.width;
-        out.atlas_height = atlas.height;
-        out.threads_used = pool.threads_used();
-        timer.finish();
-        return out;
-    }
     DiskMap map = parameterize_disk(mesh, settings, progress, out.phase_ms);
     out.uv = std::move(map.uv);
     out.negative_weights = map.negative_weights;
@@ -159,6 +179,53 @@ Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings
                                    mesh.triangles, &out.threads_used);
     out.utilization = uv_area(out.uv, mesh.triangles);
     timer.finish();
+    return out;
+}
+
+}  // namespace
+
+Parameterization parameterize(const TriangleMesh& mesh, const Settings& settings,
+                              const Progress& progress) {
+    if (mesh.positions.empty() || mesh.triangles.empty()) {
+        throw Error(ErrorCode::kEmptyMesh, mesh.positions.empty()
+                                               ? "the mesh has no vertices (set its positions)"
+                                               : "the mesh has no triangles (set its indices)");
+    }
+    check_limits(mesh, settings);
+    if (settings.domain == Domain::kAtlas)
+        return atlas_map(mesh, single_part(mesh), settings, progress);
+    Parameterization out = disk_or_sphere_map(mesh, settings, progress);
+    out.ranges.push_back({0, static_cast<int64_t>(out.vertex_remap.size()), 0,
+                          static_cast<int64_t>(out.indices.size())});
+    return out;
+}
+
+Parameterization parameterize_scene(const std::vector<ScenePart>& parts, const Settings& settings,
+                                    const Progress& progress) {
+    if (settings.domain != Domain::kAtlas) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "a scene is parameterized into one atlas only: set RAPS_PARAM_DOMAIN to "
+                    "RAPS_DOMAIN_ATLAS");
+    }
+    if (parts.empty()) throw Error(ErrorCode::kEmptyMesh, "the scene has no meshes (mesh_count 0)");
+    std::vector<const TriangleMesh*> meshes;
+    std::vector<Eigen::Matrix<double, 3, 4>> transforms;
+    for (const ScenePart& part : parts) {
+        meshes.push_back(part.mesh);
+        transforms.push_back(part.transform);
+    }
+    const SceneMesh scene = combine_scene(meshes, transforms);
+    check_limits(scene.mesh, settings);
+    Parameterization out = atlas_map(scene.mesh, scene.parts, settings, progress);
+    // Each mesh's share reads as its own: remap to its own input vertices, indices to its own
+    // output vertices.
+    for (int32_t p = 0; p < scene.parts.count(); ++p) {
+        const OutputRange& range = out.ranges[p];
+        for (int64_t v = range.first_vertex; v < range.first_vertex + range.vertex_count; ++v)
+            out.vertex_remap[v] -= static_cast<uint32_t>(scene.parts.first_vertex[p]);
+        for (int64_t i = range.first_index; i < range.first_index + range.index_count; ++i)
+            out.indices[i] -= static_cast<uint32_t>(range.first_vertex);
+    }
     return out;
 }
 

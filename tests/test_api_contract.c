@@ -49,6 +49,7 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_ERROR_INVALID_OPERATION, 20);
     assert_int_equal(RAPS_ERROR_INTERNAL, 21);
     assert_int_equal(RAPS_ERROR_OPEN_MESH, 22);
+    assert_int_equal(RAPS_ERROR_INVALID_TRANSFORM, 23);
     assert_int_equal(RAPS_PARAM_DOMAIN, 1);
     assert_int_equal(RAPS_PARAM_MAX_TRIANGLES, 8);
     assert_int_equal(RAPS_PARAM_THREADS, 9);
@@ -68,19 +69,37 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_PHASE_METRICS, 4);
     assert_int_equal(RAPS_PARAM_ATLAS_RESOLUTION, 32);
     assert_int_equal(RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, 37);
+    assert_int_equal(RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 38);
+    assert_int_equal(RAPS_PARAM_ATLAS_MAX_WIDTH, 39);
+    assert_int_equal(RAPS_PARAM_ATLAS_MAX_HEIGHT, 40);
+    assert_int_equal(RAPS_PARAM_ATLAS_ROTATION, 41);
+    assert_int_equal(RAPS_PARAM_ATLAS_MARGIN, 42);
+    assert_int_equal(RAPS_PARAM_ATLAS_BLOCK_ALIGN, 43);
+    assert_int_equal(RAPS_PARAM_ATLAS_MESH_PER_PAGE, 44);
+    assert_int_equal(RAPS_PARAM_ATLAS_WHOLE_TEXELS, 45);
+    assert_int_equal(RAPS_ROTATION_ANY, 0);
+    assert_int_equal(RAPS_ROTATION_QUARTER, 1);
+    assert_int_equal(RAPS_ROTATION_NONE, 2);
+    assert_int_equal(RAPS_CHART_SCALED_DOWN, 1);
     assert_int_equal(RAPS_DOMAIN_ATLAS, 2);
     assert_int_equal(RAPS_PHASE_PACK, 6);
-    assert_int_equal(sizeof(raps_stats), 152);
+    assert_int_equal(sizeof(raps_stats), 176);
     assert_int_equal(offsetof(raps_stats, area_log_mean), 56);
     assert_int_equal(offsetof(raps_stats, stretch_linf), 96);
     assert_int_equal(offsetof(raps_stats, relaxation_sweeps), 104);
     assert_int_equal(offsetof(raps_stats, utilization), 136);
     assert_int_equal(offsetof(raps_stats, threads_used), 144);
+    assert_int_equal(offsetof(raps_stats, page_count), 152);
+    assert_int_equal(offsetof(raps_stats, texels_per_unit), 168);
+    assert_int_equal(sizeof(raps_chart), 72);
+    assert_int_equal(offsetof(raps_chart, x), 16);
+    assert_int_equal(offsetof(raps_chart, rotation_deg), 32);
+    assert_int_equal(offsetof(raps_chart, stretch_l2), 64);
 }
 
 static void every_status_has_a_description(void** state) {
     (void)state;
-    for (int s = RAPS_OK; s <= RAPS_ERROR_OPEN_MESH; ++s) {
+    for (int s = RAPS_OK; s <= RAPS_ERROR_INVALID_TRANSFORM; ++s) {
         const char* text = raps_status_string(s);
         assert_non_null(text);
         assert_string_not_equal(text, "unknown status");
@@ -196,7 +215,7 @@ static void every_parameter_round_trips(void** state) {
                           RAPS_ERROR_INVALID_ARGUMENT);
         }
     }
-    assert_int_equal(known, 22);
+    assert_int_equal(known, 30);
     raps_settings_destroy(s);
 }
 

@@ -156,6 +156,73 @@ namespace Raps
         /// (which is the same bits for any count), and may differ between runs of one input.
         /// </summary>
         public ulong ThreadsUsed;
+        /// <summary>
+        /// Atlas domain (0 otherwise). Pages: every page is atlas_width x atlas_height texels; a
+        /// chart's page is in its record (raps_result_get_chart); 1 unless
+        /// RAPS_PARAM_ATLAS_TEXELS_PER_UNIT is set. utilization is then the mean over pages.
+        /// </summary>
+        public ulong PageCount;
+        /// <summary>
+        /// charts shrunk below the density to fit a page
+        /// </summary>
+        public ulong ScaledDownCharts;
+        /// <summary>
+        /// the atlas's density: texels per world (position) unit
+        /// </summary>
+        public double TexelsPerUnit;
+    }
+
+    /// <summary>
+    /// One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
+    /// struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+    /// like the map, the records are the same bits for every RAPS_PARAM_THREADS value.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Chart
+    {
+        public uint StructSize;
+        /// <summary>
+        /// the input mesh it belongs to (0 for raps_parameterize)
+        /// </summary>
+        public uint Mesh;
+        /// <summary>
+        /// 0 .. raps_stats.page_count - 1
+        /// </summary>
+        public uint Page;
+        /// <summary>
+        /// RAPS_CHART_* bits
+        /// </summary>
+        public uint Flags;
+        /// <summary>
+        /// The texels its uv triangles touch on its page (a texture of atlas_width x atlas_height
+        /// texels mapping the uvs): columns x .. x + width - 1, rows y .. y + height - 1, row 0 at
+        /// v = 0.
+        /// </summary>
+        public uint X;
+        public uint Y;
+        public uint Width;
+        public uint Height;
+        /// <summary>
+        /// counter-clockwise turn the packing gave the chart, [0, 360)
+        /// </summary>
+        public double RotationDeg;
+        /// <summary>
+        /// output triangles with this chart id
+        /// </summary>
+        public ulong TriangleCount;
+        /// <summary>
+        /// surface area, world units squared
+        /// </summary>
+        public double Area3d;
+        /// <summary>
+        /// uv area, texels squared
+        /// </summary>
+        public double AreaTexels;
+        /// <summary>
+        /// Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
+        /// that gathers degenerate triangles with no chart beside them.
+        /// </summary>
+        public double StretchL2;
     }
 
     /// <summary>
@@ -287,6 +354,11 @@ namespace Raps
         /// Sphere domain: the mesh is not closed (it has boundary loops; the message counts them).
         /// </summary>
         public const int RAPS_ERROR_OPEN_MESH = 22;
+        /// <summary>
+        /// raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
+        /// (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
+        /// </summary>
+        public const int RAPS_ERROR_INVALID_TRANSFORM = 23;
 
         /// <summary>
         /// int. The parameter domain. Default RAPS_DOMAIN_DISK.
@@ -400,6 +472,74 @@ namespace Raps
         /// larger ones are split. Default 2.9.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37;
+        /// <summary>
+        /// float, texels per world unit (positions' units, after raps_mesh_set_transform), &gt;= 0.
+        /// 0: the density that fills RAPS_PARAM_ATLAS_RESOLUTION with one page (the atlas's longer
+        /// side is exactly that many texels; raps_stats.texels_per_unit reports the density found).
+        /// Above 0: every chart gets this density (a chart's area in texels is its surface area
+        /// times the square of it) and is placed on whole texels, on pages of at most
+        /// RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
+        /// do not fit a page go on further pages, and a chart larger than a page is shrunk until it
+        /// fits (RAPS_CHART_SCALED_DOWN, raps_stats.scaled_down_charts), never dropped. Then the
+        /// padding holds exactly at the final texels: at least RAPS_PARAM_ATLAS_PADDING texels lie
+        /// between the texels that any two charts' triangles touch (2 keeps bilinear lookups of two
+        /// charts from sharing a texel). Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_TEXELS_PER_UNIT = 38;
+        /// <summary>
+        /// int, 16..16384. With a density: the largest page width and height in texels. Every page
+        /// of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+        /// margin), up to these. A run whose pages leave no more than the padding inside the margin
+        /// is refused (INVALID_ARGUMENT). Default 4096.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_MAX_WIDTH = 39;
+        public const int RAPS_PARAM_ATLAS_MAX_HEIGHT = 40;
+        /// <summary>
+        /// int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_ROTATION = 41;
+        /// <summary>
+        /// int, 0..1024. With a density (or whole texels): texels kept free between the charts and
+        /// each page's border (rounded up to whole blocks with block alignment). Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_MARGIN = 42;
+        /// <summary>
+        /// int, 0 or 1. With a density (or whole texels): 1 places charts on whole 4x4 blocks of
+        /// texels, no block shared by two charts (block compression then never mixes them), padding
+        /// rounded up to whole blocks. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_BLOCK_ALIGN = 43;
+        /// <summary>
+        /// int, 0 or 1. With a density: 1 puts all charts of one mesh of a scene on one page (as a
+        /// lightmap needs), shrinking a mesh's charts together when they do not fit one page.
+        /// Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_MESH_PER_PAGE = 44;
+        /// <summary>
+        /// int, 0 or 1. Without a density (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT 0): 1 places the charts
+        /// as a density does (whole texels, the padding exact at the final texels, margin, block
+        /// alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
+        /// RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
+        /// chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
+        /// size. The atlas may then be smaller than the resolution on both sides. Refused
+        /// (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45;
+
+        // RAPS_PARAM_ATLAS_ROTATION values
+        /// <summary>
+        /// Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
+        /// that packs best.
+        /// </summary>
+        public const int RAPS_ROTATION_ANY = 0;
+        /// <summary>
+        /// Quarter turns of the chart's map only (0, 90, 180 or 270 degrees).
+        /// </summary>
+        public const int RAPS_ROTATION_QUARTER = 1;
+        /// <summary>
+        /// None: each chart keeps its map's orientation.
+        /// </summary>
+        public const int RAPS_ROTATION_NONE = 2;
 
         // RAPS_PARAM_DOMAIN values
         /// <summary>
@@ -554,6 +694,13 @@ namespace Raps
         /// </summary>
         public const int RAPS_PHASE_COUNT = 7;
 
+        // raps_chart.flags bits
+        /// <summary>
+        /// The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
+        /// texels per world unit are below raps_stats.texels_per_unit).
+        /// </summary>
+        public const int RAPS_CHART_SCALED_DOWN = 1;
+
         /// <summary>
         /// The version of the library actually loaded, encoded like RAPS_VERSION. Thread-safe.
         /// </summary>
@@ -631,6 +778,19 @@ namespace Raps
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_mesh_set_indices_u32(MeshHandle mesh, uint[] indices, UIntPtr index_count);
+
+        /// <summary>
+        /// Places the mesh in world units for raps_parameterize_scene (every other call ignores it): a
+        /// point p goes to A p + t, with m = {A00, A01, A02, t0, A10, A11, A12, t1, A20, A21, A22, t2}
+        /// (3x4, row-major, as a node's world matrix without its last row). A uniform scale s is
+        /// {s,0,0,0, 0,s,0,0, 0,0,s,0}. Texel density is measured in world units, so meshes modelled at
+        /// different scales get texels in proportion to the surface they cover in the scene. NULL sets
+        /// the identity (the default). A mirroring transform (det &lt; 0) is allowed.
+        /// Errors: INVALID_ARGUMENT (mesh NULL), INVALID_TRANSFORM (a non-finite coefficient, or the
+        /// 3x3 part singular; the mesh keeps its transform).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_transform(MeshHandle mesh, double[] m);
 
         /// <summary>
         /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
@@ -755,6 +915,28 @@ namespace Raps
         public static extern int raps_parameterize(MeshHandle mesh, SettingsHandle settings, ResultHandle result);
 
         /// <summary>
+        /// Parameterizes several meshes into one atlas (settings must set RAPS_PARAM_DOMAIN to
+        /// RAPS_DOMAIN_ATLAS): each mesh is placed in world units by its transform
+        /// (raps_mesh_set_transform), cut into charts of its own (no chart joins two meshes, even where
+        /// they touch) and every chart is packed at one texel density. The same mesh handle may appear
+        /// more than once (it is then packed once per appearance). meshes and settings are only read,
+        /// as for raps_parameterize; the result is replaced.
+        /// The result holds the meshes' outputs one after another, in the order given:
+        /// raps_result_mesh_range gives each mesh's output vertices and indices, and within a mesh's
+        /// range everything reads as a one-mesh result would: its indices number the mesh's own output
+        /// vertices (from 0 at the range's first vertex) and raps_result_copy_vertex_remap gives the
+        /// mesh's own input vertices. Chart ids and chart records (raps_result_get_chart) are the
+        /// atlas's, numbered over all meshes. The copy functions copy all meshes at once.
+        /// Errors: those of raps_parameterize (a mesh's own problems name the mesh: "mesh 2: ...") and
+        /// INVALID_ARGUMENT (meshes or result NULL, meshes[i] NULL, settings NULL or not the atlas
+        /// domain), EMPTY_MESH (mesh_count 0, or a mesh without positions or indices),
+        /// NON_FINITE_POSITION (a vertex beyond 1e30 once transformed), TOO_LARGE (more than 2^31 - 1
+        /// vertices or 2^28 triangles together, or the limits of the settings on the whole scene).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_parameterize_scene(IntPtr[] meshes, UIntPtr mesh_count, SettingsHandle settings, ResultHandle result);
+
+        /// <summary>
         /// The message of the last failed call on this result (raps_parameterize, a copy, the stats), ""
         /// after raps_parameterize succeeds; never NULL.
         /// </summary>
@@ -824,6 +1006,23 @@ namespace Raps
         public static extern int raps_result_copy_sphere_points_f64(ResultHandle result, [Out] double[] dst, UIntPtr capacity, UIntPtr stride_bytes);
 
         /// <summary>
+        /// Input meshes the result holds: 1 after raps_parameterize, mesh_count after
+        /// raps_parameterize_scene, 0 for NULL or an empty result.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern UIntPtr raps_result_mesh_count(ResultHandle result);
+
+        /// <summary>
+        /// Where mesh `mesh` (0 .. raps_result_mesh_count - 1) lies in the output: its output vertices
+        /// first_vertex .. first_vertex + vertex_count - 1 and its indices first_index .. first_index +
+        /// index_count - 1 (three per triangle, its triangles in its input order; chart ids: triangle
+        /// first_index / 3 on). Any out pointer may be NULL. Errors: INVALID_ARGUMENT (result NULL, mesh
+        /// out of range), INVALID_OPERATION (the result holds no map).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_result_mesh_range(ResultHandle result, UIntPtr mesh, [Out] ulong[] first_vertex, [Out] ulong[] vertex_count, [Out] ulong[] first_index, [Out] ulong[] index_count);
+
+        /// <summary>
         /// Copy the output triangles (indices into the output vertices), capacity &gt;= index_count.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -848,6 +1047,14 @@ namespace Raps
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_result_get_stats(ResultHandle result, ref Stats stats);
+
+        /// <summary>
+        /// Fills `chart` with chart number `index` (a chart id, 0 .. raps_stats.chart_count - 1).
+        /// Errors (the message in result, when it is not NULL): INVALID_ARGUMENT (NULL, struct_size &lt; 8,
+        /// index out of range), INVALID_OPERATION (the result holds no atlas).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_result_get_chart(ResultHandle result, UIntPtr index, ref Chart chart);
 
         /// <summary>
         /// Wall-clock milliseconds the run that filled this result spent in a phase (RAPS_PHASE_*); 0 for

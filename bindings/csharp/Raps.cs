@@ -39,7 +39,10 @@ namespace Raps
         Internal = Native.RAPS_ERROR_INTERNAL,
         /// <summary>Sphere domain: the mesh is not closed (the message counts its boundary
         /// loops).</summary>
-        OpenMesh = Native.RAPS_ERROR_OPEN_MESH
+        OpenMesh = Native.RAPS_ERROR_OPEN_MESH,
+        /// <summary>Mesh.SetTransform: a coefficient is not finite, or the 3x3 part is
+        /// singular.</summary>
+        InvalidTransform = Native.RAPS_ERROR_INVALID_TRANSFORM
     }
 
     public enum Param
@@ -65,7 +68,33 @@ namespace Raps
         WeldTolerance = Native.RAPS_PARAM_WELD_TOLERANCE,
         HardEdgeAngle = Native.RAPS_PARAM_HARD_EDGE_ANGLE,
         AtlasMaxL2Stretch = Native.RAPS_PARAM_ATLAS_MAX_L2_STRETCH,
-        AtlasMaxLinfStretch = Native.RAPS_PARAM_ATLAS_MAX_LINF_STRETCH
+        AtlasMaxLinfStretch = Native.RAPS_PARAM_ATLAS_MAX_LINF_STRETCH,
+        AtlasTexelsPerUnit = Native.RAPS_PARAM_ATLAS_TEXELS_PER_UNIT,
+        AtlasMaxWidth = Native.RAPS_PARAM_ATLAS_MAX_WIDTH,
+        AtlasMaxHeight = Native.RAPS_PARAM_ATLAS_MAX_HEIGHT,
+        AtlasRotation = Native.RAPS_PARAM_ATLAS_ROTATION,
+        AtlasMargin = Native.RAPS_PARAM_ATLAS_MARGIN,
+        AtlasBlockAlign = Native.RAPS_PARAM_ATLAS_BLOCK_ALIGN,
+        AtlasMeshPerPage = Native.RAPS_PARAM_ATLAS_MESH_PER_PAGE,
+        AtlasWholeTexels = Native.RAPS_PARAM_ATLAS_WHOLE_TEXELS
+    }
+
+    /// <summary>Which turns the atlas's packing may give a chart (Param.AtlasRotation).</summary>
+    public enum Rotation
+    {
+        /// <summary>Any angle: the chart's smallest bounding box, then a quarter turn (the
+        /// default).</summary>
+        Any = Native.RAPS_ROTATION_ANY,
+        /// <summary>Quarter turns of the chart's map only.</summary>
+        Quarter = Native.RAPS_ROTATION_QUARTER,
+        /// <summary>None: each chart keeps its map's orientation.</summary>
+        None = Native.RAPS_ROTATION_NONE
+    }
+
+    /// <summary>Where one input mesh lies in a result's output (Result.GetMeshRange).</summary>
+    public struct MeshRange
+    {
+        public ulong FirstVertex, VertexCount, FirstIndex, IndexCount;
     }
 
     public enum Domain
@@ -270,6 +299,17 @@ namespace Raps
         public void SetPositions(float[] xyz)
         {
             SetPositions(xyz, 3);
+        }
+
+        /// <summary>Places the mesh in world units for Library.ParameterizeScene: m is the 3x4
+        /// matrix [A | t], 12 doubles row-major (a point p goes to A p + t); null sets the
+        /// identity. A non-finite or singular one throws Status.InvalidTransform.</summary>
+        public void SetTransform(double[] m)
+        {
+            if (m != null && m.Length != 12)
+                throw Interop.BadInput("a transform is 12 doubles (3x4, row-major), not " +
+                                       m.Length);
+            Interop.Check(Native.raps_mesh_set_transform(handle, m), LastError);
         }
 
         /// <summary>Replaces the positions from an interleaved buffer: vertex i starts at
@@ -774,6 +814,49 @@ namespace Raps
             return stats;
         }
 
+        /// <summary>Input meshes the result holds: 1 after Parameterize, as many as given
+        /// after ParameterizeScene.</summary>
+        public long MeshCount
+        {
+            get { return (long)Native.raps_result_mesh_count(handle).ToUInt64(); }
+        }
+
+        /// <summary>Where input mesh `mesh` lies in the output: its output vertices and indices
+        /// (its indices number its own output vertices from 0, its remap its own input
+        /// vertices).</summary>
+        public MeshRange GetMeshRange(long mesh)
+        {
+            ulong[] firstVertex = new ulong[1], vertexCount = new ulong[1];
+            ulong[] firstIndex = new ulong[1], indexCount = new ulong[1];
+            Interop.Check(Native.raps_result_mesh_range(handle, Interop.Size(mesh), firstVertex,
+                                                        vertexCount, firstIndex, indexCount),
+                          LastError);
+            var range = new MeshRange
+            {
+                FirstVertex = firstVertex[0],
+                VertexCount = vertexCount[0],
+                FirstIndex = firstIndex[0],
+                IndexCount = indexCount[0]
+            };
+            return range;
+        }
+
+        /// <summary>Atlas domain: every chart's record, by chart id (its mesh, page, texel
+        /// rectangle, rotation, triangles, areas, L2 stretch; Flags holds
+        /// Native.RAPS_CHART_SCALED_DOWN for a chart shrunk to fit a page).</summary>
+        public Chart[] GetCharts()
+        {
+            var charts = new Chart[GetStats().ChartCount];
+            for (int c = 0; c < charts.Length; c++)
+            {
+                charts[c].StructSize = (uint)Marshal.SizeOf(typeof(Chart));
+                Interop.Check(Native.raps_result_get_chart(handle, Interop.Size(c),
+                                                           ref charts[c]),
+                              LastError);
+            }
+            return charts;
+        }
+
         /// <summary>Wall-clock milliseconds the run that filled this result spent in a
         /// phase.</summary>
         public double PhaseMilliseconds(Phase phase)
@@ -820,6 +903,35 @@ namespace Raps
             try
             {
                 Parameterize(mesh, settings, result, progress);
+            }
+            catch
+            {
+                result.Dispose();
+                throw;
+            }
+            return result;
+        }
+
+        /// <summary>Packs several meshes into one atlas at one texel density (settings must set
+        /// Domain.Atlas); each mesh is placed by its transform (Mesh.SetTransform). The result
+        /// holds the meshes' outputs one after another (Result.GetMeshRange).</summary>
+        public static Result ParameterizeScene(Mesh[] meshes, Settings settings)
+        {
+            if (meshes == null) throw new ArgumentNullException("meshes");
+            if (settings == null) throw new ArgumentNullException("settings");
+            var raw = new IntPtr[meshes.Length];
+            for (int m = 0; m < meshes.Length; m++)
+            {
+                if (meshes[m] == null) throw new ArgumentNullException("meshes[" + m + "]");
+                raw[m] = meshes[m].Handle.DangerousGetHandle();
+            }
+            var result = new Result();
+            int status = Native.raps_parameterize_scene(raw, Interop.Size(raw.Length),
+                                                        settings.Handle, result.Handle);
+            GC.KeepAlive(meshes);  // the raw pointers are theirs: alive until the call returned
+            try
+            {
+                Interop.Check(status, result.LastError);
             }
             catch
             {

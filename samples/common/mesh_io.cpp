@@ -224,11 +224,12 @@ void write_file_atomically(const std::string& path, const std::string& text) {
     }
 }
 
-void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,
-               const std::vector<uint32_t>& uv_corners, const std::string& header_comment) {
-    std::string out;
-    out.reserve(64 * (mesh.vertex_count() + uvs.size() / 2) + 24 * mesh.corners.size());
-    out += "# " + header_comment + "\n";
+namespace {
+
+// The `v`, `vt` and `f` lines of one mesh, its indices after the `v_offset` vertices and
+// `vt_offset` uv pairs written before it.
+void append_obj_body(std::string& out, const PolygonMesh& mesh, const std::vector<double>& uvs,
+                     const std::vector<uint32_t>& uv_corners, size_t v_offset, size_t vt_offset) {
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
         out += "v ";
         append_number(out, mesh.positions[3 * v]);
@@ -249,13 +250,36 @@ void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vect
         out += 'f';
         for (uint32_t c = mesh.polygon_offsets[f]; c < mesh.polygon_offsets[f + 1]; ++c) {
             out += ' ';
-            out += std::to_string(mesh.corners[c] + 1);
+            out += std::to_string(mesh.corners[c] + v_offset + 1);
             if (!uv_corners.empty()) {
                 out += '/';
-                out += std::to_string(uv_corners[c] + 1);
+                out += std::to_string(uv_corners[c] + vt_offset + 1);
             }
         }
         out += '\n';
+    }
+}
+
+}  // namespace
+
+void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,
+               const std::vector<uint32_t>& uv_corners, const std::string& header_comment) {
+    std::string out;
+    out.reserve(64 * (mesh.vertex_count() + uvs.size() / 2) + 24 * mesh.corners.size());
+    out += "# " + header_comment + "\n";
+    append_obj_body(out, mesh, uvs, uv_corners, 0, 0);
+    write_file_atomically(path, out);
+}
+
+void write_obj_objects(const std::string& path, const std::vector<ObjObject>& objects,
+                       const std::string& header_comment) {
+    std::string out = "# " + header_comment + "\n";
+    size_t v_offset = 0, vt_offset = 0;
+    for (const ObjObject& object : objects) {
+        out += "o " + object.name + "\n";
+        append_obj_body(out, object.mesh, object.uvs, object.uv_corners, v_offset, vt_offset);
+        v_offset += object.mesh.vertex_count();
+        vt_offset += object.uvs.size() / 2;
     }
     write_file_atomically(path, out);
 }

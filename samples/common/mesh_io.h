@@ -33,6 +33,19 @@ PolygonMesh read_mesh(const std::string& path);
 void write_obj(const std::string& path, const PolygonMesh& mesh, const std::vector<double>& uvs,
                const std::vector<uint32_t>& uv_corners, const std::string& header_comment);
 
+// One object of a multi-object OBJ: its name, mesh, uvs and uv corners as write_obj takes them.
+struct ObjObject {
+    std::string name;
+    PolygonMesh mesh;
+    std::vector<double> uvs;
+    std::vector<uint32_t> uv_corners;
+};
+
+// Writes the objects into one OBJ, each as an `o` line followed by its `v`, `vt` and `f` lines
+// (indices counted across the file), atomically like write_obj.
+void write_obj_objects(const std::string& path, const std::vector<ObjObject>& objects,
+                       const std::string& header_comment);
+
 // 1-to-4 midpoint subdivision of a triangle mesh (x, y, z per vertex; 3 indices per triangle),
 // each edge's midpoint created once: how the benchmarks build large meshes from the shared ones.
 void subdivide_midpoint(std::vector<double>& positions, std::vector<uint32_t>& triangles);

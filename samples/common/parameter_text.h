@@ -17,7 +17,7 @@ namespace raps_samples {
 struct ParameterFlag {
     const char* flag;
     raps_param param;
-    bool atlas;  // applies to the atlas domain (raps-gltf offers only these)
+    bool atlas;  // an atlas parameter that raps-gltf offers (it offers only these)
     std::vector<std::pair<const char*, int64_t>> choices;
 };
 

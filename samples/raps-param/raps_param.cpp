@@ -1,6 +1,7 @@
 // raps-param: parameterize a mesh file through the raps C API and write it back with UVs.
 //
 //   raps-param IN.(obj|off) -o OUT.obj [options]
+//   raps-param --atlas IN1 [IN2 ...] -o OUT.obj [options]
 //   raps-param --sphere IN.(obj|off) -o OUT.obj [options]
 //
 // Prints one JSON object on stdout (statistics, settings, per-phase times); see --help. This
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,10 +20,15 @@
 #include "mesh_io.h"
 #include "parameter_text.h"
 #include "raps.h"
+#include "report_json.h"
 
 namespace {
 
+using param_report::json_number;
+using param_report::json_string;
+
 const char* kUsage = R"(usage: raps-param [--atlas | --sphere] IN.(obj|off) -o OUT.obj [options]
+       raps-param --atlas IN1 [IN2 ...] -o OUT.obj [options]
 
 Computes texture coordinates with r-adaptive parameterization (Zayer, Roessl, Seidel) and writes
 OUT.obj with the input's vertices in their original order. Prints one JSON object on stdout:
@@ -33,7 +40,10 @@ Disk domain (default): the mesh must be a topological disk; one `vt` per vertex 
 faces in their order (`f v/vt ...`).
 Atlas domain (--atlas): any mesh is cut into charts, each mapped and packed into one atlas;
 seams get separate `vt` indices (`f v/vt`), faces are the input's in their order (a polygon is
-written as triangles where a seam crosses it).
+written as triangles where a seam crosses it). With several inputs, all are packed into one
+atlas at one texel density and OUT.obj holds one `o` line per input, in the order given, each
+followed by that input's `v`, `vt` and `f` lines; the JSON adds per input, per page and per
+chart figures ("inputs", "pages", "charts"). `vt` are normalised to the page (--texels-per-unit).
 Sphere domain (--sphere): the mesh must be closed and of genus 0; it is mapped onto the unit
 sphere (paper section 7) and OUT.obj gets the same faces with the points on the sphere as its `v` lines, in
 input order, and no `vt`. With --sphere-uv octahedral the `v` lines are the same and the sphere
@@ -66,6 +76,22 @@ atlas options:
   --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)
   --max-l2-stretch S         split charts until the atlas's L2 stretch is <= S (default 1.01)
   --max-linf-stretch S       split charts stretching any triangle more than S (default 2.9)
+  --texels-per-unit T        pack at T texels per unit of the positions instead of filling
+                             --resolution: charts on whole texels, on pages of at most
+                             --max-size texels, as many pages as needed (default 0: off)
+  --max-size N               with a density: pages of at most N x N texels, 16..16384
+                             (default 4096); a chart larger than a page is shrunk to fit
+  --rotate any|quarter|none  turns the packing may give a chart (default any)
+  --margin N                 with a density or whole texels: texels free at each page's
+                             border (default 0)
+  --block-align              with a density or whole texels: charts on whole 4x4 blocks
+  --mesh-per-page            with a density: each input's charts on one page
+  --whole-texels             without a density: charts on whole texels (as with a density,
+                             --margin and --block-align too) on one page of --resolution, at
+                             the largest density that fits
+  --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
+                             --mesh-per-page --whole-texels (--padding and --rotate given
+                             override theirs)
 sphere options:
   --sphere-method literal|robust
                              literal: the paper's algorithm 7.1 as written (Gauss map,
@@ -86,60 +112,17 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-std::string json_string(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        switch (c) {
-            case '"':
-                out += "\\\"";
-                break;
-            case '\\':
-                out += "\\\\";
-                break;
-            case '\n':
-                out += "\\n";
-                break;
-            case '\t':
-                out += "\\t";
-                break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20) {
-                    char buffer[8];
-                    std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-                    out += buffer;
-                } else {
-                    out += c;
-                }
-        }
-    }
-    return out + "\"";
-}
-
-// JSON has no infinity or NaN: those become null, as in the project's reference metrics tool.
-std::string json_number(double value) {
-    if (!std::isfinite(value)) return "null";
-    char buffer[32];
-    std::snprintf(buffer, sizeof(buffer), "%.10g", value);
-    return buffer;
-}
-
-const char* choice_name(const char* flag, int64_t value) {
-    return raps_samples::choice_name(*raps_samples::find_parameter_flag(flag), value);
-}
-
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
         .count();
 }
 
 struct Handles {
-    raps_mesh* mesh = nullptr;
     raps_settings* settings = nullptr;
     raps_result* result = nullptr;
     ~Handles() {
         raps_result_destroy(result);
         raps_settings_destroy(settings);
-        raps_mesh_destroy(mesh);
     }
 };
 
@@ -216,10 +199,45 @@ std::vector<double> sphere_positions(const raps_samples::PolygonMesh& polygons,
     return positions;
 }
 
-int run(int argc, char** argv) {
-    std::string input, output;
-    Handles h;
-    check(raps_settings_create(&h.settings), [] { return "cannot create settings"; });
+struct Options {
+    std::vector<std::string> inputs;
+    std::string output;
+};
+
+// A flag that sets one int parameter to 1.
+void set_switch(raps_settings* settings, raps_param param) {
+    check(raps_settings_set_int(settings, param, 1),
+          [&] { return raps_settings_last_error(settings); });
+}
+
+void set_number(raps_settings* settings, const char* flag, raps_param param,
+                const std::string& text) {
+    const raps_samples::ParameterFlag entry{flag, param, false, {}};
+    const std::string error = raps_samples::set_parameter_from_text(settings, entry, text);
+    if (!error.empty()) throw UsageError(error);
+}
+
+// --lightmap: a lightmap's settings (Unity asks for at least 2 texels of padding; a mesh's
+// charts on one page; quarter turns only, so texel rows stay texel rows; charts on whole texels,
+// which a density gives, and which at a resolution whole texels ask for). Set before the other
+// flags are read, so that --padding and --rotate given too override these.
+void apply_lightmap_preset(raps_settings* settings) {
+    check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
+          [&] { return raps_settings_last_error(settings); });
+    check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_PADDING, 2),
+          [&] { return raps_settings_last_error(settings); });
+    check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_ROTATION, RAPS_ROTATION_QUARTER),
+          [&] { return raps_settings_last_error(settings); });
+    set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
+    set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
+}
+
+// Reads the command line into the settings; returns the files. Exits early (returning false)
+// for --help and --version.
+bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& options) {
+    bool lightmap = false;
+    for (int i = 1; i < argc; ++i) lightmap = lightmap || std::strcmp(argv[i], "--lightmap") == 0;
+    if (lightmap) apply_lightmap_preset(settings);
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&]() -> std::string {
@@ -228,56 +246,144 @@ int run(int argc, char** argv) {
         };
         if (arg == "-h" || arg == "--help") {
             std::fputs(kUsage, stdout);
-            return 0;
+            return false;
         } else if (arg == "--version") {
             std::printf("raps-param (raps %s)\n", raps_version_string());
-            return 0;
+            return false;
         } else if (arg == "-o" || arg == "--output") {
-            output = value();
+            options.output = value();
         } else if (arg == "--sphere") {
-            check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_SPHERE),
-                  [&] { return raps_settings_last_error(h.settings); });
+            check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_SPHERE),
+                  [&] { return raps_settings_last_error(settings); });
         } else if (arg == "--atlas") {
-            check(raps_settings_set_int(h.settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
-                  [&] { return raps_settings_last_error(h.settings); });
+            check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
+                  [&] { return raps_settings_last_error(settings); });
+        } else if (arg == "--lightmap") {
+            continue;  // applied above
+        } else if (arg == "--max-size") {
+            const std::string text = value();
+            set_number(settings, "--max-size", RAPS_PARAM_ATLAS_MAX_WIDTH, text);
+            set_number(settings, "--max-size", RAPS_PARAM_ATLAS_MAX_HEIGHT, text);
+        } else if (arg == "--block-align") {
+            set_switch(settings, RAPS_PARAM_ATLAS_BLOCK_ALIGN);
+        } else if (arg == "--mesh-per-page") {
+            set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
+        } else if (arg == "--whole-texels") {
+            set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
         } else if (const raps_samples::ParameterFlag* flag =
                        raps_samples::find_parameter_flag(arg)) {
             const std::string error =
-                raps_samples::set_parameter_from_text(h.settings, *flag, value());
+                raps_samples::set_parameter_from_text(settings, *flag, value());
             if (!error.empty()) throw UsageError(error);
         } else if (!arg.empty() && arg[0] == '-') {
             throw UsageError("unknown option " + arg);
-        } else if (input.empty()) {
-            input = arg;
         } else {
-            throw UsageError("more than one input file (" + input + ", " + arg + ")");
+            options.inputs.push_back(arg);
         }
     }
-    if (input.empty()) throw UsageError("no input file");
-    if (output.empty()) throw UsageError("no output file (-o OUT.obj)");
+    if (options.inputs.empty()) throw UsageError("no input file");
+    if (options.output.empty()) throw UsageError("no output file (-o OUT.obj)");
+    int64_t domain = 0;
+    raps_settings_get_int(settings, RAPS_PARAM_DOMAIN, &domain);
+    if (options.inputs.size() > 1 && domain != RAPS_DOMAIN_ATLAS) {
+        throw UsageError("more than one input file (" + options.inputs[0] + ", " +
+                         options.inputs[1] + "): only --atlas packs several into one atlas");
+    }
+    return true;
+}
+
+// One input file, read and handed to the library.
+struct Input {
+    raps_samples::PolygonMesh polygons;
+    raps_mesh* mesh = nullptr;
+    Input() = default;
+    Input(const Input&) = delete;
+    Input& operator=(const Input&) = delete;
+    ~Input() { raps_mesh_destroy(mesh); }
+};
+
+void load_input(const std::string& path, Input& input) {
+    input.polygons = raps_samples::read_mesh(path);
+    const std::vector<uint32_t> triangles = input.polygons.triangles();
+    check(raps_mesh_create(&input.mesh), [] { return "cannot create a mesh"; });
+    if (input.polygons.vertex_count() == 0)
+        throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no vertices");
+    if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no faces");
+    check(raps_mesh_set_positions_f64(input.mesh, input.polygons.positions.data(),
+                                      input.polygons.vertex_count(), 0),
+          [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    check(raps_mesh_set_indices_u32(input.mesh, triangles.data(), triangles.size()),
+          [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+}
+
+// An `o` line's name: the file name without its folder and extension.
+std::string object_name(const std::string& path) {
+    const size_t slash = path.find_last_of("/\\");
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    const size_t dot = name.find_last_of('.');
+    if (dot != std::string::npos && dot > 0) name.resize(dot);
+    for (char& c : name) {
+        if (static_cast<unsigned char>(c) <= ' ') c = '_';
+    }
+    return name.empty() ? "mesh" : name;
+}
+
+// The OBJ object of input `m` of the result, from the result's uvs and indices: its share of
+// them, its faces.
+raps_samples::ObjObject output_object(const std::string& path, const Input& input,
+                                      const raps_result* result, size_t m, bool sphere,
+                                      const std::vector<double>& uvs,
+                                      const std::vector<uint32_t>& indices) {
+    uint64_t first_vertex = 0, vertex_count = 0, first_index = 0, index_count = 0;
+    check(
+        raps_result_mesh_range(result, m, &first_vertex, &vertex_count, &first_index, &index_count),
+        [&] { return raps_result_last_error(result); });
+    raps_samples::ObjObject object;
+    object.name = object_name(path);
+    if (!uvs.empty()) {
+        object.uvs.assign(uvs.begin() + 2 * first_vertex,
+                          uvs.begin() + 2 * (first_vertex + vertex_count));
+        const std::vector<uint32_t> own(indices.begin() + first_index,
+                                        indices.begin() + first_index + index_count);
+        faces_with_output_vertices(input.polygons, own, object.mesh, object.uv_corners);
+    } else {
+        object.mesh.polygon_offsets = input.polygons.polygon_offsets;
+        object.mesh.corners = input.polygons.corners;
+    }
+    object.mesh.positions =
+        sphere ? sphere_positions(input.polygons, result) : input.polygons.positions;
+    return object;
+}
+
+int run(int argc, char** argv) {
+    Options options;
+    Handles h;
+    check(raps_settings_create(&h.settings), [] { return "cannot create settings"; });
+    if (!parse_arguments(argc, argv, h.settings, options)) return 0;
 
     const auto read_start = std::chrono::steady_clock::now();
-    const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(input);
-    const std::vector<uint32_t> triangles = polygons.triangles();
+    std::vector<std::unique_ptr<Input>> inputs;
+    std::vector<const raps_mesh*> meshes;
+    size_t polygons = 0;
+    for (const std::string& path : options.inputs) {
+        inputs.push_back(std::make_unique<Input>());
+        load_input(path, *inputs.back());
+        meshes.push_back(inputs.back()->mesh);
+        polygons += inputs.back()->polygons.polygon_count();
+    }
     const double read_ms = elapsed_ms(read_start);
-
-    check(raps_mesh_create(&h.mesh), [] { return "cannot create a mesh"; });
-    if (polygons.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, input + ": no vertices");
-    if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, input + ": no faces");
-    check(
-        raps_mesh_set_positions_f64(h.mesh, polygons.positions.data(), polygons.vertex_count(), 0),
-        [&] { return raps_mesh_last_error(h.mesh); });
-    check(raps_mesh_set_indices_u32(h.mesh, triangles.data(), triangles.size()),
-          [&] { return raps_mesh_last_error(h.mesh); });
-    check(raps_result_create(&h.result), [] { return "cannot create a result"; });
-    check(raps_parameterize(h.mesh, h.settings, h.result),
-          [&] { return raps_result_last_error(h.result); });
 
     int64_t domain, sphere_uv;
     raps_settings_get_int(h.settings, RAPS_PARAM_DOMAIN, &domain);
     raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_UV, &sphere_uv);
+    const bool atlas = domain == RAPS_DOMAIN_ATLAS;
     const bool sphere = domain == RAPS_DOMAIN_SPHERE;
     const bool has_uvs = !sphere || sphere_uv != RAPS_SPHERE_UV_NONE;
+    check(raps_result_create(&h.result), [] { return "cannot create a result"; });
+    check(atlas ? raps_parameterize_scene(meshes.data(), meshes.size(), h.settings, h.result)
+                : raps_parameterize(meshes[0], h.settings, h.result),
+          [&] { return raps_result_last_error(h.result); });
+
     const size_t output_vertices = raps_result_vertex_count(h.result);
     std::vector<double> uvs;
     if (has_uvs) {
@@ -285,94 +391,52 @@ int run(int argc, char** argv) {
         check(raps_result_copy_uvs_f64(h.result, uvs.data(), output_vertices, 0),
               [&] { return "cannot copy uvs"; });
     }
-    std::vector<uint32_t> out_indices(raps_result_index_count(h.result));
-    check(raps_result_copy_indices_u32(h.result, out_indices.data(), out_indices.size()),
+    std::vector<uint32_t> indices(raps_result_index_count(h.result));
+    check(raps_result_copy_indices_u32(h.result, indices.data(), indices.size()),
           [] { return "cannot copy indices"; });
-    raps_samples::PolygonMesh written;
-    std::vector<uint32_t> uv_corners;
-    if (has_uvs) {
-        faces_with_output_vertices(polygons, out_indices, written, uv_corners);
-    } else {
-        written.polygon_offsets = polygons.polygon_offsets;
-        written.corners = polygons.corners;
+    std::vector<raps_samples::ObjObject> objects;
+    for (size_t m = 0; m < inputs.size(); ++m) {
+        objects.push_back(
+            output_object(options.inputs[m], *inputs[m], h.result, m, sphere, uvs, indices));
     }
-    written.positions = sphere ? sphere_positions(polygons, h.result) : polygons.positions;
     const auto write_start = std::chrono::steady_clock::now();
-    raps_samples::write_obj(output, written, uvs, uv_corners,
-                            std::string("raps-param ") + raps_version_string() + " from " + input);
+    const std::string comment =
+        std::string("raps-param ") + raps_version_string() + " from " + options.inputs[0];
+    if (objects.size() == 1) {
+        raps_samples::write_obj(options.output, objects[0].mesh, objects[0].uvs,
+                                objects[0].uv_corners, comment);
+    } else {
+        raps_samples::write_obj_objects(options.output, objects, comment);
+    }
     const double write_ms = elapsed_ms(write_start);
 
     raps_stats stats;
     stats.struct_size = sizeof(stats);
     check(raps_result_get_stats(h.result, &stats), [] { return "cannot read statistics"; });
-    int64_t weights, monitor, iterations, mode, boundary, max_triangles, threads, resolution,
-        padding, method, max_sweeps, alpha_steps;
-    double alpha, weld, hard_edge, max_l2, max_linf, damping, tolerance;
-    raps_settings_get_int(h.settings, RAPS_PARAM_ATLAS_RESOLUTION, &resolution);
-    raps_settings_get_int(h.settings, RAPS_PARAM_ATLAS_PADDING, &padding);
-    raps_settings_get_float(h.settings, RAPS_PARAM_WELD_TOLERANCE, &weld);
-    raps_settings_get_float(h.settings, RAPS_PARAM_HARD_EDGE_ANGLE, &hard_edge);
-    raps_settings_get_float(h.settings, RAPS_PARAM_ATLAS_MAX_L2_STRETCH, &max_l2);
-    raps_settings_get_float(h.settings, RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, &max_linf);
-    raps_settings_get_int(h.settings, RAPS_PARAM_WEIGHTS, &weights);
-    raps_settings_get_int(h.settings, RAPS_PARAM_MONITOR, &monitor);
-    raps_settings_get_int(h.settings, RAPS_PARAM_ITERATIONS, &iterations);
-    raps_settings_get_int(h.settings, RAPS_PARAM_ITERATION_MODE, &mode);
-    raps_settings_get_int(h.settings, RAPS_PARAM_BOUNDARY, &boundary);
-    raps_settings_get_int(h.settings, RAPS_PARAM_MAX_TRIANGLES, &max_triangles);
-    raps_settings_get_float(h.settings, RAPS_PARAM_ALPHA, &alpha);
-    raps_settings_get_int(h.settings, RAPS_PARAM_THREADS, &threads);
-    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_METHOD, &method);
-    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_MAX_SWEEPS, &max_sweeps);
-    raps_settings_get_int(h.settings, RAPS_PARAM_SPHERE_ALPHA_STEPS, &alpha_steps);
-    raps_settings_get_float(h.settings, RAPS_PARAM_SPHERE_DAMPING, &damping);
-    raps_settings_get_float(h.settings, RAPS_PARAM_SPHERE_TOLERANCE, &tolerance);
-
     std::string json = "{";
-    json += "\"input\": " + json_string(input) + ", \"output\": " + json_string(output);
+    json += "\"input\": " + json_string(options.inputs[0]) +
+            ", \"output\": " + json_string(options.output);
     json += ", \"vertices\": " + std::to_string(stats.vertex_count);
     json += ", \"triangles\": " + std::to_string(stats.triangle_count);
-    json += ", \"polygons\": " + std::to_string(polygons.polygon_count());
-    const char* domain_name = domain == RAPS_DOMAIN_ATLAS ? "atlas" : sphere ? "sphere" : "disk";
-    json += std::string(", \"settings\": {\"domain\": \"") + domain_name + "\", \"weights\": \"" +
-            choice_name("--weights", weights) + "\", \"monitor\": \"" +
-            choice_name("--monitor", monitor) + "\", \"alpha\": " + json_number(alpha) +
-            ", \"iterations\": " + std::to_string(iterations) + ", \"iteration_mode\": \"" +
-            choice_name("--iteration-mode", mode) + "\", \"threads\": " + std::to_string(threads) +
-            ", \"max_triangles\": " + std::to_string(max_triangles);
-    if (sphere) {
-        json += std::string(", \"sphere_method\": \"") + choice_name("--sphere-method", method) +
-                "\", \"sphere_uv\": \"" + choice_name("--sphere-uv", sphere_uv) +
-                "\", \"damping\": " + json_number(damping) +
-                ", \"tolerance\": " + json_number(tolerance) +
-                ", \"max_sweeps\": " + std::to_string(max_sweeps) +
-                ", \"alpha_steps\": " + std::to_string(alpha_steps);
-    } else if (domain == RAPS_DOMAIN_ATLAS) {
-        json += ", \"resolution\": " + std::to_string(resolution) +
-                ", \"padding\": " + std::to_string(padding) +
-                ", \"weld_tolerance\": " + json_number(weld) +
-                ", \"hard_edge_angle\": " + json_number(hard_edge) +
-                ", \"max_l2_stretch\": " + json_number(max_l2) +
-                ", \"max_linf_stretch\": " + json_number(max_linf);
-    } else {
-        json += std::string(", \"boundary\": \"") + choice_name("--boundary", boundary) + "\"";
+    json += ", \"polygons\": " + std::to_string(polygons);
+    json += ", \"settings\": " + param_report::settings_json(h.settings);
+    json += ", \"stats\": " + param_report::stats_json(stats, atlas);
+    if (atlas) {
+        std::vector<param_report::MeshShare> shares(options.inputs.size());
+        for (size_t m = 0; m < shares.size(); ++m) {
+            check(raps_result_mesh_range(h.result, m, &shares[m].first_vertex,
+                                         &shares[m].vertex_count, &shares[m].first_index,
+                                         &shares[m].index_count),
+                  [&] { return raps_result_last_error(h.result); });
+        }
+        std::vector<raps_chart> charts(stats.chart_count);
+        for (size_t c = 0; c < charts.size(); ++c) {
+            charts[c].struct_size = sizeof(raps_chart);
+            check(raps_result_get_chart(h.result, c, &charts[c]),
+                  [&] { return raps_result_last_error(h.result); });
+        }
+        json += param_report::atlas_json(options.inputs, shares, charts, stats);
     }
-    json += "}";
-    json += ", \"stats\": {\"flipped_triangles\": " + std::to_string(stats.flipped_triangles) +
-            ", \"zero_area_triangles\": " + std::to_string(stats.zero_area_triangles) +
-            ", \"negative_weights\": " + std::to_string(stats.negative_weights) +
-            ", \"adaptive_solves\": " + std::to_string(stats.adaptive_solves) +
-            ", \"relaxation_sweeps\": " + std::to_string(stats.relaxation_sweeps) +
-            ", \"area_log_mean\": " + json_number(stats.area_log_mean) +
-            ", \"area_max\": " + json_number(stats.area_max) +
-            ", \"angle_mean_deg\": " + json_number(stats.angle_mean_deg) +
-            ", \"angle_max_deg\": " + json_number(stats.angle_max_deg) +
-            ", \"stretch_l2\": " + json_number(stats.stretch_l2) +
-            ", \"stretch_linf\": " + json_number(stats.stretch_linf) +
-            ", \"charts\": " + std::to_string(stats.chart_count) +
-            ", \"atlas_width\": " + std::to_string(stats.atlas_width) +
-            ", \"atlas_height\": " + std::to_string(stats.atlas_height) +
-            ", \"utilization\": " + json_number(stats.utilization) + "}";
     json += ", \"time_ms\": {\"read\": " + json_number(read_ms);
     double library_ms = 0;
     for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {

@@ -11,6 +11,7 @@
 #include "atlas/atlas_surface.h"
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
+#include "atlas/page_packing.h"
 #include "atlas/vertex_welding.h"
 #include "mesh/mesh_validation.h"
 
@@ -53,75 +54,57 @@ void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
                 "next to its triangles for double precision at one texel density");
 }
 
-}  // namespace
-
-AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
-                        const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
-    {
-        PhaseTimer timer(Phase::kValidate, progress, times);
-        check_indices_in_range(mesh);  // everything else an atlas takes as it comes
-        timer.finish();
+// Welds within each part only: parts that touch (or overlap) in space stay apart, so no chart
+// crosses from one mesh of a scene to another.
+std::vector<int32_t> weld_parts(const TriangleMesh& mesh, const AtlasParts& parts,
+                                double tolerance) {
+    if (parts.count() == 1) return weld_vertices(mesh.positions, tolerance);
+    std::vector<int32_t> welded(mesh.positions.size());
+    for (int32_t p = 0; p < parts.count(); ++p) {
+        const auto begin = mesh.positions.begin() + parts.first_vertex[p];
+        const auto end = mesh.positions.begin() + parts.first_vertex[p + 1];
+        const std::vector<int32_t> local =
+            weld_vertices(std::vector<Eigen::Vector3d>(begin, end), tolerance);
+        for (size_t v = 0; v < local.size(); ++v)
+            welded[parts.first_vertex[p] + v] = parts.first_vertex[p] + local[v];
     }
-    PhaseTimer topology_timer(Phase::kTopology, progress, times);
-    const std::vector<int32_t> welded = weld_vertices(mesh.positions, settings.weld_tolerance);
-    const AtlasSurface surface = build_atlas_surface(mesh, welded, pool);
-    topology_timer.finish();
+    return welded;
+}
 
-    PhaseTimer segment_timer(Phase::kSegment, progress, times);
-    SegmentationSettings segmentation;
-    // Charts do not grow across creases sharper than 60 degrees (CAD edges): growing across
-    // them leaves charts that wrap around corners and must be split again; merging may still
-    // join the pieces later where the union maps well (fandisk: 24 -> 6 charts). Creases are
-    // forced seams only when the caller's hard-edge angle says so.
-    segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
-    segmentation.max_normal_deviation_deg = 90.0;
-    const std::vector<int32_t> chart_of_surface = segment_charts(surface, segmentation);
-    // Hard edges are seams inside charts as well.
+// Seams inside charts: hard edges (none at the default angle of 180 degrees).
+std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_angle_deg) {
     std::vector<char> seam(surface.twin.size(), 0);
-    if (settings.hard_edge_angle_deg < 180.0) {
-        const double limit = std::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
-        auto normal = [&](int32_t t) {
-            const Triangle& v = surface.mesh.triangles[t];
-            return (surface.mesh.positions[v[1]] - surface.mesh.positions[v[0]])
-                .cross(surface.mesh.positions[v[2]] - surface.mesh.positions[v[0]])
-                .normalized();
-        };
-        for (size_t h = 0; h < seam.size(); ++h) {
-            const int32_t o = surface.twin[h];
-            seam[h] = o >= 0 && normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
-        }
+    if (hard_edge_angle_deg >= 180.0) return seam;
+    const double limit = std::cos(hard_edge_angle_deg * M_PI / 180.0);
+    auto normal = [&](int32_t t) {
+        const Triangle& v = surface.mesh.triangles[t];
+        return (surface.mesh.positions[v[1]] - surface.mesh.positions[v[0]])
+            .cross(surface.mesh.positions[v[2]] - surface.mesh.positions[v[0]])
+            .normalized();
+    };
+    for (size_t h = 0; h < seam.size(); ++h) {
+        const int32_t o = surface.twin[h];
+        seam[h] = o >= 0 && normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
     }
-    segment_timer.finish();
+    return seam;
+}
 
-    PhaseTimer chart_timer(Phase::kInitialMap, progress, times);
-    ChartLimits limits;
-    limits.target_stretch_l2 = settings.atlas_target_l2;
-    limits.max_stretch_linf = settings.atlas_max_linf;
-    const std::vector<AtlasChart> charts =
-        build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
-    chart_timer.finish();
+// Where each input triangle's corners come from: a chart (its index; the point charts of
+// degenerate triangles with no chart beside them follow the real ones, one per part that has
+// such triangles) and, per corner, the chart vertex.
+struct CornerSources {
+    std::vector<int32_t> chart;                  // per input triangle
+    std::vector<std::array<int32_t, 3>> vertex;  // per input triangle, per corner
+    std::vector<int32_t> point_chart_part;       // per point chart: its part
+};
 
-    PhaseTimer pack_timer(Phase::kPack, progress, times);
-    std::vector<PackInput> inputs;
-    inputs.reserve(charts.size());
-    for (const AtlasChart& chart : charts)
-        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation});
-    PackSettings pack_settings;
-    pack_settings.resolution = settings.atlas_resolution;
-    pack_settings.padding = settings.atlas_padding;
-    const PackResult packed = pack_charts(inputs, pack_settings, pool);
-    refuse_collapsed_atlas(mesh, settings.weld_tolerance, charts, packed);
-    pack_timer.finish();
-
-    // Output: walk the input triangles in order; each corner becomes the output vertex of its
-    // (input vertex, chart, chart vertex), created on first sight.
-    AtlasOutput out;
-    out.width = packed.width;
-    out.height = packed.height;
-    out.chart_count = static_cast<int64_t>(charts.size());
-    for (const AtlasChart& chart : charts) out.adaptive_solves += chart.map.adaptive_solves;
+CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
+                             const std::vector<int32_t>& welded, const AtlasSurface& surface,
+                             const std::vector<AtlasChart>& charts) {
     const int32_t triangle_count = mesh.triangle_count();
-    std::vector<int32_t> chart_of_input(triangle_count, -1), local_of_input(triangle_count, -1);
+    CornerSources sources;
+    sources.chart.assign(triangle_count, -1);
+    sources.vertex.assign(triangle_count, {0, 0, 0});
     // (welded vertex, chart) -> chart vertex, for triangles placed beside a chart; only built
     // when there are such triangles (most meshes have none, and it was most of this step).
     std::map<std::pair<int32_t, int32_t>, int32_t> chart_vertex_of;
@@ -131,8 +114,8 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
         const ChartDisk& disk = charts[c].disk;
         for (size_t t = 0; t < disk.surface_triangle.size(); ++t) {
             const int32_t input = surface.input_triangle[disk.surface_triangle[t]];
-            chart_of_input[input] = static_cast<int32_t>(c);
-            local_of_input[input] = static_cast<int32_t>(t);
+            sources.chart[input] = static_cast<int32_t>(c);
+            sources.vertex[input] = disk.mesh.triangles[t];
         }
         for (size_t v = 0; v < disk.surface_vertex.size(); ++v) {
             const int32_t w = surface.welded_vertex[disk.surface_vertex[v]];
@@ -145,44 +128,54 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     }
     // Triangles set aside: duplicates copy their primary; degenerate ones go on the chart of one
     // of their vertices (their uv triangle is then as degenerate as their 3D one).
-    const int32_t point_chart = static_cast<int32_t>(charts.size());
-    bool point_chart_used = false;
-    std::vector<std::array<int32_t, 3>> aside_corner(triangle_count, {-1, -1, -1});
+    std::vector<int32_t> point_chart_of_part(parts.count(), -1);
     for (size_t i = 0; i < surface.aside_triangles.size(); ++i) {
         const int32_t t = surface.aside_triangles[i];
         const Triangle& v = mesh.triangles[t];
         int32_t chart = -1;
         if (surface.aside_primary[i] >= 0) {
-            chart = chart_of_input[surface.input_triangle[surface.aside_primary[i]]];
+            chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
         } else {
             for (int k = 0; k < 3 && chart < 0; ++k) chart = first_chart_of_welded[welded[v[k]]];
         }
         if (chart < 0) {
-            chart = point_chart;
-            point_chart_used = true;
+            int32_t& point = point_chart_of_part[parts.part_of_triangle(t)];
+            if (point < 0) {
+                point = static_cast<int32_t>(charts.size() + sources.point_chart_part.size());
+                sources.point_chart_part.push_back(parts.part_of_triangle(t));
+            }
+            sources.chart[t] = point;
+            continue;
         }
-        chart_of_input[t] = chart;
+        sources.chart[t] = chart;
+        std::array<int32_t, 3>& corner = sources.vertex[t];
         for (int k = 0; k < 3; ++k) {
             const auto it = chart_vertex_of.find({welded[v[k]], chart});
-            aside_corner[t][k] = it != chart_vertex_of.end() ? it->second : -1;
+            corner[k] = it != chart_vertex_of.end() ? it->second : -1;
         }
         for (int k = 0; k < 3; ++k) {  // a vertex the chart lacks sits on one it has
-            if (aside_corner[t][k] < 0) {
-                aside_corner[t][k] =
-                    std::max({aside_corner[t][0], aside_corner[t][1], aside_corner[t][2]});
-            }
+            if (corner[k] < 0) corner[k] = std::max({corner[0], corner[1], corner[2], 0});
         }
     }
-    if (point_chart_used) ++out.chart_count;
+    return sources;
+}
 
-    // Chart vertices numbered globally (chart offsets, the point chart last); each keeps the
-    // short list of (input vertex, output vertex) pairs seen at it, usually one.
-    std::vector<int64_t> chart_offset(charts.size() + 2, 0);
-    for (size_t c = 0; c < charts.size(); ++c) {
+// Output: walk the input triangles in order; each corner becomes the output vertex of its
+// (input vertex, chart, chart vertex), created on first sight. Parts never share a chart, so
+// each part's output vertices come out contiguous.
+void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
+                 const std::vector<AtlasChart>& charts, const CornerSources& sources,
+                 const PackResult& packed, AtlasOutput& out) {
+    // Chart vertices numbered globally (chart offsets, the point charts last, one vertex
+    // each); each keeps the short list of (input vertex, output vertex) pairs seen at it,
+    // usually one.
+    const size_t all_charts = charts.size() + sources.point_chart_part.size();
+    std::vector<int64_t> chart_offset(all_charts + 1, 0);
+    for (size_t c = 0; c < all_charts; ++c) {
         chart_offset[c + 1] =
-            chart_offset[c] + static_cast<int64_t>(charts[c].disk.mesh.positions.size());
+            chart_offset[c] +
+            (c < charts.size() ? static_cast<int64_t>(charts[c].disk.mesh.positions.size()) : 1);
     }
-    chart_offset[charts.size() + 1] = chart_offset[charts.size()] + 1;
     struct Seen {
         int32_t input_vertex;
         uint32_t output_vertex;
@@ -190,19 +183,19 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     };
     std::vector<int32_t> head(static_cast<size_t>(chart_offset.back()), -1);
     std::vector<Seen> seen;
+    const int32_t triangle_count = mesh.triangle_count();
     out.indices.resize(3 * static_cast<size_t>(triangle_count));
     out.chart_of.resize(triangle_count);
+    out.first_output_vertex.assign(1, 0);
     for (int32_t t = 0; t < triangle_count; ++t) {
-        const int32_t c = chart_of_input[t];
+        while (t == parts.first_triangle[out.first_output_vertex.size()])
+            out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
+        const int32_t c = sources.chart[t];
+        const bool point = c >= static_cast<int32_t>(charts.size());
         out.chart_of[t] = static_cast<uint32_t>(c);
         for (int k = 0; k < 3; ++k) {
             const int32_t input_vertex = mesh.triangles[t][k];
-            int32_t chart_vertex = 0;
-            if (c != point_chart) {
-                chart_vertex = local_of_input[t] >= 0
-                                   ? charts[c].disk.mesh.triangles[local_of_input[t]][k]
-                                   : std::max(0, aside_corner[t][k]);
-            }
+            const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
             const int64_t global = chart_offset[c] + chart_vertex;
             int32_t found = head[global];
             while (found >= 0 && seen[found].input_vertex != input_vertex) found = seen[found].next;
@@ -210,12 +203,175 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
                 seen.push_back({input_vertex, static_cast<uint32_t>(out.uv.size()), head[global]});
                 found = head[global] = static_cast<int32_t>(seen.size() - 1);
                 out.remap.push_back(static_cast<uint32_t>(input_vertex));
-                out.uv.push_back(c == point_chart ? Eigen::Vector2d::Zero()
-                                                  : packed.uv[c][chart_vertex]);
+                out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
             }
             out.indices[3 * static_cast<size_t>(t) + k] = seen[found].output_vertex;
         }
     }
+    while (out.first_output_vertex.size() <= static_cast<size_t>(parts.count()))
+        out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
+}
+
+// The chart records: what the packer did with each chart, and its areas, measured on the
+// output (texel rectangles from the uvs as a texture of the page's size maps them).
+void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
+                   const std::vector<AtlasChart>& charts, const CornerSources& sources,
+                   const PackResult& packed, AtlasOutput& out) {
+    const size_t all_charts = charts.size() + sources.point_chart_part.size();
+    out.charts.assign(all_charts, AtlasChartRecord());
+    std::vector<Eigen::Vector2d> low(all_charts, Eigen::Vector2d::Constant(1e300));
+    std::vector<Eigen::Vector2d> high(all_charts, Eigen::Vector2d::Constant(-1e300));
+    const Eigen::Vector2d size(out.width, out.height);
+    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        AtlasChartRecord& record = out.charts[out.chart_of[t]];
+        record.part = parts.part_of_triangle(t);
+        ++record.triangle_count;
+        const Triangle& v = mesh.triangles[t];
+        record.area_3d += 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                    .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
+                                    .norm();
+        Eigen::Vector2d p[3];
+        for (int k = 0; k < 3; ++k) {
+            p[k] = out.uv[out.indices[3 * static_cast<size_t>(t) + k]].cwiseProduct(size);
+            low[out.chart_of[t]] = low[out.chart_of[t]].cwiseMin(p[k]);
+            high[out.chart_of[t]] = high[out.chart_of[t]].cwiseMax(p[k]);
+        }
+        const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
+        record.area_texels += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    }
+    for (size_t c = 0; c < all_charts; ++c) {
+        AtlasChartRecord& record = out.charts[c];
+        // Texels touched: a chart placed on whole texels starts exactly on a texel's edge,
+        // which rounding to the page's size may leave a hair below.
+        const Eigen::Vector2i lo((low[c].array() + 1e-9).floor().cast<int>());
+        const Eigen::Vector2i hi((high[c].array() - 1e-9).ceil().cast<int>());
+        record.x = lo.x();
+        record.y = lo.y();
+        record.width = std::max(1, hi.x() - lo.x());
+        record.height = std::max(1, hi.y() - lo.y());
+        if (c < charts.size()) {
+            record.page = packed.page[c];
+            record.rotation_deg = packed.rotation_deg[c];
+            record.scaled_down = packed.scaled_down[c] != 0;
+            record.stretch_l2 = charts[c].map.stretch_l2;
+        }
+    }
+}
+
+// The page settings at a density, or, for whole texels at a resolution, of the one page.
+PageSettings page_settings(const Settings& settings) {
+    PageSettings pages;
+    pages.texels_per_unit = settings.atlas_texels_per_unit;
+    const bool at_density = settings.atlas_texels_per_unit > 0;
+    pages.max_width = at_density ? settings.atlas_max_width : settings.atlas_resolution;
+    pages.max_height = at_density ? settings.atlas_max_height : settings.atlas_resolution;
+    pages.padding = settings.atlas_padding;
+    pages.margin = settings.atlas_margin;
+    pages.block_align = settings.atlas_block_align;
+    pages.rotation = settings.atlas_rotation;
+    pages.part_per_page = settings.atlas_mesh_per_page;
+    return pages;
+}
+
+// At a density, onto pages; on whole texels at a resolution, onto one page at the largest
+// density that fits; otherwise into one atlas filling the resolution.
+PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, ThreadPool& pool) {
+    if (settings.atlas_texels_per_unit > 0)
+        return pack_pages(inputs, page_settings(settings), pool);
+    if (settings.atlas_whole_texels) return pack_one_page(inputs, page_settings(settings), pool);
+    PackSettings pack_settings;
+    pack_settings.resolution = settings.atlas_resolution;
+    pack_settings.padding = settings.atlas_padding;
+    pack_settings.rotation = settings.atlas_rotation;
+    return pack_charts(inputs, pack_settings, pool);
+}
+
+// A page must keep room for a chart inside its margin: refused before any work is done.
+void check_page_settings(const Settings& settings) {
+    if (settings.atlas_texels_per_unit <= 0 && !settings.atlas_whole_texels) return;
+    const PageSettings pages = page_settings(settings);
+    const int32_t block = pages.block_align ? 4 : 1;
+    const int32_t margin = (pages.margin + block - 1) / block * block;
+    const int32_t inner = std::min(pages.max_width, pages.max_height) - 2 * margin;
+    if (inner < block || inner <= pages.padding) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "a page of at most " + std::to_string(pages.max_width) + " x " +
+                        std::to_string(pages.max_height) + " texels leaves " +
+                        std::to_string(std::max(inner, 0)) + " texels inside its margin of " +
+                        std::to_string(margin) + ", no more than the padding of " +
+                        std::to_string(pages.padding) + ": no chart fits");
+    }
+}
+
+}  // namespace
+
+int32_t AtlasParts::part_of_triangle(int32_t triangle) const {
+    return static_cast<int32_t>(
+        std::upper_bound(first_triangle.begin(), first_triangle.end(), triangle) -
+        first_triangle.begin() - 1);
+}
+
+AtlasParts single_part(const TriangleMesh& mesh) {
+    AtlasParts parts;
+    parts.first_vertex = {0, mesh.vertex_count()};
+    parts.first_triangle = {0, mesh.triangle_count()};
+    return parts;
+}
+
+AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
+                        const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
+    {
+        PhaseTimer timer(Phase::kValidate, progress, times);
+        check_page_settings(settings);
+        check_indices_in_range(mesh);  // everything else an atlas takes as it comes
+        timer.finish();
+    }
+    PhaseTimer topology_timer(Phase::kTopology, progress, times);
+    const std::vector<int32_t> welded = weld_parts(mesh, parts, settings.weld_tolerance);
+    const AtlasSurface surface = build_atlas_surface(mesh, welded, pool);
+    topology_timer.finish();
+
+    PhaseTimer segment_timer(Phase::kSegment, progress, times);
+    SegmentationSettings segmentation;
+    // Charts do not grow across creases sharper than 60 degrees (CAD edges): growing across
+    // them leaves charts that wrap around corners and must be split again; merging may still
+    // join the pieces later where the union maps well (fandisk: 24 -> 6 charts). Creases are
+    // forced seams only when the caller's hard-edge angle says so.
+    segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
+    segmentation.max_normal_deviation_deg = 90.0;
+    const std::vector<int32_t> chart_of_surface = segment_charts(surface, segmentation);
+    const std::vector<char> seam = hard_edge_seams(surface, settings.hard_edge_angle_deg);
+    segment_timer.finish();
+
+    PhaseTimer chart_timer(Phase::kInitialMap, progress, times);
+    ChartLimits limits;
+    limits.target_stretch_l2 = settings.atlas_target_l2;
+    limits.max_stretch_linf = settings.atlas_max_linf;
+    const std::vector<AtlasChart> charts =
+        build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
+    chart_timer.finish();
+
+    PhaseTimer pack_timer(Phase::kPack, progress, times);
+    const CornerSources sources = corner_sources(mesh, parts, welded, surface, charts);
+    std::vector<PackInput> inputs;
+    inputs.reserve(charts.size());
+    for (const AtlasChart& chart : charts) {
+        const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
+        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation,
+                          parts.part_of_triangle(first)});
+    }
+    const PackResult packed = pack(inputs, settings, pool);
+    refuse_collapsed_atlas(mesh, settings.weld_tolerance, charts, packed);
+    pack_timer.finish();
+
+    AtlasOutput out;
+    out.width = packed.width;
+    out.height = packed.height;
+    out.page_count = packed.page_count;
+    out.texels_per_unit = packed.texels_per_unit;
+    for (const AtlasChart& chart : charts) out.adaptive_solves += chart.map.adaptive_solves;
+    emit_output(mesh, parts, charts, sources, packed, out);
+    record_charts(mesh, parts, charts, sources, packed, out);
     return out;
 }
 

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "core/settings.h"
 #include "core/triangle_mesh.h"
 #include "parallel/thread_pool.h"
 
@@ -26,21 +27,33 @@ struct PackInput {
     const std::vector<Eigen::Vector2d>* uv;  // chart-local uv, in 3D units (uv area = 3D area)
     const std::vector<Triangle>* triangles;
     Eigen::Vector2d rotation;  // the chart's smallest box (smallest_bounding_box)
+    int32_t part = 0;          // the mesh of a scene it belongs to
 };
 
 struct PackSettings {
     int32_t resolution = 1024;  // texels per side of the square
     int32_t padding = 2;        // texels between charts
+    ChartRotation rotation = ChartRotation::kAny;
 };
 
 struct PackResult {
     std::vector<std::vector<Eigen::Vector2d>> uv;  // per chart, per chart vertex, in [0,1]^2
-    int32_t width = 0, height = 0;                 // the atlas in texels
+    std::vector<int32_t> page;                     // per chart
+    std::vector<double> rotation_deg;              // per chart: its map's counter-clockwise turn
+    std::vector<char> scaled_down;  // per chart: below the atlas's density to fit a page
+    int32_t width = 0, height = 0;  // the atlas (every page) in texels
+    int32_t page_count = 1;
+    double texels_per_unit = 0;  // texels per unit of the charts' uvs (3D units)
 };
 
 // Charts are rasterised, and layouts tried, on `pool`; the result does not depend on its size.
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
                        ThreadPool& pool);
+
+// The counter-clockwise turn, in degrees in [0, 360), of a chart turned by `rotation` (cos,
+// sin: its points p go to (r.x p.x + r.y p.y, -r.y p.x + r.x p.y), a clockwise turn) and then by
+// `quarters` quarter turns counter-clockwise.
+double turn_degrees(const Eigen::Vector2d& rotation, int quarters);
 
 // A chart's smallest bounding box: the rotation (cos, sin) that aligns it with the axes, and how
 // well the chart fills it, uv area / box area, in (0, 1]. Arches, rings and L-shapes fill it

@@ -33,6 +33,7 @@ enum class ErrorCode : int32_t {
     kInvalidOperation = 20,
     kInternal = 21,
     kOpenMesh = 22,
+    kInvalidTransform = 23,
 };
 
 class Error : public std::runtime_error {

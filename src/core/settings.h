@@ -13,6 +13,9 @@ enum class IterationMode { kAccumulate, kReapply };
 enum class BoundaryShape { kCircle, kSquare };
 enum class SphereMethod { kLiteral, kRobust };
 enum class SphereUv { kNone, kOctahedral };
+// Which turns the atlas's packing may give a chart: any angle (its smallest box, then quarter
+// turns), quarter turns of its map only, or none.
+enum class ChartRotation { kAny = 0, kQuarter = 1, kNone = 2 };
 
 struct Settings {
     Domain domain = Domain::kDisk;
@@ -41,6 +44,14 @@ struct Settings {
     double hard_edge_angle_deg = 180;  // dihedral angle above which an edge is a seam (180: off)
     double atlas_target_l2 = 1.01;     // charts are split until the atlas's L2 stretch meets it
     double atlas_max_linf = 2.9;       // largest stretch allowed in any chart
+    // Texels per world unit; 0: the density that fills atlas_resolution (one page).
+    double atlas_texels_per_unit = 0;
+    int32_t atlas_max_width = 4096, atlas_max_height = 4096;  // pages, with a density
+    ChartRotation atlas_rotation = ChartRotation::kAny;
+    int32_t atlas_margin = 0;          // texels at the page border, with a density
+    bool atlas_block_align = false;    // charts on whole 4x4 blocks, with a density
+    bool atlas_mesh_per_page = false;  // a scene's mesh on one page, with a density
+    bool atlas_whole_texels = false;   // without a density: whole texels on one page
 };
 
 }  // namespace raps

@@ -2,7 +2,8 @@
 one vt per vertex; one JSON object on stdout; clear errors, exit codes, and no output file on
 failure. Its statistics are cross-checked against the project's reference metrics tool,
 shared/tools/uvmetrics.py. With --sphere: the points on the unit sphere as v lines, and with
---sphere-uv octahedral one vt per output vertex (the seams' vertices once per side).
+--sphere-uv octahedral one vt per output vertex (the seams' vertices once per side). With --atlas
+and several inputs: one atlas, one `o` per input in order, per input, page and chart figures.
 
 usage: test_raps_param.py RAPS_PARAM SHARED_DATA_DIR
 """
@@ -235,7 +236,9 @@ class RapsParamTest(unittest.TestCase):
                      '--iteration-mode', '--boundary', '--max-triangles', '--max-memory-mb',
                      '--version',
                      '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
-                     '--tolerance', '--max-sweeps', '--alpha-steps'):
+                     '--tolerance', '--max-sweeps', '--alpha-steps', '--texels-per-unit',
+                     '--max-size', '--rotate', '--margin', '--block-align', '--mesh-per-page',
+                     '--whole-texels', '--lightmap'):
             self.assertIn(flag, out)
 
     def test_sphere_writes_the_points_on_the_unit_sphere(self):
@@ -309,6 +312,126 @@ class RapsParamTest(unittest.TestCase):
         for args in (['--sphere-method', 'bogus'], ['--sphere-uv', 'cube'], ['--damping', '2'],
                      ['--threads', '-1'], ['--max-sweeps', '1.5']):
             rc, out, err = run('--sphere', self.mesh('spot.obj'), '-o', self.out, *args)
+            self.assertEqual(rc, 2, args)
+            self.assertIn('error', json.loads(out))
+            self.assertFalse(os.path.exists(self.out))
+
+    def objects(self, path):
+        """The OBJ's objects in order: (name, v, vt, f) with v and vt indices made 0-based and
+        local to the object."""
+        objects = []
+        v_seen = vt_seen = 0
+        with open(path) as fh:
+            for line in fh:
+                parts = line.split()
+                if not parts:
+                    continue
+                if parts[0] == 'o':
+                    if objects:
+                        v_seen += len(objects[-1][1])
+                        vt_seen += len(objects[-1][2])
+                    objects.append((parts[1], [], [], []))
+                elif parts[0] == 'v':
+                    objects[-1][1].append(tuple(map(float, parts[1:4])))
+                elif parts[0] == 'vt':
+                    objects[-1][2].append(tuple(map(float, parts[1:3])))
+                elif parts[0] == 'f':
+                    corners = [tuple(int(x) for x in c.split('/')) for c in parts[1:]]
+                    objects[-1][3].append([(a - 1 - v_seen, b - 1 - vt_seen) for a, b in corners])
+        return objects
+
+    def test_atlas_of_several_inputs_writes_one_object_per_input_in_order(self):
+        names = ['teapot.obj', 'spot.obj', 'teapot.obj']
+        rc, out, err = run('--atlas', *[self.mesh(n) for n in names], '-o', self.out,
+                           '--threads', '2', '--padding', '2')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        objects = self.objects(self.out)
+        self.assertEqual([o[0] for o in objects], ['teapot', 'spot', 'teapot'])
+        for name, (obj_name, v, vt, f) in zip(names, objects):
+            v_in, _, f_in = obj_records(self.mesh(name))
+            self.assertEqual(v, v_in)  # every input's vertices, in order
+            self.assertEqual([[c[0] for c in face] for face in f],
+                             [[c[0] - 1 for c in face] for face in f_in])
+            for face in f:
+                for _, t in face:
+                    self.assertTrue(0 <= t < len(vt))  # an object's faces use its own vt
+            for u, w in vt:
+                self.assertTrue(0.0 <= u <= 1.0 and 0.0 <= w <= 1.0)
+        self.assertEqual([i['input'] for i in d['inputs']], [self.mesh(n) for n in names])
+        self.assertEqual([i['triangles'] for i in d['inputs']], [len(o[3]) for o in objects])
+        self.assertEqual([i['output_vertices'] for i in d['inputs']], [len(o[2]) for o in objects])
+        st = d['stats']
+        self.assertEqual(len(d['charts']), st['charts'])
+        self.assertEqual(sum(i['charts'] for i in d['inputs']), st['charts'])
+        self.assertEqual(len(d['pages']), st['pages'])
+        self.assertEqual(max(st['atlas_width'], st['atlas_height']), 1024)
+        # One density: the two teapots get the same texels.
+        self.assertAlmostEqual(d['inputs'][0]['area_texels'] / d['inputs'][2]['area_texels'], 1.0,
+                               delta=0.02)
+        ref = json.loads(subprocess.run(['/usr/bin/python3', os.path.join(DATA, '..', 'tools', 'uvmetrics.py'),
+                                         '--raster', '2048', self.out], capture_output=True, text=True).stdout)
+        self.assertEqual(ref['n_flipped'], 0)
+        self.assertLess(ref['uv_overlap_fraction'], 0.002)  # raster noise only
+
+    def test_lightmap_packs_at_a_density_on_pages_within_the_maximum(self):
+        rc, out, err = run('--atlas', self.mesh('teapot.obj'), self.mesh('spot.obj'), '-o', self.out,
+                           '--lightmap', '--texels-per-unit', '40', '--max-size', '256')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        s, st = d['settings'], d['stats']
+        self.assertEqual((s['texels_per_unit'], s['max_width'], s['max_height'], s['rotate'],
+                          s['padding'], s['mesh_per_page']), (40, 256, 256, 'quarter', 2, True))
+        self.assertEqual(st['texels_per_unit'], 40)
+        self.assertGreaterEqual(st['pages'], 2)
+        self.assertLessEqual(max(st['atlas_width'], st['atlas_height']), 256)
+        page_of_input = {}
+        for chart in d['charts']:
+            self.assertEqual(chart['rotation_deg'] % 90, 0)
+            self.assertEqual(page_of_input.setdefault(chart['input'], chart['page']), chart['page'])
+            self.assertLessEqual(chart['x'] + chart['width'], st['atlas_width'])
+            self.assertLessEqual(chart['y'] + chart['height'], st['atlas_height'])
+            if not chart['scaled_down']:
+                self.assertAlmostEqual(chart['area_texels'] / chart['area_3d'], 1600, delta=32)
+        for page in d['pages']:
+            self.assertTrue(0 < page['utilization'] <= 1)
+
+    def test_lightmap_at_a_resolution_packs_whole_texels_on_one_page(self):
+        rc, out, err = run('--atlas', self.mesh('teapot.obj'), self.mesh('spot.obj'), '-o', self.out,
+                           '--lightmap', '--resolution', '256')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        s, st = d['settings'], d['stats']
+        self.assertEqual((s['whole_texels'], s['texels_per_unit'], s['rotate'], s['padding']),
+                         (True, 0, 'quarter', 2))
+        self.assertEqual((st['pages'], st['scaled_down_charts']), (1, 0))
+        self.assertLessEqual(max(st['atlas_width'], st['atlas_height']), 256)
+        self.assertGreater(st['texels_per_unit'], 0)
+        for chart in d['charts']:
+            self.assertEqual(chart['rotation_deg'] % 90, 0)
+            self.assertAlmostEqual(chart['area_texels'] / chart['area_3d'], st['texels_per_unit'] ** 2,
+                                   delta=0.02 * st['texels_per_unit'] ** 2)
+
+    def test_block_alignment_margin_and_no_rotation_are_echoed_and_kept(self):
+        rc, out, err = run('--atlas', self.mesh('spot.obj'), '-o', self.out, '--texels-per-unit', '200',
+                           '--max-size', '512', '--block-align', '--margin', '3', '--rotate', 'none')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        s, st = d['settings'], d['stats']
+        self.assertEqual((s['block_align'], s['margin'], s['rotate']), (True, 3, 'none'))
+        self.assertEqual((st['atlas_width'] % 4, st['atlas_height'] % 4), (0, 0))
+        for chart in d['charts']:
+            self.assertEqual(chart['rotation_deg'], 0)
+            self.assertGreaterEqual(min(chart['x'], chart['y']), 4)  # 3 rounded up to a block
+            self.assertLessEqual(chart['x'] + chart['width'] + 4, st['atlas_width'])
+
+    def test_scene_usage_errors_exit_2(self):
+        spot, teapot = self.mesh('spot.obj'), self.mesh('teapot.obj')
+        for args in ([spot, teapot, '-o', self.out],  # several inputs need --atlas
+                     ['--atlas', spot, '-o', self.out, '--rotate', 'sideways'],
+                     ['--atlas', spot, '-o', self.out, '--max-size', '8'],
+                     ['--atlas', spot, '-o', self.out, '--texels-per-unit', '-2']):
+            rc, out, err = run(*args)
             self.assertEqual(rc, 2, args)
             self.assertIn('error', json.loads(out))
             self.assertFalse(os.path.exists(self.out))

@@ -878,6 +878,64 @@ static class RapsTests
                "the version string");
     }
 
+    // Several meshes in one atlas: each mesh's share reads as its own result, a copy scaled by 2
+    // gets four times the texels, pages at a density stay within the maximum, bad transforms
+    // and scenes are refused.
+    static void SceneOfSeveralMeshes()
+    {
+        Off cap = FanDisk();
+        using (var small = new Mesh(cap.Xyz, cap.Indices))
+        using (var big = new Mesh(cap.Xyz, cap.Indices))
+        using (var settings = new Settings())
+        {
+            big.SetTransform(new double[] { 2, 0, 0, 4, 0, 2, 0, 0, 0, 0, 2, 0 });
+            settings.SetInt(Param.Domain, (long)Domain.Atlas);
+            using (Result result = Library.ParameterizeScene(new[] { small, big }, settings))
+            {
+                Expect(result.MeshCount == 2, "two meshes");
+                uint[] remap = result.GetVertexRemap(), indices = result.GetIndices();
+                ulong nextVertex = 0;
+                for (int m = 0; m < 2; m++)
+                {
+                    MeshRange range = result.GetMeshRange(m);
+                    Expect(range.FirstVertex == nextVertex && range.IndexCount ==
+                                                                  (ulong)cap.Indices.Length,
+                           "mesh " + m + "'s range");
+                    for (int i = 0; i < cap.Indices.Length; i++)
+                        Expect(remap[range.FirstVertex + indices[(int)range.FirstIndex + i]] ==
+                                   cap.Indices[i],
+                               "mesh " + m + "'s own input vertices");
+                    nextVertex += range.VertexCount;
+                }
+                Expect(nextVertex == (ulong)result.VertexCount, "the ranges cover the output");
+                Chart[] charts = result.GetCharts();
+                double smallTexels = charts.Where(c => c.Mesh == 0).Sum(c => c.AreaTexels);
+                double bigTexels = charts.Where(c => c.Mesh == 1).Sum(c => c.AreaTexels);
+                Expect(Math.Abs(bigTexels / smallTexels / 4 - 1) < 0.02, "4x the texels");
+                ExpectFailure(Status.InvalidArgument, () => result.GetMeshRange(2));
+            }
+            settings.SetFloat(Param.AtlasTexelsPerUnit, 30);
+            settings.SetInt(Param.AtlasMaxWidth, 64);
+            settings.SetInt(Param.AtlasMaxHeight, 64);
+            settings.SetInt(Param.AtlasRotation, (long)Rotation.None);
+            using (Result result = Library.ParameterizeScene(new[] { small, big, small }, settings))
+            {
+                Stats stats = result.GetStats();
+                Expect(stats.PageCount >= 2 && stats.AtlasWidth <= 64 && stats.AtlasHeight <= 64,
+                       "pages within 64 x 64");
+                Expect(result.GetCharts().All(c => c.Page < stats.PageCount &&
+                                                   c.RotationDeg == 0),
+                       "charts on their pages, unturned");
+            }
+            ExpectFailure(Status.InvalidTransform,
+                          () => small.SetTransform(new double[] { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0,
+                                                                  0, 0 }));
+            using (var disk = new Settings())
+                ExpectFailure(Status.InvalidArgument,
+                              () => Library.ParameterizeScene(new[] { small }, disk).Dispose());
+        }
+    }
+
     static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -925,6 +983,7 @@ static class RapsTests
             new KeyValuePair<string, Action>("disposal is safe", DisposalIsSafe),
             new KeyValuePair<string, Action>("layout and version match the library",
                                              LayoutAndVersionMatchTheLibrary),
+            new KeyValuePair<string, Action>("scene of several meshes", SceneOfSeveralMeshes),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

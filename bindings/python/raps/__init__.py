@@ -11,6 +11,12 @@ A thin, safe layer over libraps's C ABI (include/raps.h is the reference):
     # A closed genus-0 mesh onto the unit sphere (uvs too with sphere_uv=SphereUv.OCTAHEDRAL):
     points = raps.parameterize(closed, raps.Settings(domain=raps.Domain.SPHERE)).sphere_points()
 
+    # Several meshes in one atlas at one texel density (each placed by its 3x4 transform):
+    mesh.set_transform([[2, 0, 0, 5], [0, 2, 0, 0], [0, 0, 2, 0]])
+    scene = raps.parameterize_scene([mesh, other], raps.Settings(domain="atlas"))
+    first = scene.mesh_range(0)                      # its output vertices and indices
+    charts = scene.charts()                          # mesh, page, texel rectangle, ... per chart
+
 Handles (Mesh, Settings, Result) own their native object: close() or a `with` block frees it at
 once, and garbage collection frees it otherwise; either way exactly once. Errors raise
 raps.Error with the status, its name and the library's message.
@@ -37,9 +43,10 @@ except ImportError:  # plain sequences in, lists out
     numpy = None
 
 __all__ = [
-    "Boundary", "Domain", "Error", "IterationMode", "Mesh", "Monitor", "Param", "ParamInfo",
-    "Phase", "Result", "Settings", "SphereMethod", "SphereUv", "Stats", "Status", "Weights",
-    "parameterize", "version", "version_string", "library_path",
+    "Boundary", "Chart", "Domain", "Error", "IterationMode", "Mesh", "MeshRange", "Monitor",
+    "Param", "ParamInfo", "Phase", "Result", "Rotation", "Settings", "SphereMethod", "SphereUv",
+    "Stats", "Status", "Weights", "parameterize", "parameterize_scene", "version",
+    "version_string", "library_path",
 ]
 
 
@@ -113,6 +120,7 @@ Boundary = _enum("Boundary", "RAPS_BOUNDARY_")
 SphereUv = _enum("SphereUv", "RAPS_SPHERE_UV_")
 SphereMethod = _enum("SphereMethod", "RAPS_SPHERE_",
                      skip=[name for name in vars(_native) if name.startswith("RAPS_SPHERE_UV_")])
+Rotation = _enum("Rotation", "RAPS_ROTATION_")
 # RAPS_PHASE_COUNT is the number of phases, not a phase.
 Phase = _enum("Phase", "RAPS_PHASE_", skip=("RAPS_PHASE_COUNT",))
 
@@ -125,6 +133,7 @@ _PARAM_VALUES = {
     Param.BOUNDARY: Boundary,
     Param.SPHERE_METHOD: SphereMethod,
     Param.SPHERE_UV: SphereUv,
+    Param.ATLAS_ROTATION: Rotation,
 }
 
 
@@ -303,6 +312,21 @@ class Mesh(_Handle):
             status = _lib.raps_mesh_set_indices_u32(self._ptr(), buffer, len(flat))
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
+    def set_transform(self, matrix):
+        """Places the mesh in world units for parameterize_scene: a 3x4 matrix [A | t] (a
+        4x4 one's last row is ignored) as rows or 12 numbers, row-major; None sets the
+        identity. A non-finite or singular one raises Error(Status.INVALID_TRANSFORM)."""
+        if matrix is None:
+            status = _lib.raps_mesh_set_transform(self._ptr(), None)
+        else:
+            rows = [list(row) for row in matrix] if not isinstance(matrix[0], numbers.Number) \
+                else [list(matrix[4 * r:4 * r + 4]) for r in range(3)]
+            if len(rows) not in (3, 4) or any(len(row) != 4 for row in rows[:3]):
+                raise ValueError("raps: a transform is 3x4 (or 4x4), row-major")
+            flat = [float(value) for row in rows[:3] for value in row]
+            status = _lib.raps_mesh_set_transform(self._ptr(), (ctypes.c_double * 12)(*flat))
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
     @property
     def vertex_count(self):
         return _lib.raps_mesh_vertex_count(self._ptr())
@@ -400,6 +424,16 @@ for _param in Param:
 Stats = collections.namedtuple(
     "Stats", [name for name, _ in _native.raps_stats._fields_
               if name not in ("struct_size", "reserved")])
+
+
+# One chart of an atlas (raps_chart in raps.h), scaled_down for its RAPS_CHART_SCALED_DOWN flag.
+Chart = collections.namedtuple(
+    "Chart", [name for name, _ in _native.raps_chart._fields_
+              if name not in ("struct_size", "flags")] + ["scaled_down"])
+
+# Where one input mesh lies in a result's output.
+MeshRange = collections.namedtuple("MeshRange",
+                                   "first_vertex vertex_count first_index index_count")
 
 
 # The copy functions take a const result and store no message: say what the result lacks.
@@ -513,6 +547,33 @@ class Result(_Handle):
         """Wall-clock milliseconds spent in a Phase by the run that filled this result."""
         return _lib.raps_result_phase_ms(self._ptr(), int(phase))
 
+    @property
+    def mesh_count(self):
+        """Input meshes the result holds: 1 after parameterize, len(meshes) after
+        parameterize_scene."""
+        return _lib.raps_result_mesh_count(self._ptr())
+
+    def mesh_range(self, mesh):
+        """MeshRange of input mesh `mesh`: its output vertices and indices (its indices number
+        its own output vertices from 0, its remap its own input vertices)."""
+        values = [ctypes.c_uint64() for _ in range(4)]
+        _check(_lib.raps_result_mesh_range(self._ptr(), mesh, *map(ctypes.byref, values)),
+               _lib.raps_result_last_error, self._pointer)
+        return MeshRange(*(value.value for value in values))
+
+    def charts(self):
+        """Atlas domain: a Chart per chart id (its mesh, page, texel rectangle, rotation,
+        triangles, areas, L2 stretch, whether it was shrunk to fit a page)."""
+        charts = []
+        for index in range(self.stats().chart_count):
+            native = _native.raps_chart()
+            native.struct_size = ctypes.sizeof(native)
+            _check(_lib.raps_result_get_chart(self._ptr(), index, ctypes.byref(native)),
+                   _lib.raps_result_last_error, self._pointer)
+            fields = [getattr(native, name) for name in Chart._fields[:-1]]
+            charts.append(Chart(*fields, bool(native.flags & _native.RAPS_CHART_SCALED_DOWN)))
+        return charts
+
 
 def parameterize(mesh, settings=None, progress=None, result=None):
     """Computes the map of mesh with settings (None: the defaults) and returns a Result.
@@ -524,11 +585,31 @@ def parameterize(mesh, settings=None, progress=None, result=None):
     KeyboardInterrupt) cancels the run and is raised here. result, if given, is refilled
     instead of creating one. mesh and settings are only read: threads may share them (the
     library runs without the GIL), each with its own result."""
+    return _run(lambda settings_ptr, result_ptr:
+                _lib.raps_parameterize(mesh._ptr(), settings_ptr, result_ptr),
+                settings, progress, result)
+
+
+def parameterize_scene(meshes, settings, progress=None, result=None):
+    """Packs several meshes into one atlas at one texel density (settings must have
+    domain=Domain.ATLAS); each mesh is placed by its transform (Mesh.set_transform). The
+    Result holds the meshes' outputs one after another: mesh_range(i) says where mesh i's
+    lies, charts() describes every chart. progress and result as for parameterize."""
+    meshes = list(meshes)
+    handles = (ctypes.POINTER(_native.raps_mesh) * max(1, len(meshes)))(
+        *[mesh._ptr() for mesh in meshes])
+    return _run(lambda settings_ptr, result_ptr:
+                _lib.raps_parameterize_scene(handles, len(meshes), settings_ptr, result_ptr),
+                settings, progress, result)
+
+
+def _run(call_native, settings, progress, result):
+    """Runs call_native(settings pointer, result pointer) with the progress callback, if any,
+    on a private copy of the settings."""
     if result is None:
         result = Result()
     if progress is None:
-        status = _lib.raps_parameterize(mesh._ptr(), settings._ptr() if settings else None,
-                                        result._ptr())
+        status = call_native(settings._ptr() if settings else None, result._ptr())
         _check(status, _lib.raps_result_last_error, result._pointer)
         return result
 
@@ -554,7 +635,7 @@ def parameterize(mesh, settings=None, progress=None, result=None):
     with (settings.clone() if settings else Settings()) as private:
         _check(_lib.raps_settings_set_progress(private._ptr(), callback, None),
                _lib.raps_settings_last_error, private._pointer)
-        status = _lib.raps_parameterize(mesh._ptr(), private._ptr(), result._ptr())
+        status = call_native(private._ptr(), result._ptr())
     if raised:
         raise raised[0]
     _check(status, _lib.raps_result_last_error, result._pointer)

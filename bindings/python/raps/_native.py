@@ -64,6 +64,9 @@ RAPS_ERROR_INVALID_OPERATION = 20
 RAPS_ERROR_INTERNAL = 21
 #   Sphere domain: the mesh is not closed (it has boundary loops; the message counts them).
 RAPS_ERROR_OPEN_MESH = 22
+#   raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
+#   (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
+RAPS_ERROR_INVALID_TRANSFORM = 23
 
 #   int. The parameter domain. Default RAPS_DOMAIN_DISK.
 RAPS_PARAM_DOMAIN = 1
@@ -133,6 +136,54 @@ RAPS_PARAM_ATLAS_MAX_L2_STRETCH = 36
 #   float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
 #   larger ones are split. Default 2.9.
 RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37
+#   float, texels per world unit (positions' units, after raps_mesh_set_transform), >= 0.
+#   0: the density that fills RAPS_PARAM_ATLAS_RESOLUTION with one page (the atlas's longer
+#   side is exactly that many texels; raps_stats.texels_per_unit reports the density found).
+#   Above 0: every chart gets this density (a chart's area in texels is its surface area
+#   times the square of it) and is placed on whole texels, on pages of at most
+#   RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
+#   do not fit a page go on further pages, and a chart larger than a page is shrunk until it
+#   fits (RAPS_CHART_SCALED_DOWN, raps_stats.scaled_down_charts), never dropped. Then the
+#   padding holds exactly at the final texels: at least RAPS_PARAM_ATLAS_PADDING texels lie
+#   between the texels that any two charts' triangles touch (2 keeps bilinear lookups of two
+#   charts from sharing a texel). Default 0.
+RAPS_PARAM_ATLAS_TEXELS_PER_UNIT = 38
+#   int, 16..16384. With a density: the largest page width and height in texels. Every page
+#   of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+#   margin), up to these. A run whose pages leave no more than the padding inside the margin
+#   is refused (INVALID_ARGUMENT). Default 4096.
+RAPS_PARAM_ATLAS_MAX_WIDTH = 39
+RAPS_PARAM_ATLAS_MAX_HEIGHT = 40
+#   int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY.
+RAPS_PARAM_ATLAS_ROTATION = 41
+#   int, 0..1024. With a density (or whole texels): texels kept free between the charts and
+#   each page's border (rounded up to whole blocks with block alignment). Default 0.
+RAPS_PARAM_ATLAS_MARGIN = 42
+#   int, 0 or 1. With a density (or whole texels): 1 places charts on whole 4x4 blocks of
+#   texels, no block shared by two charts (block compression then never mixes them), padding
+#   rounded up to whole blocks. Default 0.
+RAPS_PARAM_ATLAS_BLOCK_ALIGN = 43
+#   int, 0 or 1. With a density: 1 puts all charts of one mesh of a scene on one page (as a
+#   lightmap needs), shrinking a mesh's charts together when they do not fit one page.
+#   Default 0.
+RAPS_PARAM_ATLAS_MESH_PER_PAGE = 44
+#   int, 0 or 1. Without a density (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT 0): 1 places the charts
+#   as a density does (whole texels, the padding exact at the final texels, margin, block
+#   alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
+#   RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
+#   chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
+#   size. The atlas may then be smaller than the resolution on both sides. Refused
+#   (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
+RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45
+
+# RAPS_PARAM_ATLAS_ROTATION values
+#   Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
+#   that packs best.
+RAPS_ROTATION_ANY = 0
+#   Quarter turns of the chart's map only (0, 90, 180 or 270 degrees).
+RAPS_ROTATION_QUARTER = 1
+#   None: each chart keeps its map's orientation.
+RAPS_ROTATION_NONE = 2
 
 # RAPS_PARAM_DOMAIN values
 #   A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
@@ -235,6 +286,11 @@ RAPS_PHASE_PACK = 6
 #   number of phases in this version
 RAPS_PHASE_COUNT = 7
 
+# raps_chart.flags bits
+#   The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
+#   texels per world unit are below raps_stats.texels_per_unit).
+RAPS_CHART_SCALED_DOWN = 1
+
 raps_status = ctypes.c_int32
 raps_param = ctypes.c_int32
 # Progress phases, reported to the progress callback and timed in raps_result_phase_ms.
@@ -308,6 +364,47 @@ class raps_stats(ctypes.Structure):
         # RAPS_PARAM_THREADS (the hardware's threads for 0). It describes the run, not the map
         # (which is the same bits for any count), and may differ between runs of one input.
         ('threads_used', ctypes.c_uint64),
+        # Atlas domain (0 otherwise). Pages: every page is atlas_width x atlas_height texels; a
+        # chart's page is in its record (raps_result_get_chart); 1 unless
+        # RAPS_PARAM_ATLAS_TEXELS_PER_UNIT is set. utilization is then the mean over pages.
+        ('page_count', ctypes.c_uint64),
+        # charts shrunk below the density to fit a page
+        ('scaled_down_charts', ctypes.c_uint64),
+        # the atlas's density: texels per world (position) unit
+        ('texels_per_unit', ctypes.c_double),
+    ]
+
+
+# One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
+# struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+# like the map, the records are the same bits for every RAPS_PARAM_THREADS value.
+class raps_chart(ctypes.Structure):
+    _fields_ = [
+        ('struct_size', ctypes.c_uint32),
+        # the input mesh it belongs to (0 for raps_parameterize)
+        ('mesh', ctypes.c_uint32),
+        # 0 .. raps_stats.page_count - 1
+        ('page', ctypes.c_uint32),
+        # RAPS_CHART_* bits
+        ('flags', ctypes.c_uint32),
+        # The texels its uv triangles touch on its page (a texture of atlas_width x atlas_height
+        # texels mapping the uvs): columns x .. x + width - 1, rows y .. y + height - 1, row 0 at
+        # v = 0.
+        ('x', ctypes.c_uint32),
+        ('y', ctypes.c_uint32),
+        ('width', ctypes.c_uint32),
+        ('height', ctypes.c_uint32),
+        # counter-clockwise turn the packing gave the chart, [0, 360)
+        ('rotation_deg', ctypes.c_double),
+        # output triangles with this chart id
+        ('triangle_count', ctypes.c_uint64),
+        # surface area, world units squared
+        ('area_3d', ctypes.c_double),
+        # uv area, texels squared
+        ('area_texels', ctypes.c_double),
+        # Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
+        # that gathers degenerate triangles with no chart beside them.
+        ('stretch_l2', ctypes.c_double),
     ]
 
 
@@ -341,6 +438,7 @@ FUNCTIONS = {
     'raps_mesh_set_positions_f64': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_mesh_set_indices_u16': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint16), ctypes.c_size_t]),
     'raps_mesh_set_indices_u32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_mesh_set_transform': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double)]),
     'raps_mesh_vertex_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_triangle_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_last_error': (ctypes.c_char_p, [ctypes.POINTER(raps_mesh)]),
@@ -357,6 +455,7 @@ FUNCTIONS = {
     'raps_result_create': (raps_status, [ctypes.POINTER(ctypes.POINTER(raps_result))]),
     'raps_result_destroy': (None, [ctypes.POINTER(raps_result)]),
     'raps_parameterize': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(raps_settings), ctypes.POINTER(raps_result)]),
+    'raps_parameterize_scene': (raps_status, [ctypes.POINTER(ctypes.POINTER(raps_mesh)), ctypes.c_size_t, ctypes.POINTER(raps_settings), ctypes.POINTER(raps_result)]),
     'raps_result_last_error': (ctypes.c_char_p, [ctypes.POINTER(raps_result)]),
     'raps_result_vertex_count': (ctypes.c_size_t, [ctypes.POINTER(raps_result)]),
     'raps_result_index_count': (ctypes.c_size_t, [ctypes.POINTER(raps_result)]),
@@ -364,10 +463,13 @@ FUNCTIONS = {
     'raps_result_copy_uvs_f64': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_result_copy_sphere_points_f32': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_float), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_result_copy_sphere_points_f64': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),
+    'raps_result_mesh_count': (ctypes.c_size_t, [ctypes.POINTER(raps_result)]),
+    'raps_result_mesh_range': (raps_status, [ctypes.POINTER(raps_result), ctypes.c_size_t, ctypes.POINTER(ctypes.c_uint64), ctypes.POINTER(ctypes.c_uint64), ctypes.POINTER(ctypes.c_uint64), ctypes.POINTER(ctypes.c_uint64)]),
     'raps_result_copy_indices_u32': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_result_copy_vertex_remap': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_result_copy_chart_ids': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_result_get_stats': (raps_status, [ctypes.POINTER(raps_result), ctypes.POINTER(raps_stats)]),
+    'raps_result_get_chart': (raps_status, [ctypes.POINTER(raps_result), ctypes.c_size_t, ctypes.POINTER(raps_chart)]),
     'raps_result_phase_ms': (ctypes.c_double, [ctypes.POINTER(raps_result), raps_phase]),
 }
 

@@ -357,6 +357,86 @@ class Atlas(unittest.TestCase):
             self.assertEqual(len(result.chart_ids()), result.triangle_count)
 
 
+class Scene(unittest.TestCase):
+    """Several meshes in one atlas (parameterize_scene): an open cap and the icosahedron, the
+    cap twice, once scaled by 2."""
+
+    def meshes(self):
+        cap, ico = raps.Mesh(*fan_disk()), raps.Mesh(*icosahedron())
+        big = raps.Mesh(*fan_disk())
+        big.set_transform([[2, 0, 0, 0], [0, 2, 0, 0], [0, 0, 2, 3], [0, 0, 0, 1]])
+        return cap, ico, big
+
+    def test_each_mesh_reads_as_its_own_result_at_one_density(self):
+        cap, ico, big = self.meshes()
+        with raps.Settings(domain="atlas", threads=1, atlas_padding=2) as settings:
+            result = raps.parameterize_scene([cap, ico, big], settings)
+        self.assertEqual(result.mesh_count, 3)
+        remap, indices = list(result.vertex_remap()), rows(result.indices())
+        next_vertex = 0
+        for m, (mesh, (_, triangles)) in enumerate(zip([cap, ico, big],
+                                                       [fan_disk(), icosahedron(), fan_disk()])):
+            where = result.mesh_range(m)
+            self.assertEqual(where.first_vertex, next_vertex)
+            self.assertEqual(where.index_count, 3 * len(triangles))
+            own = indices[where.first_index // 3:(where.first_index + where.index_count) // 3]
+            for output, triangle in zip(own, triangles):
+                self.assertEqual(tuple(remap[where.first_vertex + i] for i in output),
+                                 tuple(triangle))
+            next_vertex += where.vertex_count
+        self.assertEqual(next_vertex, result.vertex_count)
+        charts = result.charts()
+        self.assertEqual(len(charts), result.stats().chart_count)
+        self.assertEqual(sorted({chart.mesh for chart in charts}), [0, 1, 2])
+        texels = [sum(c.area_texels for c in charts if c.mesh == m) for m in (0, 2)]
+        self.assertAlmostEqual(texels[1] / texels[0], 4.0, delta=0.08)  # scaled by 2
+        density = result.stats().texels_per_unit ** 2
+        for chart in charts:
+            self.assertAlmostEqual(chart.area_texels / chart.area_3d / density, 1.0, delta=0.02)
+        for mesh in (cap, ico, big):
+            mesh.close()
+        result.close()
+
+    def test_pages_at_a_density_and_the_rotation_policy(self):
+        cap, ico, big = self.meshes()
+        with raps.Settings(domain="atlas", atlas_texels_per_unit=40.0, atlas_max_width=64,
+                           atlas_max_height=64, atlas_rotation="none") as settings:
+            self.assertEqual(settings.atlas_rotation, raps.Rotation.NONE)
+            result = raps.parameterize_scene([cap, ico, big], settings)
+        stats = result.stats()
+        self.assertGreaterEqual(stats.page_count, 2)
+        self.assertLessEqual(max(stats.atlas_width, stats.atlas_height), 64)
+        self.assertEqual(stats.texels_per_unit, 40.0)
+        for chart in result.charts():
+            self.assertLess(chart.page, stats.page_count)
+            self.assertEqual(chart.rotation_deg, 0.0)
+            self.assertEqual(chart.scaled_down, chart.area_texels < 0.98 * 1600 * chart.area_3d)
+        self.assertEqual(sum(c.scaled_down for c in result.charts()), stats.scaled_down_charts)
+        for mesh in (cap, ico, big):
+            mesh.close()
+        result.close()
+
+    def test_bad_scenes_and_transforms_are_refused(self):
+        cap, ico, _ = self.meshes()
+        with self.assertRaises(raps.Error) as caught:
+            cap.set_transform([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0])  # flattens z
+        self.assertEqual(caught.exception.status, raps.Status.INVALID_TRANSFORM)
+        with self.assertRaises(raps.Error) as caught:
+            cap.set_transform([1, 0, 0, float("nan"), 0, 1, 0, 0, 0, 0, 1, 0])
+        self.assertEqual(caught.exception.status, raps.Status.INVALID_TRANSFORM)
+        with raps.Settings(domain="atlas") as settings:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize_scene([], settings)
+            self.assertEqual(caught.exception.status, raps.Status.EMPTY_MESH)
+        with raps.Settings() as disk:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize_scene([cap, ico], disk)
+            self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+            self.assertIn("RAPS_DOMAIN_ATLAS", str(caught.exception))
+        cap.close()
+        ico.close()
+
+
 class Sphere(unittest.TestCase):
     """The sphere domain on a built icosahedron and on bunny.off, closed genus-0 meshes."""
 

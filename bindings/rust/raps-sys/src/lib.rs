@@ -66,6 +66,9 @@ pub const RAPS_ERROR_INVALID_OPERATION: i32 = 20;
 pub const RAPS_ERROR_INTERNAL: i32 = 21;
 /// Sphere domain: the mesh is not closed (it has boundary loops; the message counts them).
 pub const RAPS_ERROR_OPEN_MESH: i32 = 22;
+/// raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
+/// (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
+pub const RAPS_ERROR_INVALID_TRANSFORM: i32 = 23;
 
 /// int. The parameter domain. Default RAPS_DOMAIN_DISK.
 pub const RAPS_PARAM_DOMAIN: i32 = 1;
@@ -135,6 +138,54 @@ pub const RAPS_PARAM_ATLAS_MAX_L2_STRETCH: i32 = 36;
 /// float in [1, 1000]. No chart keeps a triangle stretched more than this (Linf stretch);
 /// larger ones are split. Default 2.9.
 pub const RAPS_PARAM_ATLAS_MAX_LINF_STRETCH: i32 = 37;
+/// float, texels per world unit (positions' units, after raps_mesh_set_transform), >= 0.
+/// 0: the density that fills RAPS_PARAM_ATLAS_RESOLUTION with one page (the atlas's longer
+/// side is exactly that many texels; raps_stats.texels_per_unit reports the density found).
+/// Above 0: every chart gets this density (a chart's area in texels is its surface area
+/// times the square of it) and is placed on whole texels, on pages of at most
+/// RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
+/// do not fit a page go on further pages, and a chart larger than a page is shrunk until it
+/// fits (RAPS_CHART_SCALED_DOWN, raps_stats.scaled_down_charts), never dropped. Then the
+/// padding holds exactly at the final texels: at least RAPS_PARAM_ATLAS_PADDING texels lie
+/// between the texels that any two charts' triangles touch (2 keeps bilinear lookups of two
+/// charts from sharing a texel). Default 0.
+pub const RAPS_PARAM_ATLAS_TEXELS_PER_UNIT: i32 = 38;
+/// int, 16..16384. With a density: the largest page width and height in texels. Every page
+/// of an atlas has one size: as wide and as tall as the charts of any page reach (with the
+/// margin), up to these. A run whose pages leave no more than the padding inside the margin
+/// is refused (INVALID_ARGUMENT). Default 4096.
+pub const RAPS_PARAM_ATLAS_MAX_WIDTH: i32 = 39;
+pub const RAPS_PARAM_ATLAS_MAX_HEIGHT: i32 = 40;
+/// int. Which turns the packing may give a chart, see RAPS_ROTATION_*. Default ANY.
+pub const RAPS_PARAM_ATLAS_ROTATION: i32 = 41;
+/// int, 0..1024. With a density (or whole texels): texels kept free between the charts and
+/// each page's border (rounded up to whole blocks with block alignment). Default 0.
+pub const RAPS_PARAM_ATLAS_MARGIN: i32 = 42;
+/// int, 0 or 1. With a density (or whole texels): 1 places charts on whole 4x4 blocks of
+/// texels, no block shared by two charts (block compression then never mixes them), padding
+/// rounded up to whole blocks. Default 0.
+pub const RAPS_PARAM_ATLAS_BLOCK_ALIGN: i32 = 43;
+/// int, 0 or 1. With a density: 1 puts all charts of one mesh of a scene on one page (as a
+/// lightmap needs), shrinking a mesh's charts together when they do not fit one page.
+/// Default 0.
+pub const RAPS_PARAM_ATLAS_MESH_PER_PAGE: i32 = 44;
+/// int, 0 or 1. Without a density (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT 0): 1 places the charts
+/// as a density does (whole texels, the padding exact at the final texels, margin, block
+/// alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
+/// RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
+/// chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
+/// size. The atlas may then be smaller than the resolution on both sides. Refused
+/// (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
+pub const RAPS_PARAM_ATLAS_WHOLE_TEXELS: i32 = 45;
+
+// RAPS_PARAM_ATLAS_ROTATION values
+/// Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
+/// that packs best.
+pub const RAPS_ROTATION_ANY: i32 = 0;
+/// Quarter turns of the chart's map only (0, 90, 180 or 270 degrees).
+pub const RAPS_ROTATION_QUARTER: i32 = 1;
+/// None: each chart keeps its map's orientation.
+pub const RAPS_ROTATION_NONE: i32 = 2;
 
 // RAPS_PARAM_DOMAIN values
 /// A topological disk (one boundary loop, genus 0, one piece), mapped into [0,1]^2 with its
@@ -237,6 +288,11 @@ pub const RAPS_PHASE_PACK: i32 = 6;
 /// number of phases in this version
 pub const RAPS_PHASE_COUNT: i32 = 7;
 
+// raps_chart.flags bits
+/// The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
+/// texels per world unit are below raps_stats.texels_per_unit).
+pub const RAPS_CHART_SCALED_DOWN: i32 = 1;
+
 pub type raps_status = i32;
 pub type raps_param = i32;
 /// Progress phases, reported to the progress callback and timed in raps_result_phase_ms.
@@ -316,6 +372,47 @@ pub struct raps_stats {
     /// RAPS_PARAM_THREADS (the hardware's threads for 0). It describes the run, not the map
     /// (which is the same bits for any count), and may differ between runs of one input.
     pub threads_used: u64,
+    /// Atlas domain (0 otherwise). Pages: every page is atlas_width x atlas_height texels; a
+    /// chart's page is in its record (raps_result_get_chart); 1 unless
+    /// RAPS_PARAM_ATLAS_TEXELS_PER_UNIT is set. utilization is then the mean over pages.
+    pub page_count: u64,
+    /// charts shrunk below the density to fit a page
+    pub scaled_down_charts: u64,
+    /// the atlas's density: texels per world (position) unit
+    pub texels_per_unit: f64,
+}
+
+/// One chart of an atlas, as raps_result_get_chart fills it. Like raps_stats: the caller sets
+/// struct_size = sizeof(raps_chart), the library fills what fits, fields are only appended; and
+/// like the map, the records are the same bits for every RAPS_PARAM_THREADS value.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct raps_chart {
+    pub struct_size: u32,
+    /// the input mesh it belongs to (0 for raps_parameterize)
+    pub mesh: u32,
+    /// 0 .. raps_stats.page_count - 1
+    pub page: u32,
+    /// RAPS_CHART_* bits
+    pub flags: u32,
+    /// The texels its uv triangles touch on its page (a texture of atlas_width x atlas_height
+    /// texels mapping the uvs): columns x .. x + width - 1, rows y .. y + height - 1, row 0 at
+    /// v = 0.
+    pub x: u32,
+    pub y: u32,
+    pub width: u32,
+    pub height: u32,
+    /// counter-clockwise turn the packing gave the chart, [0, 360)
+    pub rotation_deg: f64,
+    /// output triangles with this chart id
+    pub triangle_count: u64,
+    /// surface area, world units squared
+    pub area_3d: f64,
+    /// uv area, texels squared
+    pub area_texels: f64,
+    /// Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
+    /// that gathers degenerate triangles with no chart beside them.
+    pub stretch_l2: f64,
 }
 
 /// Progress callback: called with the phase and the fraction of it done, in [0, 1]. Every phase
@@ -393,6 +490,16 @@ extern "C" {
     /// multiple of 3), TOO_LARGE (more than 2^28 triangles), OUT_OF_MEMORY.
     pub fn raps_mesh_set_indices_u32(mesh: *mut raps_mesh, indices: *const u32, index_count: usize) -> raps_status;
 
+    /// Places the mesh in world units for raps_parameterize_scene (every other call ignores it): a
+    /// point p goes to A p + t, with m = {A00, A01, A02, t0, A10, A11, A12, t1, A20, A21, A22, t2}
+    /// (3x4, row-major, as a node's world matrix without its last row). A uniform scale s is
+    /// {s,0,0,0, 0,s,0,0, 0,0,s,0}. Texel density is measured in world units, so meshes modelled at
+    /// different scales get texels in proportion to the surface they cover in the scene. NULL sets
+    /// the identity (the default). A mirroring transform (det < 0) is allowed.
+    /// Errors: INVALID_ARGUMENT (mesh NULL), INVALID_TRANSFORM (a non-finite coefficient, or the
+    /// 3x3 part singular; the mesh keeps its transform).
+    pub fn raps_mesh_set_transform(mesh: *mut raps_mesh, m: *const f64) -> raps_status;
+
     /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
     pub fn raps_mesh_vertex_count(mesh: *const raps_mesh) -> usize;
 
@@ -467,6 +574,25 @@ extern "C" {
     /// INTERNAL.
     pub fn raps_parameterize(mesh: *const raps_mesh, settings: *const raps_settings, result: *mut raps_result) -> raps_status;
 
+    /// Parameterizes several meshes into one atlas (settings must set RAPS_PARAM_DOMAIN to
+    /// RAPS_DOMAIN_ATLAS): each mesh is placed in world units by its transform
+    /// (raps_mesh_set_transform), cut into charts of its own (no chart joins two meshes, even where
+    /// they touch) and every chart is packed at one texel density. The same mesh handle may appear
+    /// more than once (it is then packed once per appearance). meshes and settings are only read,
+    /// as for raps_parameterize; the result is replaced.
+    /// The result holds the meshes' outputs one after another, in the order given:
+    /// raps_result_mesh_range gives each mesh's output vertices and indices, and within a mesh's
+    /// range everything reads as a one-mesh result would: its indices number the mesh's own output
+    /// vertices (from 0 at the range's first vertex) and raps_result_copy_vertex_remap gives the
+    /// mesh's own input vertices. Chart ids and chart records (raps_result_get_chart) are the
+    /// atlas's, numbered over all meshes. The copy functions copy all meshes at once.
+    /// Errors: those of raps_parameterize (a mesh's own problems name the mesh: "mesh 2: ...") and
+    /// INVALID_ARGUMENT (meshes or result NULL, meshes[i] NULL, settings NULL or not the atlas
+    /// domain), EMPTY_MESH (mesh_count 0, or a mesh without positions or indices),
+    /// NON_FINITE_POSITION (a vertex beyond 1e30 once transformed), TOO_LARGE (more than 2^31 - 1
+    /// vertices or 2^28 triangles together, or the limits of the settings on the whole scene).
+    pub fn raps_parameterize_scene(meshes: *const *const raps_mesh, mesh_count: usize, settings: *const raps_settings, result: *mut raps_result) -> raps_status;
+
     /// The message of the last failed call on this result (raps_parameterize, a copy, the stats), ""
     /// after raps_parameterize succeeds; never NULL.
     pub fn raps_result_last_error(result: *const raps_result) -> *const c_char;
@@ -515,6 +641,17 @@ extern "C" {
     /// horse). Read the f64 points when the map must stay bijective.
     pub fn raps_result_copy_sphere_points_f64(result: *const raps_result, dst: *mut f64, capacity: usize, stride_bytes: usize) -> raps_status;
 
+    /// Input meshes the result holds: 1 after raps_parameterize, mesh_count after
+    /// raps_parameterize_scene, 0 for NULL or an empty result.
+    pub fn raps_result_mesh_count(result: *const raps_result) -> usize;
+
+    /// Where mesh `mesh` (0 .. raps_result_mesh_count - 1) lies in the output: its output vertices
+    /// first_vertex .. first_vertex + vertex_count - 1 and its indices first_index .. first_index +
+    /// index_count - 1 (three per triangle, its triangles in its input order; chart ids: triangle
+    /// first_index / 3 on). Any out pointer may be NULL. Errors: INVALID_ARGUMENT (result NULL, mesh
+    /// out of range), INVALID_OPERATION (the result holds no map).
+    pub fn raps_result_mesh_range(result: *const raps_result, mesh: usize, first_vertex: *mut u64, vertex_count: *mut u64, first_index: *mut u64, index_count: *mut u64) -> raps_status;
+
     /// Copy the output triangles (indices into the output vertices), capacity >= index_count.
     pub fn raps_result_copy_indices_u32(result: *const raps_result, dst: *mut u32, capacity: usize) -> raps_status;
 
@@ -528,6 +665,11 @@ extern "C" {
     /// Fills stats (see raps_stats). Errors (the message in result, when it is not NULL):
     /// INVALID_ARGUMENT (NULL, struct_size < 8), INVALID_OPERATION (the result holds no map).
     pub fn raps_result_get_stats(result: *const raps_result, stats: *mut raps_stats) -> raps_status;
+
+    /// Fills `chart` with chart number `index` (a chart id, 0 .. raps_stats.chart_count - 1).
+    /// Errors (the message in result, when it is not NULL): INVALID_ARGUMENT (NULL, struct_size < 8,
+    /// index out of range), INVALID_OPERATION (the result holds no atlas).
+    pub fn raps_result_get_chart(result: *const raps_result, index: usize, chart: *mut raps_chart) -> raps_status;
 
     /// Wall-clock milliseconds the run that filled this result spent in a phase (RAPS_PHASE_*); 0 for
     /// a phase it did not enter, for an empty result, for NULL or for an unknown phase.

@@ -29,6 +29,10 @@ pub use raps_sys as sys;
 /// The distortion statistics of a map (see `raps_stats` in raps.h): the generated struct
 /// itself, so fields appended to the header appear here.
 pub type Stats = sys::raps_stats;
+/// One chart of an atlas ([`Parameterization::charts`]): its mesh, page, texel rectangle,
+/// rotation, triangles, areas and L2 stretch (`raps_chart`; `flags` holds
+/// `sys::RAPS_CHART_SCALED_DOWN` for a chart shrunk to fit a page).
+pub type Chart = sys::raps_chart;
 
 /// A `Result` whose error is a raps [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
@@ -96,6 +100,8 @@ int_values! {
         INTERNAL = sys::RAPS_ERROR_INTERNAL,
         /// Sphere domain: the mesh is not closed (the message counts its boundary loops).
         OPEN_MESH = sys::RAPS_ERROR_OPEN_MESH,
+        /// [`Mesh::set_transform`]: a coefficient is not finite, or the 3x3 part is singular.
+        INVALID_TRANSFORM = sys::RAPS_ERROR_INVALID_TRANSFORM,
     }
 }
 
@@ -124,6 +130,27 @@ int_values! {
         HARD_EDGE_ANGLE = sys::RAPS_PARAM_HARD_EDGE_ANGLE,
         ATLAS_MAX_L2_STRETCH = sys::RAPS_PARAM_ATLAS_MAX_L2_STRETCH,
         ATLAS_MAX_LINF_STRETCH = sys::RAPS_PARAM_ATLAS_MAX_LINF_STRETCH,
+        ATLAS_TEXELS_PER_UNIT = sys::RAPS_PARAM_ATLAS_TEXELS_PER_UNIT,
+        ATLAS_MAX_WIDTH = sys::RAPS_PARAM_ATLAS_MAX_WIDTH,
+        ATLAS_MAX_HEIGHT = sys::RAPS_PARAM_ATLAS_MAX_HEIGHT,
+        ATLAS_ROTATION = sys::RAPS_PARAM_ATLAS_ROTATION,
+        ATLAS_MARGIN = sys::RAPS_PARAM_ATLAS_MARGIN,
+        ATLAS_BLOCK_ALIGN = sys::RAPS_PARAM_ATLAS_BLOCK_ALIGN,
+        ATLAS_MESH_PER_PAGE = sys::RAPS_PARAM_ATLAS_MESH_PER_PAGE,
+        ATLAS_WHOLE_TEXELS = sys::RAPS_PARAM_ATLAS_WHOLE_TEXELS,
+    }
+}
+
+int_values! {
+    /// Which turns the atlas's packing may give a chart (`RAPS_ROTATION_*`), the value of
+    /// [`Param::ATLAS_ROTATION`].
+    Rotation {
+        /// Any angle: the chart's smallest bounding box, then a quarter turn (the default).
+        ANY = sys::RAPS_ROTATION_ANY,
+        /// Quarter turns of the chart's map only.
+        QUARTER = sys::RAPS_ROTATION_QUARTER,
+        /// None: each chart keeps its map's orientation.
+        NONE = sys::RAPS_ROTATION_NONE,
     }
 }
 
@@ -462,6 +489,16 @@ impl Mesh {
         let status = unsafe {
             sys::raps_mesh_set_indices_u16(self.raw.as_ptr(), indices.as_ptr(), indices.len())
         };
+        check(status, || self.last_error())
+    }
+
+    /// Places the mesh in world units for [`parameterize_scene`]: `m` is the 3x4 matrix
+    /// [A | t], row-major (a point p goes to A p + t); `None` sets the identity. A non-finite
+    /// or singular transform is refused with [`Status::INVALID_TRANSFORM`].
+    pub fn set_transform(&mut self, m: Option<&[f64; 12]>) -> Result<()> {
+        let matrix = m.map_or(ptr::null(), |m| m.as_ptr());
+        // SAFETY: NULL or twelve doubles, only read.
+        let status = unsafe { sys::raps_mesh_set_transform(self.raw.as_ptr(), matrix) };
         check(status, || self.last_error())
     }
 
@@ -1022,6 +1059,50 @@ impl Parameterization {
         Ok(stats)
     }
 
+    /// Input meshes the result holds: 1 after [`parameterize`], as many as given after
+    /// [`parameterize_scene`].
+    pub fn mesh_count(&self) -> usize {
+        // SAFETY: a live handle, read-only.
+        unsafe { sys::raps_result_mesh_count(self.raw.as_ptr()) }
+    }
+
+    /// Where input mesh `mesh` lies in the output: its output vertices and indices (its
+    /// indices number its own output vertices from 0; its remap gives its own input vertices).
+    pub fn mesh_range(&self, mesh: usize) -> Result<MeshRange> {
+        let mut range = MeshRange::default();
+        // SAFETY: a live handle; valid out pointers.
+        let status = unsafe {
+            sys::raps_result_mesh_range(
+                self.raw.as_ptr(),
+                mesh,
+                &mut range.first_vertex,
+                &mut range.vertex_count,
+                &mut range.first_index,
+                &mut range.index_count,
+            )
+        };
+        check(status, || self.last_error())?;
+        Ok(range)
+    }
+
+    /// Atlas domain: every chart's record, by chart id.
+    pub fn charts(&self) -> Result<Vec<Chart>> {
+        let count = self.stats()?.chart_count as usize;
+        let mut charts = Vec::with_capacity(count);
+        for index in 0..count {
+            let mut chart = Chart {
+                struct_size: std::mem::size_of::<Chart>() as u32,
+                ..Chart::default()
+            };
+            // SAFETY: struct_size tells the library how much of `chart` it may write.
+            let status =
+                unsafe { sys::raps_result_get_chart(self.raw.as_ptr(), index, &mut chart) };
+            check(status, || self.last_error())?;
+            charts.push(chart);
+        }
+        Ok(charts)
+    }
+
     /// Wall-clock milliseconds the run that filled this result spent in a phase.
     pub fn phase_ms(&self, phase: Phase) -> f64 {
         // SAFETY: a live handle, read-only.
@@ -1078,6 +1159,37 @@ pub fn parameterize_into(
     // SAFETY: live handles; mesh and settings are only read, out is exclusively borrowed.
     let status = unsafe { sys::raps_parameterize(mesh.raw.as_ptr(), settings, out.raw.as_ptr()) };
     check(status, || out.last_error())
+}
+
+/// Where one input mesh lies in a result's output ([`Parameterization::mesh_range`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MeshRange {
+    pub first_vertex: u64,
+    pub vertex_count: u64,
+    pub first_index: u64,
+    pub index_count: u64,
+}
+
+/// Packs several meshes into one atlas at one texel density (`settings` must set
+/// [`Domain::ATLAS`]); each mesh is placed by its transform ([`Mesh::set_transform`]). The
+/// result holds the meshes' outputs one after another ([`Parameterization::mesh_range`]).
+pub fn parameterize_scene(meshes: &[&Mesh], settings: &Settings) -> Result<Parameterization> {
+    let raw: Vec<*const sys::raps_mesh> = meshes
+        .iter()
+        .map(|mesh| mesh.raw.as_ptr() as *const _)
+        .collect();
+    let out = Parameterization::new()?;
+    // SAFETY: live handles, only read; `raw` holds meshes.len() of them; out is ours.
+    let status = unsafe {
+        sys::raps_parameterize_scene(
+            raw.as_ptr(),
+            raw.len(),
+            settings.raw.as_ptr(),
+            out.raw.as_ptr(),
+        )
+    };
+    check(status, || out.last_error())?;
+    Ok(out)
 }
 
 struct Progress<F> {

@@ -1,0 +1,182 @@
+#include "atlas/chart_raster.h"
+
+#include <algorithm>
+
+namespace raps {
+namespace {
+
+// Transposes a 64 x 64 bit block in place (word i is row i, bit j column j): swaps of
+// 32 x 32, then 16 x 16, ... sub-blocks across the diagonal (Hacker's Delight, 7-3).
+void transpose_block(uint64_t block[64]) {
+    uint64_t mask = 0x00000000ffffffffull;
+    for (int half = 32; half > 0; half >>= 1, mask ^= mask << half) {
+        for (int k = 0; k < 64; k = ((k | half) + 1) & ~half) {
+            const uint64_t swap = ((block[k] >> half) ^ block[k | half]) & mask;
+            block[k] ^= swap << half;
+            block[k | half] ^= swap;
+        }
+    }
+}
+
+}  // namespace
+
+void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Triangle>& triangles,
+               BitImage& image) {
+    for (const Triangle& t : triangles) {
+        Eigen::Vector2d p[3] = {points[t[0]], points[t[1]], points[t[2]]};
+        if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
+        if (p[2].y() < p[1].y()) std::swap(p[1], p[2]);
+        if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
+        const double y0 = p[0].y(), y1 = p[1].y(), y2 = p[2].y();
+        const int32_t row_lo = std::max(0, floor_cell(y0));
+        const int32_t row_hi = std::min(image.height - 1, floor_cell(y2));
+        const double long_slope = y2 > y0 ? (p[2].x() - p[0].x()) / (y2 - y0) : 0.0;
+        const double low_slope = y1 > y0 ? (p[1].x() - p[0].x()) / (y1 - y0) : 0.0;
+        const double high_slope = y2 > y1 ? (p[2].x() - p[1].x()) / (y2 - y1) : 0.0;
+        double x_lo = 0, x_hi = 0;
+        auto add = [&](double x) {
+            x_lo = std::min(x_lo, x);
+            x_hi = std::max(x_hi, x);
+        };
+        // The section at height y (y0 <= y <= y2); the corners exactly at their own heights.
+        auto add_section = [&](double y) {
+            if (y == y0) add(p[0].x());
+            if (y == y1) add(p[1].x());
+            if (y == y2) add(p[2].x());
+            if (y == y0 || y == y2) return;
+            add(p[0].x() + (y - y0) * long_slope);
+            add(y < y1 ? p[0].x() + (y - y0) * low_slope : p[1].x() + (y - y1) * high_slope);
+        };
+        for (int32_t row = row_lo; row <= row_hi; ++row) {
+            const double band_lo = std::max(static_cast<double>(row), y0);
+            const double band_hi = std::min(row + 1.0, y2);
+            x_lo = 1e300;
+            x_hi = -1e300;
+            add_section(band_lo);
+            add_section(band_hi);
+            if (y1 > band_lo && y1 < band_hi) add(p[1].x());
+            const int32_t c_lo = std::max(0, floor_cell(x_lo));
+            const int32_t c_hi = std::min(image.width - 1, floor_cell(x_hi));
+            image.set_span(row, c_lo, c_hi);
+        }
+    }
+}
+
+BitImage rotate_quarter(const BitImage& in) {
+    BitImage out;
+    out.resize(in.height, in.width);
+    uint64_t block[64];
+    for (int32_t by = 0; by < out.words; ++by) {     // 64 rows of `in`: a word of `out`
+        for (int32_t bx = 0; bx < in.words; ++bx) {  // a word of `in`: 64 rows of `out`
+            for (int i = 0; i < 64; ++i) {
+                const int32_t y = in.height - 1 - (by * 64 + i);
+                block[i] = y >= 0 ? in.row(y)[bx] : 0;
+            }
+            transpose_block(block);
+            for (int i = 0; i < 64 && bx * 64 + i < out.height; ++i)
+                out.row(bx * 64 + i)[by] = block[i];
+        }
+    }
+    return out;
+}
+
+int32_t longest_run(const uint64_t* bits, int32_t count, bool value) {
+    // The first cell at or after `from` that equals `want`, or count.
+    auto next = [&](int32_t from, bool want) {
+        int32_t w = from / 64;
+        uint64_t word = (want ? bits[w] : ~bits[w]) & (~uint64_t(0) << (from % 64));
+        while (word == 0) {
+            if (++w * 64 >= count) return count;
+            word = want ? bits[w] : ~bits[w];
+        }
+        return std::min(count, w * 64 + __builtin_ctzll(word));
+    };
+    int32_t longest = 0;
+    for (int32_t x = next(0, value); x < count;) {
+        const int32_t end = next(x, !value);
+        longest = std::max(longest, end - x);
+        x = end < count ? next(end, value) : count;
+    }
+    return longest;
+}
+
+Profile make_profile(const BitImage& chart, int32_t padding) {
+    Profile profile;
+    profile.width = chart.width;
+    profile.height = chart.height;
+    profile.words = chart.words;
+    profile.chart_bits = chart.bits;
+    profile.top.assign(chart.width, -1);
+    // Padding by dilation: each row spread sideways by `padding` cells, then rows combined
+    // with their `padding` neighbours above and below.
+    std::vector<uint64_t> wide(chart.bits.size());
+    for (int32_t y = 0; y < chart.height; ++y) {
+        const uint64_t* src = chart.row(y);
+        uint64_t* dst = wide.data() + static_cast<size_t>(y) * chart.words;
+        std::copy(src, src + chart.words, dst);
+        for (int32_t k = 0; k < padding; ++k) {
+            uint64_t carry_up = 0;
+            for (int32_t w = 0; w < chart.words; ++w) {  // shift towards higher x
+                const uint64_t word = dst[w];
+                dst[w] = word | (word << 1) | carry_up;
+                carry_up = word >> 63;
+            }
+            uint64_t carry_down = 0;
+            for (int32_t w = chart.words - 1; w >= 0; --w) {  // towards lower x
+                const uint64_t word = dst[w];
+                dst[w] = word | (word >> 1) | carry_down;
+                carry_down = word << 63;
+            }
+        }
+    }
+    profile.padded_bits.assign(chart.bits.size(), 0);
+    for (int32_t y = 0; y < chart.height; ++y) {
+        uint64_t* dst = profile.padded_bits.data() + static_cast<size_t>(y) * chart.words;
+        for (int32_t yy = std::max(0, y - padding); yy <= std::min(chart.height - 1, y + padding);
+             ++yy) {
+            const uint64_t* src = wide.data() + static_cast<size_t>(yy) * chart.words;
+            for (int32_t w = 0; w < chart.words; ++w) dst[w] |= src[w];
+        }
+    }
+    // The first row (from the bottom or from the top) that sets each column: per row only the
+    // columns not seen yet are visited, so this is linear in rows times words plus columns.
+    auto first_rows = [&](const std::vector<uint64_t>& bits, bool from_top,
+                          std::vector<int32_t>& first) {
+        std::vector<uint64_t> seen(chart.words, 0);
+        for (int32_t k = 0; k < chart.height; ++k) {
+            const int32_t y = from_top ? chart.height - 1 - k : k;
+            const uint64_t* row = bits.data() + static_cast<size_t>(y) * chart.words;
+            for (int32_t w = 0; w < chart.words; ++w) {
+                for (uint64_t word = row[w] & ~seen[w]; word; word &= word - 1)
+                    first[w * 64 + __builtin_ctzll(word)] = y;
+                seen[w] |= row[w];
+            }
+        }
+    };
+    std::vector<int32_t> bottom(chart.width, chart.height);  // lowest padded row, or height
+    first_rows(profile.chart_bits, true, profile.top);
+    first_rows(profile.padded_bits, false, bottom);
+    profile.resting_bottom.resize(chart.width);
+    profile.occupied.resize(chart.width);
+    int32_t lowest = -1;
+    const int32_t spacing = chart.width < kNarrowChart ? 1 : chart.width / 2;
+    for (int32_t x = 0; x < chart.width; ++x) {
+        const bool occupied = bottom[x] < chart.height;
+        profile.resting_bottom[x] = occupied ? bottom[x] : kNeverRests;
+        profile.occupied[x] = occupied;
+        if (!occupied) continue;
+        if (profile.occupied_count == 0) profile.occupied_begin = x;
+        profile.occupied_end = x + 1;
+        ++profile.occupied_count;
+        profile.occupied_bottom_sum += bottom[x];
+        if (lowest < 0 || bottom[x] < bottom[lowest]) lowest = x;
+        if (x % spacing == 0) profile.probe_columns.push_back(x);
+    }
+    if (lowest >= 0 && chart.width >= kNarrowChart) profile.probe_columns.push_back(lowest);
+    profile.middle_run = longest_run(
+        profile.padded_bits.data() + static_cast<size_t>(chart.height / 2) * chart.words,
+        chart.width, true);
+    return profile;
+}
+
+}  // namespace raps

@@ -1,0 +1,399 @@
+#include "atlas/page_packing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <string>
+
+#include "atlas/chart_raster.h"
+#include "atlas/skyline_packing.h"
+#include "core/error.h"
+
+namespace raps {
+namespace {
+
+// Texels of a block when charts are block aligned (BC1-7 and ASTC 4x4 compress 4x4 blocks).
+constexpr int32_t kBlock = 4;
+
+// The grid charts are placed on: cells of `cell` texels. A chart's profile carries `pad_cells`
+// cells of padding on each side, which may hang over the page's inner area (inside the margin):
+// the strip is the inner area plus the padding on both sides.
+struct PageGrid {
+    int32_t cell = 1, pad_cells = 0;
+    int32_t margin = 0;           // texels, a whole number of cells
+    int32_t strip = 0, rows = 0;  // cells
+};
+
+PageGrid page_grid(const PageSettings& settings) {
+    PageGrid grid;
+    grid.cell = settings.block_align ? kBlock : 1;
+    grid.pad_cells = (settings.padding + grid.cell - 1) / grid.cell;
+    grid.margin = (settings.margin + grid.cell - 1) / grid.cell * grid.cell;
+    grid.strip = (settings.max_width - 2 * grid.margin) / grid.cell + 2 * grid.pad_cells;
+    grid.rows = (settings.max_height - 2 * grid.margin) / grid.cell + 2 * grid.pad_cells;
+    return grid;
+}
+
+// A chart turned as the rotation policy allows: the rotation, its box's lower corner and size
+// (in uv units) and how many quarter turns the placement may add.
+struct OrientedChart {
+    Eigen::Vector2d rotation = Eigen::Vector2d(1, 0), origin, extent;
+    int turns = 4;
+};
+
+Eigen::Vector2d turned(const Eigen::Vector2d& r, const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
+}
+
+OrientedChart orient(const PackInput& chart, ChartRotation policy) {
+    OrientedChart o;
+    if (policy == ChartRotation::kAny) o.rotation = chart.rotation;
+    o.turns = policy == ChartRotation::kNone ? 1 : 4;
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (const Eigen::Vector2d& p : *chart.uv) {
+        lo = lo.cwiseMin(turned(o.rotation, p));
+        hi = hi.cwiseMax(turned(o.rotation, p));
+    }
+    o.origin = lo;
+    o.extent = hi - lo;
+    return o;
+}
+
+// The chart's raster at `scale` texels per uv unit, in cells: texels up to its box's size plus
+// one (a conservative raster touches one more) and the padding on both sides, rounded up to
+// whole cells.
+Eigen::Vector2i raster_cells(const OrientedChart& o, double scale, const PageGrid& grid) {
+    const int32_t pad = grid.pad_cells * grid.cell;
+    auto cells = [&](double length) {
+        const double texels = std::ceil(length * scale) + 1 + 2 * pad;
+        return static_cast<int32_t>(std::min(std::ceil(texels / grid.cell), 1e9));
+    };
+    return Eigen::Vector2i(cells(o.extent.x()), cells(o.extent.y()));
+}
+
+// How much smaller the chart must get to fit an empty page in its best allowed turn: 1 or more
+// when it fits.
+double fit_ratio(const OrientedChart& o, double scale, const PageGrid& grid) {
+    const Eigen::Vector2i size = raster_cells(o, scale, grid);
+    auto ratio = [&](int32_t w, int32_t h) {
+        return std::min(static_cast<double>(grid.strip) / w, static_cast<double>(grid.rows) / h);
+    };
+    double best = ratio(size.x(), size.y());
+    if (o.turns > 1) best = std::max(best, ratio(size.y(), size.x()));
+    return best;
+}
+
+// The largest scale up to `scale` at which the chart fits an empty page.
+double fitting_scale(const OrientedChart& o, double scale, const PageGrid& grid) {
+    for (int attempt = 0; attempt < 200; ++attempt) {
+        const double ratio = fit_ratio(o, scale, grid);
+        if (ratio >= 1) return scale;
+        scale *= std::min(ratio, 0.999);
+    }
+    throw Error(ErrorCode::kInternal, "a chart does not fit a page at any scale");
+}
+
+// A set cell for every block of `cell` x `cell` texels that holds a set texel.
+BitImage to_cells(const BitImage& texels, int32_t cell) {
+    if (cell == 1) return texels;
+    BitImage cells;
+    cells.resize(texels.width / cell, texels.height / cell);
+    for (int32_t y = 0; y < texels.height; ++y) {
+        const uint64_t* row = texels.row(y);
+        for (int32_t x = 0; x < texels.width; ++x) {
+            if (row[x / 64] >> (x % 64) & 1) cells.set_span(y / cell, x / cell, x / cell);
+        }
+    }
+    return cells;
+}
+
+// The point of a chart's uv `p` in its unturned raster, in texels.
+Eigen::Vector2d raster_point(const OrientedChart& o, double scale, const PageGrid& grid,
+                             const Eigen::Vector2d& p) {
+    const double pad = grid.pad_cells * grid.cell;
+    return (turned(o.rotation, p) - o.origin) * scale + Eigen::Vector2d(pad, pad);
+}
+
+void prepare(const PackInput& input, const OrientedChart& o, double scale, const PageGrid& grid,
+             PreparedChart& prepared) {
+    const Eigen::Vector2i size = raster_cells(o, scale, grid);
+    BitImage raster;
+    raster.resize(size.x() * grid.cell, size.y() * grid.cell);
+    std::vector<Eigen::Vector2d> points(input.uv->size());
+    for (size_t v = 0; v < points.size(); ++v)
+        points[v] = raster_point(o, scale, grid, (*input.uv)[v]);
+    rasterise(points, *input.triangles, raster);
+    BitImage cells = to_cells(raster, grid.cell);
+    prepared.rotation = o.rotation;
+    prepared.origin = o.origin;
+    prepared.turns = o.turns;
+    for (int q = 0; q < 4; ++q) {
+        prepared.profiles[q] = make_profile(cells, grid.pad_cells);
+        if (q < 3) cells = rotate_quarter(cells);
+    }
+}
+
+// Pages still searched for room: the last few. An older page is closed (its occupancy freed),
+// which bounds the search per chart and the memory (a page of 16384 x 16384 cells holds 32 MiB)
+// however many pages an atlas takes.
+constexpr size_t kOpenPages = 8;
+
+// The pages (closed ones null) and where each chart went.
+struct Layout {
+    std::vector<std::unique_ptr<SkylineStrip>> pages;
+    std::vector<int32_t> page;
+    std::vector<Placement> place;
+
+    size_t first_open() const { return pages.size() > kOpenPages ? pages.size() - kOpenPages : 0; }
+    void open_page(const PageGrid& grid) {
+        pages.push_back(std::make_unique<SkylineStrip>(grid.strip, false, true));
+        if (pages.size() > kOpenPages) pages[pages.size() - kOpenPages - 1].reset();
+    }
+};
+
+// Places the chart on `page` if the page has room for it below its last row.
+bool place_on(SkylineStrip& page, const PreparedChart& chart, int32_t rows, Placement& place) {
+    if (!page.find(chart, place)) return false;
+    if (place.y + chart.profiles[place.quarter].height > rows) return false;
+    page.commit(chart, place);
+    return true;
+}
+
+// Each chart in `order` on the first page with room for it, or a new one. With one_page, a
+// chart that does not fit the first page fails the layout (returns false).
+bool place_first_fit(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                     const PageGrid& grid, bool one_page, Layout& layout) {
+    for (size_t c : order) {
+        bool placed = false;
+        for (size_t p = layout.first_open(); p < layout.pages.size() && !placed; ++p) {
+            placed = place_on(*layout.pages[p], prepared[c], grid.rows, layout.place[c]);
+            if (placed) layout.page[c] = static_cast<int32_t>(p);
+        }
+        if (placed) continue;
+        if (one_page && !layout.pages.empty()) return false;
+        layout.open_page(grid);
+        if (!place_on(*layout.pages.back(), prepared[c], grid.rows, layout.place[c]))
+            throw Error(ErrorCode::kInternal, "a chart shrunk to fit a page does not fit one");
+        layout.page[c] = static_cast<int32_t>(layout.pages.size() - 1);
+    }
+    return true;
+}
+
+// All of `charts` on `page`, or none (the page is then unchanged).
+bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<PreparedChart>& prepared,
+                  const std::vector<size_t>& charts, const PageGrid& grid, Layout& layout) {
+    auto trial = std::make_unique<SkylineStrip>(*page);
+    std::vector<Placement> places(charts.size());
+    for (size_t k = 0; k < charts.size(); ++k) {
+        if (!place_on(*trial, prepared[charts[k]], grid.rows, places[k])) return false;
+    }
+    page = std::move(trial);
+    for (size_t k = 0; k < charts.size(); ++k) layout.place[charts[k]] = places[k];
+    return true;
+}
+
+// The charts turned, at their densities (the atlas's, or less for one larger than a page),
+// rasterised, and the order they are placed in.
+struct PreparedCharts {
+    std::vector<OrientedChart> oriented;
+    std::vector<double> scale;
+    std::vector<PreparedChart> prepared;
+    std::vector<size_t> order;  // largest first, by the longer side of the box (ties by index)
+};
+
+PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSettings& settings,
+                              const PageGrid& grid, ThreadPool& pool) {
+    const size_t count = charts.size();
+    PreparedCharts set;
+    set.oriented.resize(count);
+    set.scale.resize(count);
+    for (size_t c = 0; c < count; ++c) {
+        set.oriented[c] = orient(charts[c], settings.rotation);
+        set.scale[c] = fitting_scale(set.oriented[c], settings.texels_per_unit, grid);
+    }
+    set.prepared.resize(count);
+    parallel_for_each(pool, count, [&](size_t c) {
+        prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
+    });
+    set.order.resize(count);
+    std::iota(set.order.begin(), set.order.end(), 0);
+    auto longer = [&](size_t c) { return set.oriented[c].extent.maxCoeff() * set.scale[c]; };
+    std::stable_sort(set.order.begin(), set.order.end(),
+                     [&](size_t a, size_t b) { return longer(a) > longer(b); });
+    return set;
+}
+
+// One mesh's charts together: on the first page with room for all of them, or a new page;
+// shrunk together while even an empty page has too little room.
+void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& grid,
+                          ThreadPool& pool, PreparedCharts& set, Layout& layout) {
+    int32_t parts = 0;
+    for (const PackInput& chart : charts) parts = std::max(parts, chart.part + 1);
+    for (int32_t part = 0; part < parts; ++part) {
+        std::vector<size_t> members;
+        for (size_t c : set.order) {
+            if (charts[c].part == part) members.push_back(c);
+        }
+        if (members.empty()) continue;
+        size_t p = layout.first_open();
+        while (p < layout.pages.size() &&
+               !place_all_on(layout.pages[p], set.prepared, members, grid, layout))
+            ++p;
+        if (p == layout.pages.size()) {
+            layout.open_page(grid);
+            for (int attempt = 0;
+                 !place_all_on(layout.pages.back(), set.prepared, members, grid, layout);
+                 ++attempt) {
+                if (attempt == 100)
+                    throw Error(ErrorCode::kInternal, "a mesh's charts fit no page");
+                for (size_t c : members) set.scale[c] *= 0.9;
+                parallel_for_each(pool, members.size(), [&](size_t k) {
+                    const size_t c = members[k];
+                    prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
+                });
+            }
+        }
+        for (size_t c : members) layout.page[c] = static_cast<int32_t>(p);
+    }
+}
+
+// The uvs of the laid-out charts: texel positions (the profile's place, less its padding,
+// inside the margin: whole cells), every page as large as any page's charts reach with the
+// margin, then normalised to it.
+PackResult layout_uvs(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      const PageGrid& grid, const PreparedCharts& set, const Layout& layout) {
+    const size_t count = charts.size();
+    PackResult result;
+    result.uv.resize(count);
+    result.page.assign(count, 0);
+    result.scaled_down.assign(count, 0);
+    result.rotation_deg.assign(count, 0);
+    result.texels_per_unit = settings.texels_per_unit;
+    Eigen::Vector2d high(0, 0);
+    for (size_t c = 0; c < count; ++c) {
+        const Placement& place = layout.place[c];
+        const Profile& unturned = set.prepared[c].profiles[0];
+        result.uv[c].resize(charts[c].uv->size());
+        for (size_t v = 0; v < result.uv[c].size(); ++v) {
+            Eigen::Vector2d at =
+                raster_point(set.oriented[c], set.scale[c], grid, (*charts[c].uv)[v]);
+            int32_t height = unturned.height * grid.cell;
+            for (int k = 0; k < place.quarter; ++k) {  // (x, y) -> (h - y, x), as the raster
+                at = Eigen::Vector2d(height - at.y(), at.x());
+                height = (k % 2 ? unturned.height : unturned.width) * grid.cell;
+            }
+            at += Eigen::Vector2d((place.x - grid.pad_cells) * grid.cell + grid.margin,
+                                  (place.y - grid.pad_cells) * grid.cell + grid.margin);
+            result.uv[c][v] = at;
+            high = high.cwiseMax(at);
+        }
+        result.page[c] = layout.page[c];
+        result.scaled_down[c] = set.scale[c] < settings.texels_per_unit;
+        result.rotation_deg[c] = turn_degrees(set.oriented[c].rotation, place.quarter);
+    }
+    auto page_side = [&](double extent, int32_t most) {
+        const int32_t side = static_cast<int32_t>(std::ceil(extent - 1e-9)) + grid.margin;
+        return std::clamp((side + grid.cell - 1) / grid.cell * grid.cell, 1, most);
+    };
+    result.width = page_side(high.x(), settings.max_width);
+    result.height = page_side(high.y(), settings.max_height);
+    result.page_count = std::max<int32_t>(1, static_cast<int32_t>(layout.pages.size()));
+    for (std::vector<Eigen::Vector2d>& chart_uv : result.uv) {
+        for (Eigen::Vector2d& at : chart_uv) {
+            at = Eigen::Vector2d(std::clamp(at.x() / result.width, 0.0, 1.0),
+                                 std::clamp(at.y() / result.height, 0.0, 1.0));
+        }
+    }
+    return result;
+}
+
+PageGrid checked_grid(const PageSettings& settings) {
+    const PageGrid grid = page_grid(settings);
+    if (grid.strip <= 2 * grid.pad_cells || grid.rows <= 2 * grid.pad_cells)
+        throw Error(ErrorCode::kInternal, "the page has no room inside its margin");
+    return grid;
+}
+
+// The layout of every chart on one page at `settings.texels_per_unit`, unshrunk, if there is
+// one.
+bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      const PageGrid& grid, ThreadPool& pool, PackResult& result) {
+    const PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+    for (double scale : set.scale) {
+        if (scale < settings.texels_per_unit) return false;
+    }
+    Layout layout;
+    layout.page.assign(charts.size(), 0);
+    layout.place.resize(charts.size());
+    if (!place_first_fit(set.prepared, set.order, grid, true, layout)) return false;
+    result = layout_uvs(charts, settings, grid, set, layout);
+    return true;
+}
+
+}  // namespace
+
+PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      ThreadPool& pool) {
+    const PageGrid grid = checked_grid(settings);
+    PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+    Layout layout;
+    layout.page.assign(charts.size(), 0);
+    layout.place.resize(charts.size());
+    if (settings.part_per_page) {
+        place_parts_per_page(charts, grid, pool, set, layout);
+    } else {
+        place_first_fit(set.prepared, set.order, grid, false, layout);
+    }
+    return layout_uvs(charts, settings, grid, set, layout);
+}
+
+PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
+                         ThreadPool& pool) {
+    const PageGrid grid = checked_grid(settings);
+    // Above this density the charts' area alone overflows the page, or the longest chart its
+    // longer side.
+    double area = 0, longest = 0;
+    for (const PackInput& chart : charts) {
+        const OrientedChart o = orient(chart, settings.rotation);
+        longest = std::max(longest, o.extent.maxCoeff());
+        for (const Triangle& t : *chart.triangles) {
+            const Eigen::Vector2d a = (*chart.uv)[t[1]] - (*chart.uv)[t[0]];
+            const Eigen::Vector2d b = (*chart.uv)[t[2]] - (*chart.uv)[t[0]];
+            area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+        }
+    }
+    const double side = std::max(settings.max_width, settings.max_height);
+    double high = longest > 0 ? side / longest : 1.0;
+    if (area > 0) high = std::min(high, std::sqrt(settings.max_width * settings.max_height / area));
+    // Down by a fifth until the charts fit, then halve the gap to the last density that did
+    // not until it is within 1%.
+    PackResult best;
+    double low = high;
+    for (int attempt = 0;; ++attempt) {
+        low *= 0.8;
+        settings.texels_per_unit = low;
+        if (pack_on_one_page(charts, settings, grid, pool, best)) break;
+        high = low;
+        if (attempt == 60) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        "the " + std::to_string(charts.size()) +
+                            " charts do not fit one page of the resolution at any density with "
+                            "their padding: raise RAPS_PARAM_ATLAS_RESOLUTION or lower the "
+                            "padding");
+        }
+    }
+    while (high > 1.01 * low) {
+        settings.texels_per_unit = std::sqrt(low * high);
+        PackResult tried;
+        if (pack_on_one_page(charts, settings, grid, pool, tried)) {
+            low = settings.texels_per_unit;
+            best = std::move(tried);
+        } else {
+            high = settings.texels_per_unit;
+        }
+    }
+    return best;
+}
+
+}  // namespace raps

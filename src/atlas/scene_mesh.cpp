@@ -1,0 +1,80 @@
+#include "atlas/scene_mesh.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+
+namespace raps {
+namespace {
+
+// As the C API refuses positions beyond this (products of a few coordinates must stay finite).
+constexpr double kMaxCoordinate = 1e30;
+// The library indexes with int32, up to 8 entries per triangle (c_api.cpp).
+constexpr int64_t kMaxVertices = 0x7fffffff;
+constexpr int64_t kMaxTriangles = int64_t{1} << 28;
+
+void check_part(const TriangleMesh& mesh, size_t index) {
+    const std::string name = "mesh " + std::to_string(index);
+    if (mesh.positions.empty() || mesh.triangles.empty()) {
+        throw Error(ErrorCode::kEmptyMesh,
+                    name + (mesh.positions.empty() ? " has no vertices (set its positions)"
+                                                   : " has no triangles (set its indices)"));
+    }
+    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t v = mesh.triangles[t][k];
+            if (v < 0 || v >= mesh.vertex_count()) {
+                throw Error(ErrorCode::kIndexOutOfRange,
+                            name + ": index " + std::to_string(3 * static_cast<int64_t>(t) + k) +
+                                " (triangle " + std::to_string(t) + ") is " + std::to_string(v) +
+                                " but the mesh has only " + std::to_string(mesh.vertex_count()) +
+                                " vertices");
+            }
+        }
+    }
+}
+
+}  // namespace
+
+SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
+                        const std::vector<Eigen::Matrix<double, 3, 4>>& transforms) {
+    SceneMesh scene;
+    int64_t vertices = 0, triangles = 0;
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        check_part(*meshes[i], i);
+        vertices += meshes[i]->vertex_count();
+        triangles += meshes[i]->triangle_count();
+    }
+    if (vertices > kMaxVertices || triangles > kMaxTriangles) {
+        throw Error(ErrorCode::kTooLarge,
+                    "the scene has " + std::to_string(vertices) + " vertices and " +
+                        std::to_string(triangles) +
+                        " triangles together; raps accepts at most 2^31 - 1 and 2^28");
+    }
+    scene.mesh.positions.reserve(static_cast<size_t>(vertices));
+    scene.mesh.triangles.reserve(static_cast<size_t>(triangles));
+    scene.parts.first_vertex.push_back(0);
+    scene.parts.first_triangle.push_back(0);
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        const int32_t offset = static_cast<int32_t>(scene.mesh.positions.size());
+        const Eigen::Matrix3d linear = transforms[i].leftCols<3>();
+        const Eigen::Vector3d translation = transforms[i].col(3);
+        for (size_t v = 0; v < meshes[i]->positions.size(); ++v) {
+            const Eigen::Vector3d p = linear * meshes[i]->positions[v] + translation;
+            if (!(p.cwiseAbs().maxCoeff() <= kMaxCoordinate)) {  // also NaN
+                throw Error(ErrorCode::kNonFinitePosition,
+                            "mesh " + std::to_string(i) + ": vertex " + std::to_string(v) +
+                                " lies beyond 1e30 once transformed into world units");
+            }
+            scene.mesh.positions.push_back(p);
+        }
+        for (const Triangle& t : meshes[i]->triangles)
+            scene.mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        scene.parts.first_vertex.push_back(static_cast<int32_t>(scene.mesh.positions.size()));
+        scene.parts.first_triangle.push_back(static_cast<int32_t>(scene.mesh.triangles.size()));
+    }
+    return scene;
+}
+
+}  // namespace raps

@@ -1,0 +1,75 @@
+// The skyline search that places charts into a strip of cells: each chart lands, in its best
+// allowed quarter turn, as low as the skyline (the top of what is placed, per column) lets it,
+// then as far left, or lower still in a hole under an overhang when asked. The search's inner
+// loops are integer arithmetic, the same on every processor.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "atlas/chart_raster.h"
+
+namespace raps {
+
+struct PreparedChart {
+    Eigen::Vector2d rotation;  // cos, sin
+    Eigen::Vector2d origin;    // lower corner of the rotated chart's box, in 3D units
+    Profile profiles[4];       // the four quarter turns
+    int turns = 4;             // how many of them may be used (1: the chart is never turned)
+};
+
+struct SkylineKernels {
+    int32_t (*resting_row)(const int32_t* sky, const int32_t* rest, int32_t width, int32_t limit);
+    int64_t (*skyline_under)(const int32_t* sky, const int32_t* occupied, int32_t width);
+    void (*probe_bounds)(const int32_t* sky, const int32_t* rest, const int32_t* probes,
+                         int32_t probe_count, int32_t count, int32_t* out);
+};
+
+class Occupancy;
+
+struct Placement {
+    int32_t x = 0, y = 0;  // the profile's lower left cell
+    int quarter = 0;       // quarter turns counter-clockwise
+};
+
+// One strip `strip` cells wide, open upwards. find() searches the place of a chart in its allowed
+// turns (lowest top first; with count_waste, the fewest cells left empty under it); commit()
+// takes it. A copy is an independent layout (for placing tentatively).
+class SkylineStrip {
+  public:
+    SkylineStrip(int32_t strip, bool count_waste, bool fill_holes);
+    SkylineStrip(const SkylineStrip& other);
+    SkylineStrip& operator=(const SkylineStrip&) = delete;
+    ~SkylineStrip();
+
+    // false if the chart is wider than the strip in every allowed turn.
+    bool find(const PreparedChart& chart, Placement& place);
+    void commit(const PreparedChart& chart, const Placement& place);
+
+    const int32_t strip;
+    const bool count_waste, fill_holes;
+    int32_t width = 0, height = 0;  // the layout so far, in cells
+
+  private:
+    std::vector<int32_t> skyline_;
+    std::unique_ptr<Occupancy> occupancy_;
+    SkylineKernels kernels_;
+    std::vector<int32_t> bounds_;  // of every position, narrow charts
+    // With count_waste, the skyline's prefix sums: under a chart whose occupied columns are
+    // one run (a connected chart's are), the skyline's sum is one difference.
+    std::vector<int64_t> skyline_sum_;
+};
+
+// Places the charts (in `order`) into a strip `strip` cells wide, one after another. x is
+// searched with a step of an eighth of the chart's width and refined around the best step,
+// which keeps the search linear in the strip width. Returns false if a chart is wider than the
+// strip in every turn, or as soon as the layout grows past `max_side` cells on either side.
+bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
+                std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
+                int32_t& height);
+
+}  // namespace raps
