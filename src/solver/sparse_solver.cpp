@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <string>
 
-#include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
 
 #include "core/error.h"
+#include "solver/minimum_degree.h"
 #include "solver/nested_dissection.h"
 
 namespace raps {
@@ -17,25 +17,6 @@ namespace {
 // to factor; 103K unknowns: 0.12 vs 0.17 s, 0.16 s to factor); at 413K the dissection's
 // factorization is twice as fast.
 constexpr int32_t kMinimumDegreeOnly = 150000;
-
-std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern) {
-    // The pattern is structurally symmetric with sorted rows, so its rows already are the
-    // columns of A + A^T: copied as they are, where a triplet assembly took as long as the
-    // ordering itself. Eigen's public AMDOrdering forms A + A^T once more (a transpose and a
-    // sum of the pattern, with the same sorted structure), then runs the same approximate
-    // minimum degree routine, so the order is the one its internal entry point gave. AMD reads
-    // only the structure; the values are zeros.
-    Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix(pattern.size, pattern.size);
-    matrix.resizeNonZeros(static_cast<Eigen::Index>(pattern.columns.size()));
-    std::copy(pattern.row_offsets.begin(), pattern.row_offsets.end(), matrix.outerIndexPtr());
-    std::copy(pattern.columns.begin(), pattern.columns.end(), matrix.innerIndexPtr());
-    std::fill(matrix.valuePtr(), matrix.valuePtr() + pattern.columns.size(), 0.0);
-    Eigen::AMDOrdering<int>::PermutationType permutation;
-    Eigen::AMDOrdering<int>()(matrix, permutation);
-    // AMD returns the elimination order: entry k is the unknown eliminated k-th.
-    return std::vector<int32_t>(permutation.indices().data(),
-                                permutation.indices().data() + pattern.size);
-}
 
 }  // namespace
 
