@@ -1,7 +1,8 @@
 // Approximate minimum degree (Amestoy, Davis & Duff, "An approximate minimum degree ordering
-// algorithm", SIAM J. Matrix Anal. Appl. 17(4), 1996), through Eigen's public AMDOrdering: the one
-// minimum-degree ordering of src/solver. It orders whole systems up to fill_reducing_order's
-// threshold (sparse_solver.cpp) and the leaves of the nested dissection (nested_dissection.cpp).
+// algorithm", SIAM J. Matrix Anal. Appl. 17(4), 1996), through Eigen's public AMDOrdering: the
+// one minimum-degree ordering of src/solver. It orders whole systems up to fill_reducing_order's
+// threshold (sparse_solver.cpp); the nested dissection of larger ones bisects its leaves instead
+// (nested_dissection.h), which left less fill there than minimum degree.
 #pragma once
 
 #include <cstdint>

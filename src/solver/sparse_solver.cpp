@@ -13,9 +13,10 @@ namespace raps {
 namespace {
 
 // Up to this size minimum degree alone orders faster than the dissection and factors about
-// as fast (measured on face.obj: 25,809 unknowns, AMD 0.015 s vs 0.050 s to order, both 0.025 s
-// to factor; 103K unknowns: 0.12 vs 0.17 s, 0.16 s to factor); at 413K the dissection's
-// factorization is twice as fast.
+// as fast; above it the dissection's factorization wins (docs/bench-ordering.md, CPU time: on
+// face.obj, 25,809 unknowns, AMD 0.011 s vs 0.040 s to order; at 103K unknowns 0.067 vs 0.13 s
+// to order, LU 0.34 vs 0.37 s; at 182K LU 1.5 vs 1.0 s, at 413K 3.5 vs 2.5 s: 9.6e9 flops
+// against 4.3e9).
 constexpr int32_t kMinimumDegreeOnly = 150000;
 
 }  // namespace
