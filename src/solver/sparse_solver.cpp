@@ -12,11 +12,11 @@
 namespace raps {
 namespace {
 
-// Up to this size minimum degree alone orders faster than the dissection and factors about
-// as fast; above it the dissection's factorization wins (docs/bench-ordering.md, CPU time: on
-// face.obj, 25,809 unknowns, AMD 0.011 s vs 0.040 s to order; at 103K unknowns 0.067 vs 0.13 s
-// to order, LU 0.34 vs 0.37 s; at 182K LU 1.5 vs 1.0 s, at 413K 3.5 vs 2.5 s: 9.6e9 flops
-// against 4.3e9).
+// Up to this size minimum degree alone orders faster than the dissection and the whole solve
+// takes about as long; above it the dissection's factorization wins (docs/bench-ordering.md,
+// CPU time: on face.obj, 25,809 unknowns, AMD 0.009 s vs 0.037 s to order; at 103K unknowns
+// 0.10 vs 0.13 s to order, LU 0.42 vs 0.36 s; at 182K LU 1.16 vs 0.77 s, at 413K 3.4 vs 1.8 s:
+// 9.6e9 flops against 4.3e9).
 constexpr int32_t kMinimumDegreeOnly = 150000;
 
 }  // namespace
