@@ -1,6 +1,5 @@
 #include "laplace_systems.h"
 
-#include <cstring>
 #include <map>
 #include <stdexcept>
 
