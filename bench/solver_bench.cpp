@@ -40,20 +40,15 @@
 #include <cholmod.h>
 #include <umfpack.h>
 
-#include "atlas/atlas_pipeline.h"
-#include "core/settings.h"
-#include "core/triangle_mesh.h"
-#include "mesh/mesh_topology.h"
-#include "mesh_io.h"
-#include <Eigen/OrderingMethods>
-#include <Eigen/SparseCore>
-
+#include "laplace_systems.h"
+#include "solver/minimum_degree.h"
 #include "solver/multifrontal_factorization.h"
 #include "solver/nested_dissection.h"
 #include "solver/sparse_solver.h"
-#include "weights/laplacian_weights.h"
 
 namespace {
+
+using raps_bench::System;
 
 using Clock = std::chrono::steady_clock;
 
@@ -69,170 +64,6 @@ long long status_bytes(const char* key) {
         if (line.compare(0, length, key) == 0) return std::atoll(line.c_str() + length) * 1024;
     }
     return 0;
-}
-
-// One linear system as the library builds it: the pattern (structurally symmetric, rows
-// sorted, diagonal included), its values, right-hand sides and the unknowns' positions (for
-// the own fill-reducing order).
-struct System {
-    raps::SparsePattern pattern;
-    std::vector<double> values;
-    std::vector<double> rhs;  // rhs_count columns of pattern.size entries
-    int rhs_count = 1;
-    std::vector<Eigen::Vector3d> coordinates;
-    bool symmetric = false;
-    int64_t triangles = 0;
-};
-
-raps::TriangleMesh to_mesh(const std::vector<double>& positions,
-                           const std::vector<uint32_t>& triangles) {
-    raps::TriangleMesh mesh;
-    mesh.positions.resize(positions.size() / 3);
-    for (size_t v = 0; v < mesh.positions.size(); ++v)
-        mesh.positions[v] = Eigen::Vector3d(positions[3 * v], positions[3 * v + 1],
-                                            positions[3 * v + 2]);
-    mesh.triangles.resize(triangles.size() / 3);
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-        mesh.triangles[t] = {static_cast<int32_t>(triangles[3 * t]),
-                             static_cast<int32_t>(triangles[3 * t + 1]),
-                             static_cast<int32_t>(triangles[3 * t + 2])};
-    }
-    return mesh;
-}
-
-// The largest chart of the default atlas of `mesh` (one thread), as a mesh of its own.
-raps::TriangleMesh largest_chart(const raps::TriangleMesh& mesh) {
-    raps::Settings settings;
-    settings.domain = raps::Domain::kAtlas;
-    settings.threads = 1;
-    raps::Progress progress;
-    raps::PhaseTimes times{};
-    raps::ThreadPool pool(1);
-    const raps::AtlasOutput atlas = raps::build_atlas(mesh, settings, progress, times, pool);
-    std::map<uint32_t, int64_t> size;
-    for (uint32_t c : atlas.chart_of) ++size[c];
-    uint32_t best = 0;
-    int64_t best_size = -1;
-    for (const auto& [chart, count] : size) {
-        if (count > best_size) best = chart, best_size = count;
-    }
-    raps::TriangleMesh chart;
-    std::vector<int32_t> local(atlas.remap.size(), -1);
-    for (size_t t = 0; t < atlas.chart_of.size(); ++t) {
-        if (atlas.chart_of[t] != best) continue;
-        raps::Triangle triangle;
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t o = atlas.indices[3 * t + k];
-            if (local[o] < 0) {
-                local[o] = chart.vertex_count();
-                chart.positions.push_back(mesh.positions[atlas.remap[o]]);
-            }
-            triangle[k] = local[o];
-        }
-        chart.triangles.push_back(triangle);
-    }
-    return chart;
-}
-
-// The Laplace system of `mesh` on its interior vertices, the boundary held: mean value weights
-// with rows scaled to a unit diagonal (the disk domain's initial map, two right-hand sides), or
-// the cotangent Laplacian (the free-boundary map's Cholesky, one right-hand side).
-System laplace_system(const raps::TriangleMesh& mesh, bool cotangent) {
-    const raps::Halfedges halfedges = raps::build_halfedges(mesh);
-    const raps::VertexAdjacency adjacency = raps::build_vertex_adjacency(mesh, halfedges);
-    std::vector<char> on_boundary(mesh.positions.size(), 0);
-    for (const auto& loop : raps::boundary_loops(mesh, halfedges)) {
-        for (int32_t v : loop) on_boundary[v] = 1;
-    }
-    const std::vector<double> weights = raps::laplacian_weights(
-        mesh, adjacency,
-        cotangent ? raps::WeightScheme::kCotangent : raps::WeightScheme::kMeanValue);
-    System system;
-    system.symmetric = cotangent;
-    system.rhs_count = cotangent ? 1 : 2;
-    system.triangles = mesh.triangle_count();
-    std::vector<int32_t> unknown(mesh.positions.size(), -1), vertex;
-    for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
-        if (!on_boundary[v]) {
-            unknown[v] = static_cast<int32_t>(vertex.size());
-            vertex.push_back(v);
-        }
-    }
-    const int32_t n = static_cast<int32_t>(vertex.size());
-    raps::SparsePattern& pattern = system.pattern;
-    pattern.size = n;
-    system.rhs.assign(static_cast<size_t>(system.rhs_count) * n, 0.0);
-    for (int32_t row = 0; row < n; ++row) {
-        const int32_t v = vertex[row];
-        system.coordinates.push_back(mesh.positions[v]);
-        double diagonal = 0;
-        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s)
-            diagonal += weights[s];
-        const double scale = cotangent ? 1.0 : 1.0 / diagonal;
-        bool diagonal_placed = false;
-        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
-            const int32_t u = adjacency.neighbors[s];
-            const int32_t column = unknown[u];
-            if (column < 0) {
-                // Held boundary vertex: its position's x and y stand for its uv.
-                if (cotangent) continue;
-                system.rhs[row] += weights[s] * scale * mesh.positions[u].x();
-                system.rhs[n + row] += weights[s] * scale * mesh.positions[u].y();
-                continue;
-            }
-            if (!diagonal_placed && column > row) {
-                pattern.columns.push_back(row);
-                system.values.push_back(diagonal * scale);
-                diagonal_placed = true;
-            }
-            pattern.columns.push_back(column);
-            system.values.push_back(-weights[s] * scale);
-        }
-        if (!diagonal_placed) {
-            pattern.columns.push_back(row);
-            system.values.push_back(diagonal * scale);
-        }
-        pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
-        if (cotangent) system.rhs[row] = 1.0;  // stands for the angle defect
-    }
-    return system;
-}
-
-System build_system(const std::string& data, const std::string& name, int subdivisions,
-                    bool cotangent) {
-    if (name == "face16") {
-        const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(data + "/meshes/face.obj");
-        std::vector<double> positions = polygons.positions;
-        std::vector<uint32_t> triangles = polygons.triangles();
-        for (int s = 0; s < subdivisions; ++s)
-            raps_samples::subdivide_midpoint(positions, triangles);
-        return laplace_system(to_mesh(positions, triangles), cotangent);
-    }
-    const std::string file = name.substr(std::strlen("chart:"));
-    const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(data + "/meshes/" + file);
-    const raps::TriangleMesh mesh = to_mesh(polygons.positions, polygons.triangles());
-    return laplace_system(largest_chart(mesh), cotangent);
-}
-
-// Nonzeros of the Cholesky factor L (diagonal included) of the pattern eliminated in `order`:
-// the row subtrees of the elimination tree (Liu 1986), O(nnz(L)).
-int64_t cholesky_nonzeros(const raps::SparsePattern& pattern, const std::vector<int32_t>& order) {
-    const int32_t n = pattern.size;
-    std::vector<int32_t> position(n), parent(n, -1), mark(n, -1);
-    for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
-    int64_t count = n;
-    for (int32_t k = 0; k < n; ++k) {
-        mark[k] = k;
-        const int32_t u = order[k];
-        for (int32_t p = pattern.row_offsets[u]; p < pattern.row_offsets[u + 1]; ++p) {
-            for (int32_t i = position[pattern.columns[p]]; i < k && mark[i] != k; i = parent[i]) {
-                if (parent[i] < 0) parent[i] = k;
-                mark[i] = k;
-                ++count;
-            }
-        }
-    }
-    return count;
 }
 
 double residual(const System& system, const std::vector<double>& x) {
@@ -272,19 +103,6 @@ struct Run {
     std::string ordering;
 };
 
-// Eigen's approximate minimum degree (its public AMDOrdering) of the pattern.
-std::vector<int32_t> amd_order(const raps::SparsePattern& pattern) {
-    Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix(pattern.size, pattern.size);
-    matrix.resizeNonZeros(static_cast<Eigen::Index>(pattern.columns.size()));
-    std::copy(pattern.row_offsets.begin(), pattern.row_offsets.end(), matrix.outerIndexPtr());
-    std::copy(pattern.columns.begin(), pattern.columns.end(), matrix.innerIndexPtr());
-    std::fill(matrix.valuePtr(), matrix.valuePtr() + pattern.columns.size(), 0.0);
-    Eigen::AMDOrdering<int>::PermutationType permutation;
-    Eigen::AMDOrdering<int>()(matrix, permutation);
-    return std::vector<int32_t>(permutation.indices().data(),
-                                permutation.indices().data() + pattern.size);
-}
-
 // ordering: empty for the library's own choice (fill_reducing_order), "nd" for its nested
 // dissection at any size, "amd" for Eigen's AMD at any size.
 Run run_own(const System& system, const std::string& ordering) {
@@ -293,7 +111,7 @@ Run run_own(const System& system, const std::string& ordering) {
     Clock::time_point start = Clock::now();
     const std::vector<int32_t> order =
         ordering == "nd"    ? raps::nested_dissection_order(system.pattern, system.coordinates)
-        : ordering == "amd" ? amd_order(system.pattern)
+        : ordering == "amd" ? raps::minimum_degree_order(system.pattern)
                             : raps::fill_reducing_order(system.pattern, system.coordinates);
     raps::MultifrontalFactorization factorization;
     factorization.analyze(system.pattern, order);
@@ -307,7 +125,7 @@ Run run_own(const System& system, const std::string& ordering) {
     start = Clock::now();
     factorization.solve(run.x.data(), system.rhs_count);
     run.solve = seconds_since(start);
-    const int64_t l = cholesky_nonzeros(system.pattern, order);
+    const int64_t l = raps_bench::cholesky_size(system.pattern, order).nonzeros;
     run.factor_nonzeros = system.symmetric ? l : 2 * l - system.pattern.size;
     const bool nd = ordering == "nd" || (ordering.empty() && system.pattern.size > 150000);
     run.ordering = nd ? "own ND" : "AMD (Eigen)";
@@ -352,9 +170,8 @@ Run run_cholmod(const System& system, const std::string& ordering) {
         order = raps::fill_reducing_order(system.pattern, system.coordinates);
     }
     cholmod_sparse a = cholmod_view(system);
-    cholmod_factor* l = ordering == "own"
-                            ? cholmod_analyze_p(&a, order.data(), nullptr, 0, &c)
-                            : cholmod_analyze(&a, &c);
+    cholmod_factor* l = ordering == "own" ? cholmod_analyze_p(&a, order.data(), nullptr, 0, &c)
+                                          : cholmod_analyze(&a, &c);
     run.analysis = seconds_since(start);
     if (!l) throw std::runtime_error("cholmod_analyze failed");
     start = Clock::now();
@@ -419,8 +236,8 @@ Run run_umfpack(const System& system, const std::string& ordering) {
     start = Clock::now();
     for (int c = 0; c < system.rhs_count; ++c) {
         status = umfpack_di_solve(UMFPACK_At, ap, ai, ax, run.x.data() + static_cast<size_t>(c) * n,
-                                  system.rhs.data() + static_cast<size_t>(c) * n, numeric,
-                                  control, info);
+                                  system.rhs.data() + static_cast<size_t>(c) * n, numeric, control,
+                                  info);
         if (status != UMFPACK_OK) throw std::runtime_error("umfpack solve failed");
     }
     run.solve = seconds_since(start);
@@ -460,7 +277,8 @@ double median(std::vector<double> v) {
 // --child SYSTEM KIND SOLVER: measures one case, prints key=value pairs on one line.
 int child(const std::string& data, const std::string& name, const std::string& kind,
           const std::string& solver, int runs, int subdivisions) {
-    const System system = build_system(data, name, subdivisions, kind == "cot");
+    const System system = raps_bench::build_system(data, name == "face16" ? "disk:face.obj" : name,
+                                                   subdivisions, kind == "cot");
     {
         std::ofstream reset("/proc/self/clear_refs");
         reset << "5";  // the peak resident set becomes the current one
@@ -486,26 +304,28 @@ int child(const std::string& data, const std::string& name, const std::string& k
         hashes.push_back(bits_hash(run.x));
     }
     const long long peak = status_bytes("VmHWM:") - before;
-    const bool runs_agree = std::all_of(hashes.begin(), hashes.end(),
-                                        [&](uint64_t h) { return h == hashes[0]; });
+    const bool runs_agree =
+        std::all_of(hashes.begin(), hashes.end(), [&](uint64_t h) { return h == hashes[0]; });
     std::printf(
         "n=%d nnz=%lld triangles=%lld analysis=%.6f factor=%.6f solve=%.6f lnz=%lld "
         "factor_bytes=%.0f library_peak=%.0f rss_peak=%lld residual=%.3e hash=%016llx "
         "runs_agree=%d ordering=%s blas=%s\n",
         system.pattern.size, static_cast<long long>(system.pattern.nonzeros()),
         static_cast<long long>(system.triangles), median(analysis), median(factor), median(solve),
-        static_cast<long long>(run.factor_nonzeros), run.factor_bytes, run.library_peak_bytes,
-        peak, residual(system, run.x), static_cast<unsigned long long>(hashes[0]),
-        runs_agree ? 1 : 0, [&] {
+        static_cast<long long>(run.factor_nonzeros), run.factor_bytes, run.library_peak_bytes, peak,
+        residual(system, run.x), static_cast<unsigned long long>(hashes[0]), runs_agree ? 1 : 0,
+        [&] {
             std::string s = run.ordering;
             std::replace(s.begin(), s.end(), ' ', '~');
             return s;
-        }().c_str(),
+        }()
+            .c_str(),
         [] {
             std::string s = blas_in_use();
             std::replace(s.begin(), s.end(), ' ', '~');
             return s;
-        }().c_str());
+        }()
+            .c_str());
     return 0;
 }
 
@@ -524,10 +344,9 @@ std::string shell_quote(const std::string& s) {
 std::map<std::string, std::string> run_child(const std::string& self, const Case& c,
                                              const std::string& data, int runs, int subdivisions) {
     const std::string command = c.environment + " " + shell_quote(self) + " --child " +
-                                shell_quote(c.system) + " " + c.kind + " " + c.solver +
-                                " --data " + shell_quote(data) + " --runs " +
-                                std::to_string(runs) + " --subdivide " +
-                                std::to_string(subdivisions);
+                                shell_quote(c.system) + " " + c.kind + " " + c.solver + " --data " +
+                                shell_quote(data) + " --runs " + std::to_string(runs) +
+                                " --subdivide " + std::to_string(subdivisions);
     std::fprintf(stderr, "raps-bench-solver: %s %s %s (%s)\n", c.system.c_str(), c.kind.c_str(),
                  c.solver.c_str(), c.setting.c_str());
     FILE* pipe = popen(command.c_str(), "r");
@@ -546,7 +365,9 @@ std::map<std::string, std::string> run_child(const std::string& self, const Case
     return result;
 }
 
-double number(const Case& c, const char* key) { return std::atof(c.result.at(key).c_str()); }
+double number(const Case& c, const char* key) {
+    return std::atof(c.result.at(key).c_str());
+}
 
 std::string system_label(const std::string& system) {
     if (system == "face16") return "face.obj subdivided twice";
@@ -609,14 +430,21 @@ int main(int argc, char** argv) {
         if (!big) cases.push_back({system, "cot", "cholmod", "OpenBLAS, 1 thread", one, {}});
         cases.push_back({system, "cot", "cholmod-metis", "OpenBLAS, 1 thread", one, {}});
         cases.push_back({system, "cot", "cholmod-own", "OpenBLAS, 1 thread", one, {}});
-        cases.push_back({system, "cot", "cholmod-own", "OpenBLAS, 2 threads",
-                         "OPENBLAS_NUM_THREADS=2 OMP_NUM_THREADS=2", {}});
-        if (!big) {
-            cases.push_back({system, "cot", "cholmod-own", "OpenBLAS, baseline kernels (Prescott)",
-                             one + " OPENBLAS_CORETYPE=Prescott", {}});
-        }
-        cases.push_back({system, "cot", "cholmod-own", "reference BLAS and LAPACK", reference,
+        cases.push_back({system,
+                         "cot",
+                         "cholmod-own",
+                         "OpenBLAS, 2 threads",
+                         "OPENBLAS_NUM_THREADS=2 OMP_NUM_THREADS=2",
                          {}});
+        if (!big) {
+            cases.push_back({system,
+                             "cot",
+                             "cholmod-own",
+                             "OpenBLAS, baseline kernels (Prescott)",
+                             one + " OPENBLAS_CORETYPE=Prescott",
+                             {}});
+        }
+        cases.push_back({system, "cot", "cholmod-own", "reference BLAS and LAPACK", reference, {}});
     }
     try {
         for (Case& c : cases) c.result = run_child(self, c, data, runs, subdivisions);
@@ -625,40 +453,43 @@ int main(int argc, char** argv) {
         return 1;
     }
 
-    std::printf("Median of %d runs per row, each in its own process. Analysis: fill-reducing "
-                "ordering and symbolic factorization; factor: numeric factorization; solve: "
-                "forward and back substitution (2 right-hand sides for the mean value systems, "
-                "1 for the cotangent ones). nnz: of L (Cholesky) or of L + U with the diagonal "
-                "once (LU). factor MB: what the library reports it stores (supernodal CHOLMOD "
-                "counts its relaxed zeros); the own solver does not report it. peak MB: the "
-                "resident memory the solver adds (VmHWM after minus VmRSS before). UMFPACK runs "
-                "without iterative refinement (the own solver does none). bits: the solution's "
-                "64-bit FNV hash; rows of one system and solver with the same hash have the "
-                "same bits.\n\n",
-                runs);
+    std::printf(
+        "Median of %d runs per row, each in its own process. Analysis: fill-reducing "
+        "ordering and symbolic factorization; factor: numeric factorization; solve: "
+        "forward and back substitution (2 right-hand sides for the mean value systems, "
+        "1 for the cotangent ones). nnz: of L (Cholesky) or of L + U with the diagonal "
+        "once (LU). factor MB: what the library reports it stores (supernodal CHOLMOD "
+        "counts its relaxed zeros); the own solver does not report it. peak MB: the "
+        "resident memory the solver adds (VmHWM after minus VmRSS before). UMFPACK runs "
+        "without iterative refinement (the own solver does none). bits: the solution's "
+        "64-bit FNV hash; rows of one system and solver with the same hash have the "
+        "same bits.\n\n",
+        runs);
     std::string current;
     for (const Case& c : cases) {
         const std::string key = c.system + c.kind;
         if (key != current) {
             current = key;
-            std::printf("\n### %s, %s: %s unknowns, %s nonzeros (%s triangles)\n\n",
-                        system_label(c.system).c_str(),
-                        c.kind == "mv" ? "mean value weights (LU)"
-                                       : "cotangent Laplacian (Cholesky)",
-                        c.result.at("n").c_str(), c.result.at("nnz").c_str(),
-                        c.result.at("triangles").c_str());
-            std::printf("| solver | ordering | BLAS | analysis ms | factor ms | solve ms | "
-                        "total ms | nnz | factor MB | peak MB | residual | bits |\n");
+            std::printf(
+                "\n### %s, %s: %s unknowns, %s nonzeros (%s triangles)\n\n",
+                system_label(c.system).c_str(),
+                c.kind == "mv" ? "mean value weights (LU)" : "cotangent Laplacian (Cholesky)",
+                c.result.at("n").c_str(), c.result.at("nnz").c_str(),
+                c.result.at("triangles").c_str());
+            std::printf(
+                "| solver | ordering | BLAS | analysis ms | factor ms | solve ms | "
+                "total ms | nnz | factor MB | peak MB | residual | bits |\n");
             std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
         }
         const double total = number(c, "analysis") + number(c, "factor") + number(c, "solve");
         const double factor_bytes = number(c, "factor_bytes");
         char factor_mb[32] = "-";
-        if (factor_bytes >= 0) std::snprintf(factor_mb, sizeof(factor_mb), "%.1f", factor_bytes / 1048576.0);
+        if (factor_bytes >= 0)
+            std::snprintf(factor_mb, sizeof(factor_mb), "%.1f", factor_bytes / 1048576.0);
         std::string ordering = c.result.at("ordering");
         std::replace(ordering.begin(), ordering.end(), '~', ' ');
         std::printf("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3g | %s | %.1f | %s | %s%s |\n",
-                    c.solver.compare(0, 3, "own") == 0 ? "raps (own)"
+                    c.solver.compare(0, 3, "own") == 0       ? "raps (own)"
                     : c.solver.compare(0, 7, "cholmod") == 0 ? "CHOLMOD supernodal"
                                                              : "UMFPACK",
                     ordering.c_str(), c.setting.empty() ? "none" : c.setting.c_str(),
@@ -681,8 +512,9 @@ int main(int argc, char** argv) {
 
     // Ratios: the best library row (its best ordering, one thread) against the own solver.
     std::printf("\n### Ratios, library / own (below 1: the library is faster)\n\n");
-    std::printf("| system | library, best ordering | analysis | factor | solve | total | nnz | "
-                "peak MB |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
+    std::printf(
+        "| system | library, best ordering | analysis | factor | solve | total | nnz | "
+        "peak MB |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
     for (const std::string& system : systems) {
         for (const char* kind : {"mv", "cot"}) {
             const Case* own = nullptr;
@@ -736,31 +568,34 @@ int main(int argc, char** argv) {
         const Case* ch = find(system, "cot", "own", "");
         const Case* ch_lib = find(system, "cot", "cholmod-own", one_thread);
         if (!lu || !lu_lib || !ch || !ch_lib) continue;
-        std::printf("- %s, with the same (own) order, so the same fill: UMFPACK factors in %.2fx "
-                    "the own LU's time and CHOLMOD in %.2fx the own Cholesky's; whole solve "
-                    "(analysis + factor + solve) %.2fx and %.2fx.\n",
-                    system_label(system).c_str(), number(*lu_lib, "factor") / number(*lu, "factor"),
-                    number(*ch_lib, "factor") / number(*ch, "factor"), total(lu_lib) / total(lu),
-                    total(ch_lib) / total(ch));
+        std::printf(
+            "- %s, with the same (own) order, so the same fill: UMFPACK factors in %.2fx "
+            "the own LU's time and CHOLMOD in %.2fx the own Cholesky's; whole solve "
+            "(analysis + factor + solve) %.2fx and %.2fx.\n",
+            system_label(system).c_str(), number(*lu_lib, "factor") / number(*lu, "factor"),
+            number(*ch_lib, "factor") / number(*ch, "factor"), total(lu_lib) / total(lu),
+            total(ch_lib) / total(ch));
         const Case* metis = find(system, "cot", "cholmod-metis", one_thread);
         if (metis) {
-            std::printf("  METIS (in CHOLMOD) leaves %.2fx the own order's nonzeros in L and "
-                        "takes %.2fx its analysis time.\n",
-                        number(*metis, "lnz") / number(*ch, "lnz"),
-                        number(*metis, "analysis") / number(*ch, "analysis"));
+            std::printf(
+                "  METIS (in CHOLMOD) leaves %.2fx the own order's nonzeros in L and "
+                "takes %.2fx its analysis time.\n",
+                number(*metis, "lnz") / number(*ch, "lnz"),
+                number(*metis, "analysis") / number(*ch, "analysis"));
         }
         std::string differ;
         for (const Case& c : cases) {
             if (c.system != system || c.kind != std::string("cot") || c.solver != "cholmod-own" ||
                 c.setting == one_thread)
                 continue;
-            differ += (differ.empty() ? "" : "; ") + c.setting + ": " +
-                      (c.result.at("hash") == ch_lib->result.at("hash") ? "same bits"
-                                                                         : "different bits");
+            differ +=
+                (differ.empty() ? "" : "; ") + c.setting + ": " +
+                (c.result.at("hash") == ch_lib->result.at("hash") ? "same bits" : "different bits");
         }
-        std::printf("  CHOLMOD's solution against its own 1-thread OpenBLAS run, same order: "
-                    "%s.\n",
-                    differ.c_str());
+        std::printf(
+            "  CHOLMOD's solution against its own 1-thread OpenBLAS run, same order: "
+            "%s.\n",
+            differ.c_str());
     }
     // Computed summaries for the recommendation.
     double chart_low = 1e300, chart_high = 0;  // best library total / own total, charts
@@ -866,13 +701,55 @@ int main(int argc, char** argv) {
         "changed, in 3535728: the own rows' hashes stayed those of the commit before) for the "
         "cost of that sum, inside the analysis column. No other "
         "use of Eigen::internal is in src/.\n"
-        "- Two minimum-degree orderings remain: Eigen's AMD for systems up to 150,000 unknowns "
-        "(sparse_solver.cpp), and the own minimum degree on explicit bitset graphs for the "
-        "nested dissection's leaf pieces of at most 32 vertices (nested_dissection.cpp, "
-        "minimum_degree_leaf). Not merged here: the own ND at every size (the own-ND rows of "
-        "the charts) leaves more fill and takes longer to order than AMD, and Eigen's AMD on "
-        "every 32-vertex leaf (about 13,000 calls on face.obj x16, each allocating) would cost "
-        "ordering time and change the bits of every system above 150,000 unknowns. Which one "
-        "to keep needs its own measurement and a change of the large systems' bits.\n");
+        "- One minimum-degree ordering: src/solver/minimum_degree.cpp (approximate minimum "
+        "degree through Eigen's public AMDOrdering) orders every system up to 150,000 "
+        "unknowns; larger ones get the own nested dissection, whose leaves are now cut by "
+        "coordinate bisection down to pieces of 8 vertices. The leaves had been cut down to "
+        "pieces of 32 vertices, each ordered by an own minimum degree on explicit bitset "
+        "graphs; that routine is gone (a6dc834). Systems up to 150,000 unknowns keep their "
+        "order and bits; larger ones changed bits.\n"
+        "- The candidates, measured on the dissection at every size with "
+        "`raps-bench-ordering --ordering nd` (nnz(L), a count: the same on any machine; one "
+        "build per variant):\n\n"
+        "| leaves ordered by | face.obj x16 | camelhead.off x4 | face.obj x4 | face.obj | chart "
+        "of face.obj | chart of beetle.off |\n"
+        "|---|---:|---:|---:|---:|---:|---:|\n"
+        "| own minimum degree on pieces of up to 32 (before) | 1.933e7 | 8.513e6 | 3.918e6 | "
+        "7.664e5 | 1.149e5 | 1.830e5 |\n"
+        "| bisection down to 8 vertices (now) | 1.906e7 | 8.400e6 | 3.840e6 | 7.551e5 | 1.136e5 "
+        "| 1.818e5 |\n"
+        "| bisection down to 3 vertices | 1.901e7 | 8.374e6 | 3.830e6 | 7.476e5 | 1.113e5 | "
+        "1.783e5 |\n"
+        "| Eigen's AMD on pieces of up to 32 | 1.948e7 | 8.588e6 | 3.944e6 | 8.139e5 | 1.242e5 "
+        "| 2.027e5 |\n"
+        "| Eigen's AMD on whole leaves (256 to 2048 vertices) | 3.581e7 | 1.421e7 | 4.924e6 | "
+        "1.875e6 | 2.167e5 | 3.310e5 |\n\n"
+        "  AMD orders a leaf as if nothing surrounded it: it eliminates the leaf's boundary "
+        "(the lowest degrees) first, and in the whole system those vertices join the "
+        "separators around the leaf into large fronts. A minimum degree that sees the "
+        "separators (a halo, Pellegrini, Roman & Amestoy 2000) would need an ordering "
+        "routine with constraints, which Eigen's public AMD does not take. One AMD call on "
+        "the block-diagonal graph of all leaves (one allocation, not one per leaf) would order "
+        "each leaf much as the last row does, so it was not built. Bisection down to 8 "
+        "rather than 3 vertices: 0.3%% more fill on face.obj x16 for 5%% less ordering "
+        "work.\n"
+        "- Work, counted (valgrind --tool=callgrind on `raps-bench-ordering --runs 1 "
+        "--ordering nd --system \"face.obj subdivided once\"`, instructions, before -> now): "
+        "ordering 678M -> 698M, symbolic analysis 194M -> 201M, LU and Cholesky "
+        "factorization 1757M -> 1751M, order, analysis, preparation, factorizations and solve "
+        "2836M -> 2857M (+0.7%%). The flops of the factorization (sum of squared column "
+        "counts) are 4.28e9 on face.obj x16, 4.29e9 before. The times of today's orders are "
+        "in docs/bench-ordering.md (`raps-bench-ordering --runs 3 --cpu-time`); timed "
+        "against the build before (`--runs 3 --cpu-time --ordering library --system \"face.obj "
+        "subdivided twice\"`, three interleaved repetitions on the loaded machine), the total "
+        "on face.obj x16 stayed within the runs' spread: 2.80 to 3.43 s before (median "
+        "3.20), 2.84 to 3.60 s now (median 2.90); ordering 0.43 to 0.58 s before, 0.43 to "
+        "0.54 s now.\n"
+        "- Not chosen: the own minimum degree for whole systems in place of AMD (it keeps the "
+        "elimination graph as explicit bitsets, n^2/64 words: for pieces, not systems of "
+        "5,000 to 150,000 unknowns; a quotient-graph minimum degree would be a new AMD), and "
+        "the dissection at every size (docs/bench-ordering.md: up to face.obj x4 it leaves "
+        "more fill than AMD, 1.136e5 against 9.03e4 on the chart of face.obj, 3.84e6 against "
+        "3.61e6 on face.obj x4).\n");
     return 0;
 }

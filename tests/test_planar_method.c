@@ -304,6 +304,31 @@ static void runs_are_deterministic(void** state) {
     test_mesh_free(&cone);
 }
 
+/* Linear precision on a disk with over 150,000 interior vertices, which the solver orders by
+ * nested dissection rather than minimum degree (src/solver/sparse_solver.cpp): the map is still
+ * the disk itself, with the same bits for one thread and two. */
+static void disk_large_enough_for_nested_dissection_maps_to_itself(void** state) {
+    (void)state;
+    test_mesh disk = make_flat_disk(225, 6, 0.0); /* 151,201 interior vertices */
+    double* uv[2];
+    for (int t = 0; t < 2; ++t) {
+        raps_settings* s = make_settings(RAPS_WEIGHTS_MEAN_VALUE, RAPS_MONITOR_NONE, 1.0, 1);
+        assert_status(raps_settings_set_int(s, RAPS_PARAM_THREADS, t + 1), RAPS_OK);
+        raps_stats stats;
+        uv[t] = map_uvs(&disk, s, &stats);
+        assert_int_equal(stats.flipped_triangles, 0);
+        raps_settings_destroy(s);
+    }
+    for (size_t i = 0; i < disk.vertex_count; ++i) {
+        assert_near(uv[0][2 * i], 0.5 + 0.5 * disk.positions[3 * i], 1e-9);
+        assert_near(uv[0][2 * i + 1], 0.5 + 0.5 * disk.positions[3 * i + 1], 1e-9);
+    }
+    assert_memory_equal(uv[0], uv[1], 2 * disk.vertex_count * sizeof(double));
+    free(uv[0]);
+    free(uv[1]);
+    test_mesh_free(&disk);
+}
+
 /* A mesh whose every vertex is on the boundary (no unknowns) still maps, onto the polygon. */
 static void mesh_without_interior_vertices_maps_its_boundary(void** state) {
     (void)state;
@@ -331,6 +356,7 @@ int main(void) {
         cmocka_unit_test(negative_cotangent_weights_are_counted),
         cmocka_unit_test(runs_are_deterministic),
         cmocka_unit_test(mesh_without_interior_vertices_maps_its_boundary),
+        cmocka_unit_test(disk_large_enough_for_nested_dissection_maps_to_itself),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -23,9 +23,11 @@ namespace {
 constexpr double kLeafDivisor = 200;
 constexpr int32_t kMinLeafSize = 256;
 constexpr int32_t kMaxLeafSize = 2048;
-// Leaf pieces of at most this many vertices are ordered by minimum degree (one 64-bit word per
-// row of the elimination graph).
-constexpr int32_t kMinimumDegreeSize = 32;
+// Pieces of at most this many vertices keep their order: bisecting them down to three vertices
+// saved 0.3% of the fill on face.obj x16 for 5% more ordering work. Bisection down to here
+// leaves less fill than minimum degree on pieces of up to 32 vertices, which the leaves had
+// before (docs/bench-solver.md).
+constexpr int32_t kKeepOrderSize = 8;
 // The tree is first built on the coarsest level that still has 1/8 of the vertices, then
 // projected down and refined level by level.
 constexpr double kBaseRatio = 8;
@@ -707,6 +709,8 @@ class Dissection {
         }
         leaf_piece_.assign(m, 0);
         leaf_position_.resize(m);
+        leaf_side_.resize(m);
+        leaf_copy_.resize(m);
         leaf_order_.clear();
         std::vector<int32_t> local_ids(m);
         std::iota(local_ids.begin(), local_ids.end(), 0);
@@ -719,8 +723,8 @@ class Dissection {
     // pass over the edges scores all 96 candidates (for each vertex, the lowest and highest bin
     // among its neighbours tell which cuts it touches). Works in place on local ids.
     void bisect_leaf(int32_t* ids, int32_t m) {
-        if (m <= kMinimumDegreeSize) {
-            minimum_degree_leaf(ids, m);
+        if (m <= kKeepOrderSize) {
+            leaf_order_.insert(leaf_order_.end(), ids, ids + m);
             return;
         }
         constexpr int kBins = 32;
@@ -795,7 +799,8 @@ class Dissection {
                 rs += rt[ax][b + 1];
             }
         }
-        std::vector<int8_t> side(m);  // 0 left, 1 separator, 2 right
+        // Scratch shared by the recursion: each call is done with it before it recurses.
+        int8_t* side = leaf_side_.data();  // 0 left, 1 separator, 2 right
         if (best == std::numeric_limits<int64_t>::max()) {
             // No axis splits it (coincident points): halve by position, one-sided boundary.
             for (int32_t k = 0; k < m; ++k) {
@@ -818,7 +823,8 @@ class Dissection {
             }
         }
         // In place: left, right, separator; order both halves, then the separator.
-        const std::vector<int32_t> copy(ids, ids + m);
+        int32_t* copy = leaf_copy_.data();
+        std::copy(ids, ids + m, copy);
         int32_t at = 0, sizes[2] = {0, 0};
         for (int8_t which : {0, 2, 1}) {
             for (int32_t k = 0; k < m; ++k) {
@@ -829,84 +835,6 @@ class Dissection {
         bisect_leaf(ids, sizes[0]);
         bisect_leaf(ids + sizes[0], sizes[1]);
         leaf_order_.insert(leaf_order_.end(), ids + sizes[0] + sizes[1], ids + m);
-    }
-
-    // Minimum degree (Tinney & Walker 1967; Rose 1972) on the explicit elimination graph of a
-    // small piece, rows as bitsets: eliminating v joins its neighbours into a clique.
-    void minimum_degree_leaf(const int32_t* ids, int32_t m) {
-        if (m == 0) return;
-        const int32_t piece = ++leaf_piece_count_;
-        for (int32_t k = 0; k < m; ++k) {
-            leaf_piece_[ids[k]] = piece;
-            leaf_position_[ids[k]] = k;
-        }
-        const int32_t words = (m + 63) / 64;
-        rows_.assign(static_cast<size_t>(m) * words, 0);
-        degree_.assign(m, 0);
-        for (int32_t k = 0; k < m; ++k) {
-            uint64_t* row = rows_.data() + static_cast<size_t>(k) * words;
-            const int32_t v = ids[k];
-            for (int32_t p = leaf_offsets_[v]; p < leaf_offsets_[v + 1]; ++p) {
-                const int32_t u = leaf_adjacency_[p];
-                if (leaf_piece_[u] != piece) continue;
-                const int32_t j = leaf_position_[u];
-                const uint64_t bit = uint64_t{1} << (j & 63);
-                if (!(row[j >> 6] & bit)) {
-                    row[j >> 6] |= bit;
-                    ++degree_[k];
-                }
-            }
-        }
-        // Degree buckets as doubly linked lists.
-        bucket_head_.assign(m + 1, -1);
-        next_.resize(m);
-        prev_.resize(m);
-        auto insert = [&](int32_t k) {
-            prev_[k] = -1;
-            next_[k] = bucket_head_[degree_[k]];
-            if (next_[k] >= 0) prev_[next_[k]] = k;
-            bucket_head_[degree_[k]] = k;
-        };
-        auto remove = [&](int32_t k) {
-            (prev_[k] >= 0 ? next_[prev_[k]] : bucket_head_[degree_[k]]) = next_[k];
-            if (next_[k] >= 0) prev_[next_[k]] = prev_[k];
-        };
-        for (int32_t k = m - 1; k >= 0; --k) insert(k);
-        int32_t min_degree = 0;
-        std::vector<uint64_t> clique(words);
-        for (int32_t step = 0; step < m; ++step) {
-            while (bucket_head_[min_degree] < 0) ++min_degree;
-            const int32_t v = bucket_head_[min_degree];
-            remove(v);
-            leaf_order_.push_back(ids[v]);
-            const uint64_t* row_v = rows_.data() + static_cast<size_t>(v) * words;
-            std::copy(row_v, row_v + words, clique.begin());
-            // v leaves its neighbours' rows and they join each other; a degree changes by
-            // the bits added, which are few: count them one by one.
-            const uint64_t v_bit = uint64_t{1} << (v & 63);
-            for (int32_t w = 0; w < words; ++w) {
-                for (uint64_t bits = clique[w]; bits; bits &= bits - 1) {
-                    const int32_t u = w * 64 + __builtin_ctzll(bits);
-                    uint64_t* row_u = rows_.data() + static_cast<size_t>(u) * words;
-                    int32_t d = degree_[u] - 1;
-                    row_u[v >> 6] &= ~v_bit;
-                    for (int32_t i = 0; i < words; ++i) {
-                        for (uint64_t added = clique[i] & ~row_u[i]; added; added &= added - 1) {
-                            ++d;
-                        }
-                        row_u[i] |= clique[i];
-                    }
-                    row_u[u >> 6] &= ~(uint64_t{1} << (u & 63));
-                    --d;  // u itself was among the added bits
-                    if (d != degree_[u]) {
-                        remove(u);
-                        degree_[u] = d;
-                        insert(u);
-                        min_degree = std::min(min_degree, d);
-                    }
-                }
-            }
-        }
     }
 
     const SparsePattern& pattern_;
@@ -924,11 +852,11 @@ class Dissection {
     VertexCut flow_;
     std::vector<int32_t> band_, band_index_, pending_;
     std::vector<int32_t> leaf_offsets_, leaf_adjacency_, leaf_piece_, leaf_position_, leaf_order_;
+    std::vector<int32_t> leaf_copy_;
+    std::vector<int8_t> leaf_side_;
     std::vector<Eigen::Vector3d> leaf_points_;
     int32_t leaf_piece_count_ = 0;
     std::vector<int> bins_;
-    std::vector<uint64_t> rows_;
-    std::vector<int32_t> degree_, bucket_head_, next_, prev_;
 };
 
 }  // namespace

@@ -3,39 +3,21 @@
 #include <algorithm>
 #include <string>
 
-#include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
 
 #include "core/error.h"
+#include "solver/minimum_degree.h"
 #include "solver/nested_dissection.h"
 
 namespace raps {
 namespace {
 
-// Up to this size minimum degree alone orders faster than the dissection and factors about
-// as fast (measured on face.obj: 25,809 unknowns, AMD 0.015 s vs 0.050 s to order, both 0.025 s
-// to factor; 103K unknowns: 0.12 vs 0.17 s, 0.16 s to factor); at 413K the dissection's
-// factorization is twice as fast.
+// Up to this size minimum degree alone orders faster than the dissection and the whole solve
+// takes about as long; above it the dissection's factorization wins (docs/bench-ordering.md,
+// CPU time: on face.obj, 25,809 unknowns, AMD 0.009 s vs 0.037 s to order; at 103K unknowns
+// 0.10 vs 0.13 s to order, LU 0.42 vs 0.36 s; at 182K LU 1.16 vs 0.77 s, at 413K 3.4 vs 1.8 s:
+// 9.6e9 flops against 4.3e9).
 constexpr int32_t kMinimumDegreeOnly = 150000;
-
-std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern) {
-    // The pattern is structurally symmetric with sorted rows, so its rows already are the
-    // columns of A + A^T: copied as they are, where a triplet assembly took as long as the
-    // ordering itself. Eigen's public AMDOrdering forms A + A^T once more (a transpose and a
-    // sum of the pattern, with the same sorted structure), then runs the same approximate
-    // minimum degree routine, so the order is the one its internal entry point gave. AMD reads
-    // only the structure; the values are zeros.
-    Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix(pattern.size, pattern.size);
-    matrix.resizeNonZeros(static_cast<Eigen::Index>(pattern.columns.size()));
-    std::copy(pattern.row_offsets.begin(), pattern.row_offsets.end(), matrix.outerIndexPtr());
-    std::copy(pattern.columns.begin(), pattern.columns.end(), matrix.innerIndexPtr());
-    std::fill(matrix.valuePtr(), matrix.valuePtr() + pattern.columns.size(), 0.0);
-    Eigen::AMDOrdering<int>::PermutationType permutation;
-    Eigen::AMDOrdering<int>()(matrix, permutation);
-    // AMD returns the elimination order: entry k is the unknown eliminated k-th.
-    return std::vector<int32_t>(permutation.indices().data(),
-                                permutation.indices().data() + pattern.size);
-}
 
 }  // namespace
 
