@@ -37,7 +37,7 @@ raps::TriangleMesh largest_chart(const raps::TriangleMesh& mesh) {
     raps::Progress progress;
     raps::PhaseTimes times{};
     raps::ThreadPool pool(1);
-    const raps::AtlasOutput atlas = raps::build_atlas(mesh, settings, progress, times, pool);
+    const raps::AtlasOutput atlas = raps::build_atlas(mesh, raps::single_part(mesh), settings, progress, times, pool);
     std::map<uint32_t, int64_t> size;
     for (uint32_t c : atlas.chart_of) ++size[c];
     uint32_t best = 0;
