@@ -4,6 +4,7 @@
 #include "mesh/mesh_validation.h"
 #include "mesh/vertex_order.h"
 #include "parallel/thread_pool.h"
+#include "sphere/best_sphere_map.h"
 #include "sphere/gauss_map.h"
 #include "sphere/sphere_initial_map.h"
 #include "sphere/sphere_map_check.h"
@@ -78,7 +79,14 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
         // the previous one left.
         const int steps = literal ? 1 : settings.sphere_alpha_steps;
         const int total = settings.iterations * steps;
+        const bool by_area = settings.monitor == Monitor::kArea;
         std::vector<double> weights = base_weights;
+        std::vector<Eigen::Vector3d> best;  // robust: the best map so far (best_sphere_map.h)
+        SphereMapScore best_score;
+        if (!literal) {
+            best = points;
+            best_score = score_sphere_map(problem, points, pool);
+        }
         for (int iteration = 0; iteration < settings.iterations; ++iteration) {
             if (settings.iteration_mode == IterationMode::kReapply) weights = base_weights;
             for (int step = 0; step < steps; ++step) {
@@ -92,8 +100,15 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                         progress.report(Phase::kAdapt, (done + fraction) / total);
                     }).sweeps;
                 ++map.adaptive_solves;
+                if (literal) continue;
+                const SphereMapScore score = score_sphere_map(problem, points, pool);
+                if (better_sphere_map(score, best_score, by_area)) {
+                    best = points;
+                    best_score = score;
+                }
             }
         }
+        if (!literal) points.swap(best);
     }
     map.points.resize(points.size());
     for (size_t k = 0; k < order.size(); ++k) map.points[order[k]] = points[k];
