@@ -163,7 +163,7 @@ int run_sphere(const std::string& data, int runs, int large_runs, int subdivisio
     }
     const int all = threads > 0 ? threads : static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
     std::printf(
-        "raps %s, sphere domain: robust method, mean value weights, area monitor alpha 1 in 4 "
+        "raps %s, sphere domain: robust method, mean value weights, area monitor alpha 1 in 2 "
         "continuation steps; median of runs per case; %d threads against 1\n\n",
         raps_version_string(), all);
     std::printf(

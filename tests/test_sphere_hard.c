@@ -386,8 +386,7 @@ static void assert_area_lowered(const char* name, const test_mesh* mesh, double 
 /* Capsules: the conformal initial map squeezes each end by about e^-aspect. Aspect 10 to 30
  * map bijectively; aspect 50, whose ends would need 1e-22 of the sphere where doubles resolve
  * 1e-16, is refused with its status (the pathological set of docs/sphere-status.md). The area
- * monitor lowers the area distortion by 40 % up to aspect 20 (measured 65 % and 60 %); at
- * aspect 30 by less (32 %: docs/sphere-status.md), but never above the initial map's. */
+ * monitor lowers the area distortion by at least 40 % (measured 70 %, 62 % and 57 %). */
 static void capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused(void** state) {
     (void)state;
     const double aspects[] = {10, 20, 30, 50};
@@ -395,8 +394,7 @@ static void capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused(void*
         test_mesh m = make_capsule(aspects[k], 24);
         char name[64];
         snprintf(name, sizeof(name), "capsule aspect %.0f", aspects[k]);
-        if (aspects[k] <= 20) assert_area_lowered(name, &m, 0.6);
-        if (aspects[k] == 30) assert_area_lowered(name, &m, 1.0);
+        if (aspects[k] <= 30) assert_area_lowered(name, &m, 0.6);
         if (aspects[k] >= 50) {
             assert_status(map_or_refuse(name, &m, RAPS_MONITOR_AREA).status,
                           RAPS_ERROR_SOLVER_FAILED);
