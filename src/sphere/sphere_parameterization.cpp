@@ -1,6 +1,7 @@
 #include "sphere/sphere_parameterization.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "mesh/mesh_topology.h"
 #include "mesh/mesh_validation.h"
@@ -81,9 +82,10 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
         // relaxations, each multiplying the weights by e^(alpha / steps) measured on the map
         // the previous one left. A step that takes a fold-free, centred map to a folded or
         // off-centre one is taken back and tried again at half its exponent, at most
-        // kStepRetries times per iteration:
-        // measured on a capsule of aspect 30, both steps of alpha / 2 drifted off-centre (0.11
-        // and 0.63), which left only the initial map to return (docs/sphere-status.md).
+        // kStepRetries times per iteration, and with half the sweeps (so that all steps taken
+        // together still get the sweeps of one iteration). Measured on a capsule of aspect 30:
+        // both steps of alpha / 2 drifted off-centre (0.11 and 0.63), which left only the
+        // initial map to return (docs/sphere-status.md).
         const int steps = literal ? 1 : settings.sphere_alpha_steps;
         const bool by_area = settings.monitor == Monitor::kArea;
         std::vector<double> weights = base_weights;
@@ -107,12 +109,16 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                 std::vector<double> trial =
                     adaptive_weights(problem.adjacency, weights, monitor, settings.alpha * step);
                 if (!literal) before = points;
+                RelaxationOptions step_options = options;
+                step_options.max_sweeps = std::max<int64_t>(
+                    1, std::llround(static_cast<double>(options.max_sweeps) * step * steps));
+                const auto report = [&](double fraction) {
+                    const double at = (iteration + reached + fraction * step) / settings.iterations;
+                    reported = std::max(reported, at);  // a retried step does not go back
+                    progress.report(Phase::kAdapt, reported);
+                };
                 map.relaxation_sweeps +=
-                    relax_on_sphere(problem, trial, points, options, pool, [&](double fraction) {
-                        reported = std::max(reported, (iteration + reached + fraction * step) /
-                                                          settings.iterations);
-                        progress.report(Phase::kAdapt, reported);
-                    }).sweeps;
+                    relax_on_sphere(problem, trial, points, step_options, pool, report).sweeps;
                 ++map.adaptive_solves;
                 if (!literal) {
                     const SphereMapScore score = score_sphere_map(problem, points, pool);
