@@ -47,8 +47,8 @@ Mobius compose(const Mobius& f, const Mobius& g) {  // f after g
     Mobius h{f.a * g.a + f.b * g.c, f.a * g.b + f.b * g.d, f.c * g.a + f.d * g.c,
              f.c * g.b + f.d * g.d};
     // A Moebius matrix means the same map at any scale: keep the entries near 1.
-    const double big =
-        std::max(std::max(std::abs(h.a), std::abs(h.b)), std::max(std::abs(h.c), std::abs(h.d)));
+    const double big = std::max(std::max(std::abs(h.a), std::abs(h.b)),
+                                std::max(std::abs(h.c), std::abs(h.d)));
     h.a /= big;
     h.b /= big;
     h.c /= big;
@@ -75,8 +75,8 @@ Eigen::Vector3d lift(Complex num, Complex den) {
 // stereographic coordinates) that takes `direction` to the north pole.
 Mobius boost_towards(const Eigen::Vector3d& direction, double k) {
     const double phi = std::atan2(direction.y(), direction.x());
-    const Complex alpha =
-        std::sqrt(std::max(0.0, 0.5 * (1.0 + direction.z()))) * std::polar(1.0, -phi);
+    const Complex alpha = std::sqrt(std::max(0.0, 0.5 * (1.0 + direction.z()))) *
+                          std::polar(1.0, -phi);
     const Complex beta = std::sqrt(std::max(0.0, 0.5 * (1.0 - direction.z())));
     const Mobius rotation{alpha, beta, -std::conj(beta), std::conj(alpha)};
     const Mobius back{std::conj(alpha), -beta, std::conj(beta), alpha};

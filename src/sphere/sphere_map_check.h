@@ -18,9 +18,9 @@
 namespace raps {
 
 struct FoldCount {
-    int64_t folded = 0;      // triangles with det[a, b, c] <= 0 (or not finite)
-    int64_t first = -1;      // the lowest such triangle index, -1 if none
-    int64_t off_sphere = 0;  // points with | |u| - 1 | > kUnitTolerance (or not finite)
+    int64_t folded = 0;         // triangles with det[a, b, c] <= 0 (or not finite)
+    int64_t first = -1;         // the lowest such triangle index, -1 if none
+    int64_t off_sphere = 0;     // points with | |u| - 1 | > kUnitTolerance (or not finite)
 };
 
 constexpr double kUnitTolerance = 1e-12;
