@@ -6,7 +6,8 @@
 //   raps-bench --sphere [--data DIR] [--runs N] [--large-runs N] [--subdivide K] [--threads N]
 //
 // --sphere times the sphere domain instead (robust method, area monitor, alpha 1) on the shared
-// closed genus-0 meshes and on bunny.off subdivided K times (default 2: 111K triangles): sweeps,
+// closed genus-0 meshes and on bunny.off and cow.off subdivided K times (default 2: 111K and 88K
+// triangles): sweeps,
 // time per phase, spherical area distortion of the initial map (a run with no monitor) and of
 // the adapted one, folded triangles, peak memory, and the speed-up from 1 thread to N (default:
 // all cores).
@@ -146,16 +147,23 @@ std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, const C
 int run_sphere(const std::string& data, int runs, int large_runs, int subdivisions, int threads) {
     std::vector<Case> cases = {{"bunny", data + "/meshes/bunny.off", 0},
                                {"cheburashka", data + "/meshes/cheburashka.off", 0},
+                               {"cow", data + "/meshes/cow.off", 0},
+                               {"decimated-knight", data + "/meshes/decimated-knight.off", 0},
                                {"decimated-max", data + "/meshes/decimated-max.obj", 0},
                                {"fandisk", data + "/meshes/fandisk.obj", 0},
+                               {"horse_quad", data + "/meshes/horse_quad.obj", 0},
                                {"spot", data + "/meshes/spot.obj", 0}};
     if (subdivisions > 0) {
-        cases.push_back({"bunny/" + std::to_string(1 << (2 * subdivisions)),
-                         data + "/meshes/bunny.off", subdivisions});
+        // bunny, and cow with its long legs, each 1-to-4 subdivided `subdivisions` times.
+        for (const char* name : {"bunny.off", "cow.off"}) {
+            const std::string stem(name, std::strchr(name, '.'));
+            cases.push_back({stem + "/" + std::to_string(1 << (2 * subdivisions)),
+                             data + "/meshes/" + name, subdivisions});
+        }
     }
     const int all = threads > 0 ? threads : static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
     std::printf(
-        "raps %s, sphere domain: robust method, mean value weights, area monitor alpha 1 in 4 "
+        "raps %s, sphere domain: robust method, mean value weights, area monitor alpha 1 in 2 "
         "continuation steps; median of runs per case; %d threads against 1\n\n",
         raps_version_string(), all);
     std::printf(

@@ -168,7 +168,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_SPHERE_DAMPING, "sphere_damping", true, 2.2250738585072014e-308, 1.0, 1.0},
     {RAPS_PARAM_SPHERE_TOLERANCE, "sphere_tolerance", true, 1e-12, 1.0, 1e-4},
     {RAPS_PARAM_SPHERE_MAX_SWEEPS, "sphere_max_sweeps", false, 0, 10000000, 0},
-    {RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", false, 1, 100, 4},
+    {RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", false, 1, 100, 2},
     {RAPS_PARAM_MAX_MEMORY_MB, "max_memory_mb", false, 0, kMaxElements, 0},
     {RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", false, 16, 16384, 1024},
     {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 1},

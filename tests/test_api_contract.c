@@ -142,7 +142,7 @@ static void settings_hold_the_documented_defaults(void** state) {
                     {RAPS_PARAM_SPHERE_METHOD, RAPS_SPHERE_ROBUST},
                     {RAPS_PARAM_SPHERE_UV, RAPS_SPHERE_UV_NONE},
                     {RAPS_PARAM_SPHERE_MAX_SWEEPS, 0},
-                    {RAPS_PARAM_SPHERE_ALPHA_STEPS, 4},
+                    {RAPS_PARAM_SPHERE_ALPHA_STEPS, 2},
                     {RAPS_PARAM_MAX_MEMORY_MB, 0}};
     for (size_t i = 0; i < sizeof(expected) / sizeof(expected[0]); ++i) {
         int64_t value = -1;

@@ -103,18 +103,21 @@ static sphere_check assert_bijective(const char* name, const test_mesh* mesh, co
     return c;
 }
 
-static const char* kSpheres[] = {"bunny.off", "cheburashka.off", "decimated-max.obj", "fandisk.obj",
-                                 "spot.obj"};
+static const char* kSpheres[] = {
+    "bunny.off",         "cheburashka.off", "cow.off",        "decimated-knight.off",
+    "decimated-max.obj", "fandisk.obj",     "horse_quad.obj", "spot.obj"};
 
 /* Every shared genus-0 mesh: the initial map (monitor none) and the area-adapted one are
- * bijective and centred, and the area monitor lowers the spherical area distortion. Measured
- * (mean |log r| with exact spherical areas, initial -> area alpha 1, as docs/bench-method.md
- * has them): bunny 1.638 -> 0.667, cheburashka 2.457 -> 0.895, decimated-max 0.604 -> 0.217,
- * fandisk 0.729 -> 0.223, spot 2.055 -> 0.689; centre of mass at most 1.6e-3 from the origin. */
+ * bijective and centred, and the area monitor lowers the spherical area distortion by at least
+ * 40 % (issue 18's promise). Measured (mean |log r| with exact spherical areas, initial -> area
+ * alpha 1; docs/sphere-status.md): bunny 1.641 -> 0.651, cheburashka 2.455 -> 0.907, cow 2.840
+ * -> 1.468, decimated-knight 4.550 -> 2.121, decimated-max 0.605 -> 0.211, fandisk 0.729 ->
+ * 0.181, horse_quad 3.769 -> 1.664, spot 2.061 -> 0.650; centre of mass at most 1.5e-3 from
+ * the origin. */
 static void shared_meshes_map_bijectively_and_the_area_monitor_equidistributes(void** state) {
     (void)state;
-    const double initial_at_least[] = {1.58, 2.40, 0.57, 0.70, 2.00};
-    const double adapted_at_most[] = {0.70, 0.93, 0.23, 0.24, 0.72};
+    const double initial_at_least[] = {1.58, 2.40, 2.80, 4.50, 0.57, 0.70, 3.70, 2.00};
+    const double adapted_at_most[] = {0.68, 0.93, 1.52, 2.18, 0.22, 0.20, 1.72, 0.68};
     raps_settings* initial = sphere_settings(RAPS_SPHERE_ROBUST, RAPS_MONITOR_NONE, 0);
     raps_settings* adapted = sphere_settings(RAPS_SPHERE_ROBUST, RAPS_MONITOR_AREA, 0);
     for (size_t m = 0; m < sizeof(kSpheres) / sizeof(kSpheres[0]); ++m) {
@@ -139,7 +142,7 @@ static void shared_meshes_map_bijectively_and_the_area_monitor_equidistributes(v
         assert_true(s1.relaxation_sweeps > s0.relaxation_sweeps);
         assert_true(s0.area_log_mean >= initial_at_least[m]);
         assert_below(s1.area_log_mean, adapted_at_most[m]);
-        assert_below(s1.area_log_mean, s0.area_log_mean);
+        assert_below(s1.area_log_mean, 0.6 * s0.area_log_mean);
         free(u0);
         free(u1);
         raps_result_destroy(r0);
@@ -544,7 +547,7 @@ static void sphere_results_answer_their_accessors(void** state) {
     assert_status(raps_result_copy_uvs_f64(r, uv, n, 0), RAPS_ERROR_INVALID_OPERATION);
     const raps_stats stats = stats_of(r);
     assert_true(stats.relaxation_sweeps > 0);
-    assert_int_equal(stats.adaptive_solves, 4); /* one iteration in 4 continuation steps */
+    assert_int_equal(stats.adaptive_solves, 2); /* one iteration in 2 continuation steps */
     assert_true(raps_result_phase_ms(r, RAPS_PHASE_INITIAL_MAP) > 0.0);
     assert_true(raps_result_phase_ms(r, RAPS_PHASE_ADAPT) > 0.0);
 

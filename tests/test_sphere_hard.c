@@ -6,8 +6,11 @@
  *    (every triangle counter-clockwise by the exact orientation test, |r - 1| < 1e-12, spherical
  *    areas adding up to 4 pi), and a refusal is RAPS_ERROR_SOLVER_FAILED with a message that
  *    names the folded triangles;
- *  - which of these inputs are mapped, and how well centred (docs/sphere-status.md has the
- *    figures measured on each). */
+ *  - every map that comes back is centred: the 3D-area-weighted centre of mass of its points
+ *    within 0.05 of the origin;
+ *  - the area monitor lowers the area distortion (raps_stats.area_log_mean) by at least 40 %
+ *    against the initial map (RAPS_MONITOR_NONE), and never leaves it worse, where stated;
+ *  - which of these inputs are mapped (docs/sphere-status.md has the figures measured on each). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -317,8 +320,8 @@ typedef struct outcome {
 } outcome;
 
 /* Runs the robust method with `monitor`; on RAPS_OK the map must be a bijection of the unit
- * sphere, otherwise the refusal must be SOLVER_FAILED with a message about folds. Prints the
- * figures either way. */
+ * sphere and centred (the 3D-area-weighted centre of mass within 0.05 of the origin), otherwise the
+ * refusal must be SOLVER_FAILED with a message about folds. Prints the figures either way. */
 static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t monitor) {
     raps_mesh* handle = to_raps_mesh(mesh);
     raps_settings* settings = sphere_settings(monitor);
@@ -339,9 +342,9 @@ static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t mo
         free(u);
         print_message(
             "%-26s %s: %zu triangles, OK, area |log r| %.3f, centre %.3f, "
-            "|r-1| %.1e, area sum - 4pi %.1e\n",
+            "|r-1| %.1e, area sum - 4pi %.1e, %llu sweeps\n",
             name, label, mesh->index_count / 3, o.area_log_mean, o.check.centre, o.check.worst_norm,
-            o.check.area_sum - 4.0 * M_PI);
+            o.check.area_sum - 4.0 * M_PI, (unsigned long long)stats_of(result).relaxation_sweeps);
         if (o.check.folded != 0 || o.check.worst_norm > 1e-12 ||
             fabs(o.check.area_sum - 4.0 * M_PI) > 1e-6) {
             fail_msg(
@@ -350,6 +353,7 @@ static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t mo
                 name, o.check.folded, o.check.worst_norm, o.check.area_sum);
         }
         assert_int_equal(stats_of(result).flipped_triangles, 0);
+        assert_below(o.check.centre, 0.05);
     } else {
         const char* message = raps_result_last_error(result);
         print_message("%-26s %s: %zu triangles, refused: %s\n", name, label, mesh->index_count / 3,
@@ -364,11 +368,25 @@ static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t mo
     return o;
 }
 
+/* Maps `mesh` twice, initial and area-adapted: both must come back, and the area monitor must
+ * lower the area distortion to at most `fraction` of the initial map's (0.6: issue 18's 40 %). */
+static void assert_area_lowered(const char* name, const test_mesh* mesh, double fraction) {
+    const outcome initial = map_or_refuse(name, mesh, RAPS_MONITOR_NONE);
+    const outcome adapted = map_or_refuse(name, mesh, RAPS_MONITOR_AREA);
+    assert_status(initial.status, RAPS_OK);
+    assert_status(adapted.status, RAPS_OK);
+    if (!(adapted.area_log_mean <= fraction * initial.area_log_mean)) {
+        fail_msg("%s: area distortion %.3f -> %.3f, above %.2f of the initial map's", name,
+                 initial.area_log_mean, adapted.area_log_mean, fraction);
+    }
+}
+
 /* ---- the cases ----------------------------------------------------------------------------- */
 
 /* Capsules: the conformal initial map squeezes each end by about e^-aspect. Aspect 10 to 30
  * map bijectively; aspect 50, whose ends would need 1e-22 of the sphere where doubles resolve
- * 1e-16, is refused with its status (the pathological set of docs/sphere-status.md). */
+ * 1e-16, is refused with its status (the pathological set of docs/sphere-status.md). The area
+ * monitor lowers the area distortion by at least 40 % (measured 70 %, 62 % and 52 %). */
 static void capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused(void** state) {
     (void)state;
     const double aspects[] = {10, 20, 30, 50};
@@ -376,66 +394,55 @@ static void capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused(void*
         test_mesh m = make_capsule(aspects[k], 24);
         char name[64];
         snprintf(name, sizeof(name), "capsule aspect %.0f", aspects[k]);
-        const outcome initial = map_or_refuse(name, &m, RAPS_MONITOR_NONE);
-        const outcome adapted = map_or_refuse(name, &m, RAPS_MONITOR_AREA);
-        if (aspects[k] <= 30) {
-            assert_status(initial.status, RAPS_OK);
-            assert_status(adapted.status, RAPS_OK);
-            assert_below(adapted.area_log_mean, initial.area_log_mean);
+        if (aspects[k] <= 30) assert_area_lowered(name, &m, 0.6);
+        if (aspects[k] >= 50) {
+            assert_status(map_or_refuse(name, &m, RAPS_MONITOR_AREA).status,
+                          RAPS_ERROR_SOLVER_FAILED);
         }
-        if (aspects[k] >= 50) assert_status(adapted.status, RAPS_ERROR_SOLVER_FAILED);
         test_mesh_free(&m);
     }
 }
 
-static void dumbbell_with_a_thin_neck_maps_bijectively(void** state) {
+static void dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
     const double necks[] = {0.2, 0.05};
     for (int k = 0; k < 2; ++k) {
         test_mesh m = make_dumbbell(necks[k], 48);
         char name[64];
         snprintf(name, sizeof(name), "dumbbell neck %.2f", necks[k]);
-        assert_status(map_or_refuse(name, &m, RAPS_MONITOR_NONE).status, RAPS_OK);
-        assert_status(map_or_refuse(name, &m, RAPS_MONITOR_AREA).status, RAPS_OK);
+        assert_area_lowered(name, &m, 0.6);
         test_mesh_free(&m);
     }
 }
 
-static void starfish_with_five_long_arms_maps_bijectively(void** state) {
+static void starfish_with_five_long_arms_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
     test_mesh m = make_starfish(5.0, 5);
-    assert_status(map_or_refuse("starfish reach 5", &m, RAPS_MONITOR_NONE).status, RAPS_OK);
-    assert_status(map_or_refuse("starfish reach 5", &m, RAPS_MONITOR_AREA).status, RAPS_OK);
+    assert_area_lowered("starfish reach 5", &m, 0.6);
     test_mesh_free(&m);
 }
 
-static void noisy_scan_like_sphere_maps_bijectively_and_centred(void** state) {
+static void noisy_scan_like_sphere_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
-    test_mesh m = make_noisy_sphere(5);
-    const outcome initial = map_or_refuse("noisy sphere", &m, RAPS_MONITOR_NONE);
-    const outcome adapted = map_or_refuse("noisy sphere", &m, RAPS_MONITOR_AREA);
-    assert_status(initial.status, RAPS_OK);
-    assert_status(adapted.status, RAPS_OK);
-    assert_below(initial.check.centre, 0.05);
-    assert_below(adapted.check.centre, 0.05);
+    test_mesh m = make_noisy_sphere(4);
+    assert_area_lowered("noisy sphere", &m, 0.6);
     test_mesh_free(&m);
 }
 
 /* Hostile triangulations of a round sphere: latitude-longitude spheres of 200 sectors, whose
  * poles have degree 200; with 60 rings the polar triangles are needles (edge ratio about 30),
- * with 8 rings every triangle is (about 12 at the equator, 32 at the poles). */
+ * with 8 rings every triangle is (about 12 at the equator, 32 at the poles). The 8-ring sphere's
+ * initial map is already equiareal (0.001), so there the area monitor only must not make it
+ * worse. */
 static void high_degree_vertices_and_needles_map_bijectively_and_centred(void** state) {
     (void)state;
     const int rings[] = {60, 8};
+    const double fraction[] = {0.6, 1.0};
     for (int k = 0; k < 2; ++k) {
         test_mesh m = make_uv_sphere(rings[k], 200);
         char name[64];
         snprintf(name, sizeof(name), "uv sphere %d x 200", rings[k]);
-        const outcome initial = map_or_refuse(name, &m, RAPS_MONITOR_NONE);
-        const outcome adapted = map_or_refuse(name, &m, RAPS_MONITOR_AREA);
-        assert_status(initial.status, RAPS_OK);
-        assert_status(adapted.status, RAPS_OK);
-        assert_below(adapted.check.centre, 0.05);
+        assert_area_lowered(name, &m, fraction[k]);
         test_mesh_free(&m);
     }
 }
@@ -443,8 +450,9 @@ static void high_degree_vertices_and_needles_map_bijectively_and_centred(void** 
 /* cow, horse_quad and decimated-knight subdivided to 88K, 77K and 64K triangles (midpoint
  * subdivision: the same shapes, many more triangles on the limbs). One area-adapted run each
  * (it includes the initial relaxation; the refusal check is on what it returns): bijective and
- * centred, and the area monitor lowers the area distortion below the initial maps' figures
- * (measured 8.05, 10.01, 4.96 before the adaptive step, issue 18). */
+ * centred, and the area distortion at most 0.6 of the initial maps' measured with
+ * `raps-param --sphere --monitor none` on the same subdivisions (2.910, 4.201, 4.964;
+ * docs/sphere-status.md), whose second runs the test saves. */
 /* Under the sanitizers (RAPS_TEST_SANITIZER, set by tests/CMakeLists.txt) each mesh is
  * subdivided one level less, 22K, 19K and 16K triangles: the same code paths at a quarter of the
  * size, since ASan runs this test about five times slower; the full sizes run in the shared and
@@ -453,6 +461,7 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
     (void)state;
     const char* names[] = {"cow.off", "horse_quad.obj", "decimated-knight.off"};
     const int levels[] = {2, 2, 3};
+    const double initial[] = {2.910, 4.201, 4.964};
     const int smaller = getenv("RAPS_TEST_SANITIZER") != NULL;
     for (int k = 0; k < 3; ++k) {
         const int level = levels[k] - smaller;
@@ -461,7 +470,7 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
         snprintf(name, sizeof(name), "%s x%d", names[k], 1 << (2 * level));
         const outcome adapted = map_or_refuse(name, &m, RAPS_MONITOR_AREA);
         assert_status(adapted.status, RAPS_OK);
-        assert_below(adapted.check.centre, 0.05);
+        if (!smaller) assert_below(adapted.area_log_mean, 0.6 * initial[k]);
         test_mesh_free(&m);
     }
 }
@@ -469,9 +478,9 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused),
-        cmocka_unit_test(dumbbell_with_a_thin_neck_maps_bijectively),
-        cmocka_unit_test(starfish_with_five_long_arms_maps_bijectively),
-        cmocka_unit_test(noisy_scan_like_sphere_maps_bijectively_and_centred),
+        cmocka_unit_test(dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted),
+        cmocka_unit_test(starfish_with_five_long_arms_maps_bijectively_and_area_adapted),
+        cmocka_unit_test(noisy_scan_like_sphere_maps_bijectively_and_area_adapted),
         cmocka_unit_test(high_degree_vertices_and_needles_map_bijectively_and_centred),
         cmocka_unit_test(subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred),
     };

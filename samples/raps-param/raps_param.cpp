@@ -101,9 +101,9 @@ sphere options:
                              also unfold the sphere onto [0,1]^2 (default none)
   --damping L                sphere relaxation damping lambda in (0, 1] (default 1)
   --tolerance T              sphere relaxation stops below this residual (default 1e-4)
-  --max-sweeps N             most sweeps per sphere relaxation (default 0: robust 100,
-                             literal 50000)
-  --alpha-steps K            robust sphere method: continuation steps to alpha (default 4)
+  --max-sweeps N             most sweeps per sphere relaxation (default 0: robust 100
+                             initial and 200 adaptive, literal 50000)
+  --alpha-steps K            robust sphere method: continuation steps to alpha (default 2)
   -h, --help                 this text
   --version                  the raps library version
 )";

@@ -35,7 +35,7 @@ struct Settings {
     double sphere_damping = 1.0;
     double sphere_tolerance = 1e-4;
     int64_t sphere_max_sweeps = 0;  // 0: the method's own
-    int sphere_alpha_steps = 4;
+    int sphere_alpha_steps = 2;
 
     // Atlas domain.
     int32_t atlas_resolution = 1024;   // texels on the atlas's longer side

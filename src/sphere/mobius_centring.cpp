@@ -126,7 +126,7 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
     Eigen::Vector3d a = 0.75 * centre;
     if (a.norm() > 0.9) a *= 0.9 / a.norm();
     scratch.resize(u.size());
-    for (int attempt = 0; attempt < 2; ++attempt, a *= 0.25) {
+    for (int attempt = 0; attempt < 4; ++attempt, a *= 0.25) {
         parallel_for(pool, static_cast<int64_t>(u.size()), [&](int64_t begin, int64_t end) {
             for (int64_t i = begin; i < end; ++i) scratch[i] = mobius_boost(u[i], a);
         });

@@ -29,12 +29,11 @@ Eigen::Vector3d centre_of_mass(const SphereProblem& problem, const std::vector<E
 // One centring step: T_a with a = 3/4 of the centre of mass (to first order T_a moves a uniform
 // distribution's centre by -4/3 a), at most 0.9 long. A Moebius map keeps circles, not the sign
 // of det[a, b, c]: a nearly flat triangle whose circumcircle it blows up past a great circle
-// turns over. So the step is tried at 1 and at 1/4 of its length and taken only if it turns no
-// triangle over, else skipped. (Not the relaxation's shape floor: a conformal map changes the
-// shape of a small triangle only to second order, but the relaxation parks triangles right at
-// their floor, which then refused every centring step; measured on bunny, the centre of mass
-// drifted to 0.17.) Returns the length of the centre of mass before the step, and whether the
-// step was taken in `*moved` (if not NULL). `scratch` is a buffer.
+// turns over. So the step is tried at 1, 1/4, 1/16 and 1/64 of its length and taken only if it
+// turns no triangle over, else skipped. (Not a floor of its own: the relaxation's plane floor,
+// sphere_problem.h, keeps every circumcircle it moves well inside a hemisphere, which is what
+// lets the smaller steps through.) Returns the length of the centre of mass before the step, and
+// whether the step was taken in `*moved` (if not NULL). `scratch` is a buffer.
 double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
                      std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved);
 

@@ -1,8 +1,7 @@
 // What the sphere domain's algorithms share about one mesh, built once per run by the pipeline
 // (sphere_parameterization.cpp): the vertex adjacency the weights live on, the triangles around
 // each vertex (for the fold checks), a vertex colouring (for parallel Gauss-Seidel), the
-// vertices' shares of the 3D area (the mass that the Moebius centring balances) and the shape
-// of each 3D triangle (for the shape floor below).
+// vertices' shares of the 3D area (the mass that the Moebius centring balances).
 #pragma once
 
 #include <cstdint>
@@ -22,33 +21,44 @@ struct SphereProblem {
     VertexAdjacency adjacency;
     VertexTriangles stars;
     std::vector<std::vector<int32_t>> colors;
-    std::vector<double> mass;   // a third of the 3D area of each incident triangle; sums to 1
-    std::vector<double> floor;  // per triangle: the least shape() a move may leave it with
+    std::vector<double> mass;  // a third of the 3D area of each incident triangle; sums to 1
 };
 
 // Builds everything above; the mesh must have passed check_closed_genus_zero.
 SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges);
 
-// Shape of a triangle: det[a, b, c] / (|a - b|^2 + |b - c|^2 + |c - a|^2), for points on the
-// sphere, or 2 area / (sum of squared edges) in 3D: scale-free, sqrt(3) / 6 for an equilateral
-// triangle, 0 for a flat one, negative for one turned over on the sphere.
-inline double shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const double edges = (a - b).squaredNorm() + (b - c).squaredNorm() + (c - a).squaredNorm();
-    return edges > 0.0 ? a.dot(b.cross(c)) / edges : 0.0;
+// The plane floor. The robust relaxation never leaves a triangle whose plane (through its three
+// points) passes closer than kPlaneFloor to the centre of the sphere (it may leave one that
+// already does, but not bring it closer). That distance, det[a, b, c] / |(b - a) x (c - a)|, is
+// the cosine of the angular radius of the triangle's circumcircle: near 1 for a small triangle
+// of any shape, 0 when the circumcircle is a great circle, negative when turned over. It is what
+// the Moebius centring needs: a boost turns a triangle over exactly when it blows its
+// circumcircle past a great circle (mobius_centring.h), and a small boost cannot do that to a
+// circle of angular radius 72.5 degrees (0.3), however flat the triangle is.
+// Why not a floor on the triangle's shape (kShapeFloor = 0.05 times its 3D shape, before issue
+// 18): it held flat triangles of long limbs where they were, measured as the adaptive
+// relaxation refusing a fifth of cow.off's moves in every sweep, so that the area monitor
+// lowered the area distortion by 30 % (horse_quad 25 %); with this floor by 45 % and 55 %
+// (docs/sphere-status.md). Without any floor (det > 0 only) the centring stalled on triangles
+// parked at det = 0 (cow: the centre of mass drifted to 0.24).
+constexpr double kPlaneFloor = 0.3;
+
+// Whether triangle abc keeps the plane floor, decided without a division or a root.
+inline bool above_plane_floor(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Eigen::Vector3d& c) {
+    const double det = a.dot(b.cross(c));
+    return det > 0.0 && det * det >= kPlaneFloor * kPlaneFloor * (b - a).cross(c - a).squaredNorm();
 }
 
-// The shape floor. The robust relaxation never makes a triangle flatter than kShapeFloor times
-// its 3D shape (it may leave one that already is, but not make it worse). Without it, vertices
-// that the relaxation keeps pushing towards a fold are stopped only at det = 0: measured on
-// spot.obj, 35 vertices sat on triangles with det ~ 1e-8 (area ratio 1 / 37000), whose
-// circumcircles are nearly great circles, so that even a small centring step turned them over
-// and centring stalled. 0.05 still allows an equilateral triangle to open to 174 degrees.
-constexpr double kShapeFloor = 0.05;
-
-// Whether moving triangle `t` from shape `before` to shape `after` is allowed: it keeps its
-// floor, or it gets no worse.
-inline bool shape_allowed(const SphereProblem& problem, int32_t t, double before, double after) {
-    return after >= problem.floor[t] || after >= before;
+// Whether moving one corner of a triangle from `before` to `after` (b and c staying) makes it
+// no worse: neither its det nor its plane's distance from the centre decreases (compared without
+// a division).
+inline bool no_worse(const Eigen::Vector3d& before, const Eigen::Vector3d& after,
+                     const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const double det_before = before.dot(b.cross(c)), det_after = after.dot(b.cross(c));
+    const double n_before = (b - before).cross(c - before).norm();
+    const double n_after = (b - after).cross(c - after).norm();
+    return det_after >= det_before && det_after * n_before >= det_before * n_after;
 }
 
 }  // namespace raps

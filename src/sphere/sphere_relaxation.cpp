@@ -39,7 +39,7 @@ class Relaxer {
           u_(u),
           step_(step) {}
 
-    // Moves vertex i (refusing moves that break a shape floor when `guarded`); returns whether
+    // Moves vertex i (refusing moves that break the plane floor when `guarded`); returns whether
     // it was refused.
     bool update(int32_t i, bool guarded) {
         const VertexAdjacency& adjacency = problem_.adjacency;
@@ -61,20 +61,18 @@ class Relaxer {
     }
 
   private:
-    // Whether moving i to `candidate` keeps every triangle of i at its shape floor (or no worse).
-    // The usual case, a triangle above its floor, is decided without a division.
+    // Whether moving i to `candidate` keeps every triangle of i at the plane floor (or no worse)
+    // and turns none over.
     bool allowed(int32_t i, const Eigen::Vector3d& candidate) const {
         const VertexTriangles& stars = problem_.stars;
         for (int32_t e = stars.offsets[i]; e < stars.offsets[i + 1]; ++e) {
             const Eigen::Vector3d& b = u_[stars.first[e]];
             const Eigen::Vector3d& c = u_[stars.second[e]];
             const int32_t t = stars.triangle[e];
-            const double edges = (candidate - b).squaredNorm() + (b - c).squaredNorm() +
-                                 (c - candidate).squaredNorm();
-            const double det = candidate.dot(b.cross(c));
-            if (det < kSignCertain && turns_over(t, i, candidate)) return false;
-            if (det >= problem_.floor[t] * edges) continue;
-            if (!shape_allowed(problem_, t, shape(u_[i], b, c), shape(candidate, b, c))) {
+            if (candidate.dot(b.cross(c)) < kSignCertain && turns_over(t, i, candidate)) {
+                return false;
+            }
+            if (!above_plane_floor(candidate, b, c) && !no_worse(u_[i], candidate, b, c)) {
                 return false;
             }
         }
@@ -84,7 +82,7 @@ class Relaxer {
     // Whether moving i to `candidate` takes triangle t from det > 0 to det <= 0 as the
     // statistics and the refusal check evaluate it: in the triangle's own vertex order. The
     // rounding of det[a, b, c] depends on the order, and for a triangle of 1e-16 of the sphere
-    // the rotated order that the floor test uses can keep a sign the stored order loses.
+    // the rotated order of the floor test can keep a sign the stored order loses.
     // Measured on a capsule of aspect 30: 10 triangles folded that way in the adaptive
     // relaxations, flickering from sweep to sweep.
     bool turns_over(int32_t t, int32_t i, const Eigen::Vector3d& candidate) const {

@@ -20,9 +20,10 @@
 // Literal (RAPS_SPHERE_LITERAL): exactly that, Gauss-Seidel in vertex order on one thread.
 // Robust (RAPS_SPHERE_ROBUST) adds, each for a case that needed it (docs/method.md, "What the
 // robust method adds"; the literal method's folds are counted in docs/bench-method.md):
-// - Fold rejection with a shape floor. A move that would leave one of the vertex's triangles
-//   flatter than its floor (kShapeFloor times its 3D shape; turned over is flatter than flat)
-//   is halved, then quartered, and otherwise not made. Starting from a bijection, every sweep
+// - Fold rejection with a plane floor (sphere_problem.h). A move that would turn one of the
+//   vertex's triangles over, or leave one whose plane passes closer to the centre than
+//   kPlaneFloor (unless it makes that triangle no worse), is halved, then quartered, and
+//   otherwise not made. Starting from a bijection, every sweep
 //   ends in a bijection. Needed: the fixed points themselves fold (issue: the converged mean
 //   value map on 7/7 meshes; here, with the mean value weights, spot.obj pushes 35 vertices into
 //   folds every sweep, for ever).

@@ -560,8 +560,8 @@ static class RapsTests
                        settings.SphereUv == SphereUv.None,
                    "the robust method without uvs by default");
             ExpectSphereMap(result, ico);
-            // The area monitor's iteration reached through 4 relaxations (SphereAlphaSteps).
-            Expect(result.GetStats().AdaptiveSolves == 4, "4 adaptive relaxations");
+            // The area monitor's iteration reached through 2 relaxations (SphereAlphaSteps).
+            Expect(result.GetStats().AdaptiveSolves == 2, "2 adaptive relaxations");
             // Without the octahedral unfold a sphere map has no uvs, and says so.
             RapsException error = ExpectFailure(Status.InvalidOperation, () => result.GetUvs());
             Expect(error.Detail.Contains("Octahedral") && error.Detail.Contains("GetSpherePoints"),
@@ -756,7 +756,7 @@ static class RapsTests
             new { Param = Param.SphereMaxSweeps, Name = "sphere_max_sweeps", IsFloat = false,
                   Min = 0.0, Max = 1e7, Default = 0.0 },
             new { Param = Param.SphereAlphaSteps, Name = "sphere_alpha_steps", IsFloat = false,
-                  Min = 1.0, Max = 100.0, Default = 4.0 },
+                  Min = 1.0, Max = 100.0, Default = 2.0 },
         };
         using (var defaults = new Settings())
         {
@@ -774,7 +774,7 @@ static class RapsTests
             Expect(defaults.SphereMethod == SphereMethod.Robust &&
                        defaults.SphereUv == SphereUv.None && defaults.SphereDamping == 1 &&
                        defaults.SphereTolerance == 1e-4 && defaults.SphereMaxSweeps == 0 &&
-                       defaults.SphereAlphaSteps == 4,
+                       defaults.SphereAlphaSteps == 2,
                    "the properties read the defaults");
             ParamInfo domain = Settings.GetParamInfo(Param.Domain);
             Expect(domain.Min == (int)Domain.Disk && domain.Max == (int)Domain.Atlas &&

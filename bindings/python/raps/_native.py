@@ -105,13 +105,13 @@ RAPS_PARAM_SPHERE_DAMPING = 12
 #   [1e-12, 1]. Default 1e-4.
 RAPS_PARAM_SPHERE_TOLERANCE = 13
 #   int. Sphere relaxation: most sweeps of one relaxation, 0..10^7; 0 = the method's own:
-#   100 for ROBUST (more sweeps take longer and lower the adapted distortion on some shared
-#   meshes, raise it on others: cheburashka 0.895 at 100, 0.847 at 400; bunny 0.667, 0.703;
-#   see docs/bench-method.md), 50000 for LITERAL. Default 0.
+#   for ROBUST 100 for the initial relaxation and 200 for each adaptive one (measured on the
+#   shared meshes and on meshes subdivided to 90K triangles, see docs/sphere-status.md), 50000
+#   for LITERAL. Default 0.
 RAPS_PARAM_SPHERE_MAX_SWEEPS = 14
 #   int. Robust sphere method: relaxations by which each adaptive iteration reaches its
 #   exponent (continuation: each multiplies the weights by e^(alpha / steps)), 1..100.
-#   Default 4.
+#   Default 2.
 RAPS_PARAM_SPHERE_ALPHA_STEPS = 15
 #   int. Memory cap in MiB, 0..2^31-1; 0 = no cap. A run whose estimated peak (the memory
 #   raps_parameterize adds to the handles', from the triangle count, the domain and the atlas
