@@ -12,6 +12,7 @@
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
 #include "atlas/vertex_welding.h"
+#include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
 
 namespace raps {
@@ -79,7 +80,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const Settings& settings,
     // Hard edges are seams inside charts as well.
     std::vector<char> seam(surface.twin.size(), 0);
     if (settings.hard_edge_angle_deg < 180.0) {
-        const double limit = std::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
+        const double limit = portable::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
         auto normal = [&](int32_t t) {
             const Triangle& v = surface.mesh.triangles[t];
             return (surface.mesh.positions[v[1]] - surface.mesh.positions[v[0]])

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/portable_math.h"
 
 namespace raps {
 namespace {
@@ -813,7 +814,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         // 11 of a series from 0.7). The density is fitted to the square strip, so narrower
         // strips grow too tall: 0.7 and 0.76 fitted none of the 16 shared meshes.
         for (int k = 2; k < 12 && count > 1; ++k) {
-            const double f = 0.7 * std::pow(1.8 / 0.7, k / 11.0);
+            const double f = 0.7 * portable::pow(1.8 / 0.7, k / 11.0);
             widths.push_back(std::clamp(static_cast<int32_t>(square * f), widest, limit));
         }
         std::sort(widths.begin(), widths.end());
