@@ -55,23 +55,21 @@
  *     result empty (zero counts) with its message set.
  *   - Units: positions are in any consistent unit (all distortion figures are scale-free); UVs
  *     are in texture space, [0,1]^2; times are milliseconds of wall clock; angles are degrees.
- *   - Reproducibility: one build of libraps returns the same bits (uvs, sphere points, indices,
+ *   - Reproducibility: raps_parameterize returns the same bits (uvs, sphere points, indices,
  *     remap, chart ids, every raps_stats field but threads_used) for the same input and
- *     settings on every run and for every RAPS_PARAM_THREADS value. Its own code gives the same
- *     bits on every x86-64 processor: the dense factorization kernels exist twice, for AVX2 and
- *     for baseline x86-64, picked at run time, and do the same operations in the same order
- *     without fused multiply-add (the atlas packing's AVX2 path is integer arithmetic); the
- *     library's files are compiled with -ffp-contract=off -fno-fast-math, and configuring with
- *     -ffast-math, -Ofast or a similar flag in CMAKE_C_FLAGS/CMAKE_CXX_FLAGS is refused. Not
- *     promised (yet): the C library's part. The results' path calls libm's atan2, log, exp,
- *     sin, cos, tan and pow, whose last bit may differ between C libraries and architectures,
- *     and glibc picks FMA variants of some of them at run time on x86-64 processors that have
- *     FMA. Nor: other compilers' or architectures' builds (aarch64 is untested), or a process
- *     that changes the floating-point environment (a rounding mode other than to-nearest, or
- *     flush-to-zero as an application linked with -ffast-math sets). docs/reproducibility.md
- *     has the details. For testing only: with the environment variable RAPS_KERNELS=baseline
- *     (read once, at a process's first factorization) the baseline kernels run on an AVX2
- *     processor too.
+ *     settings: on every run; for every RAPS_PARAM_THREADS value; on every x86-64 processor,
+ *     with or without AVX2 and FMA, and on aarch64; from a GCC or a clang build, shared or
+ *     static. It calls no C library function whose last bit may vary (its exp, log, sin, cos,
+ *     tan, atan2 and pow are its own, from IEEE basic operations and sqrt), uses no fused
+ *     multiply-add, and its files are compiled with -ffp-contract=off -fno-fast-math;
+ *     configuring with -ffast-math, -Ofast or a similar flag in CMAKE_C_FLAGS/CMAKE_CXX_FLAGS is
+ *     refused. Not promised: builds with another Eigen version than 3.4.0 or another C++
+ *     standard library than libstdc++ (GCC's, also used by clang on Linux), other compilers
+ *     (MSVC) and architectures (untested), or a process that changes the floating-point
+ *     environment (a rounding mode other than to-nearest, or flush-to-zero as an application
+ *     linked with -ffast-math sets). docs/reproducibility.md has the details and the tests.
+ *     For testing only: with the environment variable RAPS_KERNELS=baseline (read once, at a
+ *     process's first factorization) the baseline kernels run on an AVX2 processor too.
  */
 #ifndef RAPS_H
 #define RAPS_H

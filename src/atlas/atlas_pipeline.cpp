@@ -13,6 +13,7 @@
 #include "atlas/chart_segmentation.h"
 #include "atlas/page_packing.h"
 #include "atlas/vertex_welding.h"
+#include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
 
 namespace raps {
@@ -75,7 +76,7 @@ std::vector<int32_t> weld_parts(const TriangleMesh& mesh, const AtlasParts& part
 std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_angle_deg) {
     std::vector<char> seam(surface.twin.size(), 0);
     if (hard_edge_angle_deg >= 180.0) return seam;
-    const double limit = std::cos(hard_edge_angle_deg * M_PI / 180.0);
+    const double limit = portable::cos(hard_edge_angle_deg * M_PI / 180.0);
     auto normal = [&](int32_t t) {
         const Triangle& v = surface.mesh.triangles[t];
         return (surface.mesh.positions[v[1]] - surface.mesh.positions[v[0]])

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/hash_mix.h"
+#include "core/portable_math.h"
 #include "mesh/mesh_topology.h"
 
 namespace raps {
@@ -140,7 +141,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];
             const Eigen::Vector3d a = surface.mesh.positions[t[(c + 1) % 3]] - at;
             const Eigen::Vector3d b = surface.mesh.positions[t[(c + 2) % 3]] - at;
-            surface.corner_angle[c] = std::atan2(a.cross(b).norm(), a.dot(b));
+            surface.corner_angle[c] = portable::atan2(a.cross(b).norm(), a.dot(b));
         }
     });
     surface.input_triangle = std::move(kept);

@@ -7,6 +7,7 @@
 
 #include "atlas/skyline_packing.h"
 #include "core/error.h"
+#include "core/portable_math.h"
 
 namespace raps {
 namespace {
@@ -80,7 +81,7 @@ constexpr int kSwapRounds = 2;
 }  // namespace
 
 double turn_degrees(const Eigen::Vector2d& rotation, int quarters) {
-    double degrees = 90.0 * quarters - std::atan2(rotation.y(), rotation.x()) * (180.0 / M_PI);
+    double degrees = 90.0 * quarters - portable::atan2(rotation.y(), rotation.x()) * (180.0 / M_PI);
     // A box along the axes turns by a multiple of 90 degrees, which rounding leaves a hair off.
     const double quarter = std::round(degrees / 90.0) * 90.0;
     if (std::abs(degrees - quarter) < 1e-9) degrees = quarter;
@@ -230,7 +231,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
         // 11 of a series from 0.7). The density is fitted to the square strip, so narrower
         // strips grow too tall: 0.7 and 0.76 fitted none of the 16 shared meshes.
         for (int k = 2; k < 12 && count > 1; ++k) {
-            const double f = 0.7 * std::pow(1.8 / 0.7, k / 11.0);
+            const double f = 0.7 * portable::pow(1.8 / 0.7, k / 11.0);
             widths.push_back(std::clamp(static_cast<int32_t>(square * f), widest, limit));
         }
         std::sort(widths.begin(), widths.end());

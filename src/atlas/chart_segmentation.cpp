@@ -5,6 +5,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "core/portable_math.h"
+
 namespace raps {
 namespace {
 
@@ -30,7 +32,7 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
         g.normal[t] = n.normalized();
         centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
     }
-    const double hard_cosine = std::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
+    const double hard_cosine = portable::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
     g.barrier.assign(3 * static_cast<size_t>(count), 0);
     g.step.assign(3 * static_cast<size_t>(count), 0.0);  // every grow takes every step
     for (int32_t h = 0; h < 3 * count; ++h) {
@@ -121,7 +123,7 @@ class Grower {
            const SegmentationSettings& settings)
         : surface_(surface),
           g_(geometry),
-          min_cosine_(std::cos(settings.max_normal_deviation_deg * M_PI / 180.0)) {}
+          min_cosine_(portable::cos(settings.max_normal_deviation_deg * M_PI / 180.0)) {}
 
     // Grows charts from `seeds` until every triangle has one (adding seeds where none can grow).
     std::vector<int32_t> grow(std::vector<int32_t> seeds) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/portable_math.h"
 #include "planar/laplace_system.h"
 #include "solver/sparse_solver.h"
 #include "weights/laplacian_weights.h"
@@ -62,7 +63,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                                        .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
                                        .norm();
             const double scale =
-                std::exp((log_scale[t[0]] + log_scale[t[1]] + log_scale[t[2]]) / 3.0);
+                portable::exp((log_scale[t[0]] + log_scale[t[1]] + log_scale[t[2]]) / 3.0);
             area += a;
             scaled_area += a * scale * scale;
             smallest_scale = std::min(smallest_scale, scale);
@@ -86,7 +87,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                 turn -= cotangent[s] * log_scale[adjacency.neighbors[s]];
             direction += turn;
         }
-        tangent[k] = Eigen::Vector2d(std::cos(direction), std::sin(direction));
+        tangent[k] = Eigen::Vector2d(portable::cos(direction), portable::sin(direction));
         length[k] = (mesh.positions[boundary_loop[(k + 1) % m]] - mesh.positions[v]).norm();
     }
     Eigen::Vector2d gap = Eigen::Vector2d::Zero();

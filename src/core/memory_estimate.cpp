@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/portable_math.h"
+
 namespace raps {
 
 // The model: peak = kFixed + triangles * (a + b * log2(triangles)) per domain, plus, for the
@@ -35,7 +37,7 @@ constexpr double kAtlasBytesPerTexel = 1.75;
 
 double estimated_peak_bytes(const TriangleMesh& mesh, const Settings& settings) {
     const double triangles = static_cast<double>(mesh.triangles.size());
-    const double log_triangles = std::log2(std::max(triangles, 2.0));
+    const double log_triangles = portable::log2(std::max(triangles, 2.0));
     const PerTriangle per = settings.domain == Domain::kSphere  ? kSphere
                             : settings.domain == Domain::kAtlas ? kAtlas
                                                                 : kDisk;

@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/portable_math.h"
+
 namespace raps {
 namespace {
 
@@ -19,8 +21,8 @@ double angle_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b, doub
                         double cosine_uv) {
     const double sine_3d = a.cross(b).norm(), cosine_3d = a.dot(b);
     sine_uv = std::abs(sine_uv);
-    return std::abs(std::atan2(sine_uv * cosine_3d - cosine_uv * sine_3d,
-                               cosine_uv * cosine_3d + sine_uv * sine_3d));
+    return std::abs(portable::atan2(sine_uv * cosine_3d - cosine_uv * sine_3d,
+                                    cosine_uv * cosine_3d + sine_uv * sine_3d));
 }
 
 // Singular values (largest, smallest) of the Jacobian of uv over an orthonormal frame of the
@@ -154,7 +156,7 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
             if (std::abs(a) <= zero_uv) ++sum.zero_area;
             const double weight = area[t] / total_3d;
             const double r = total_uv > 0 ? (std::abs(a) / total_uv) / weight : 0.0;
-            sum.area_log += weight * std::abs(std::log(r));
+            sum.area_log += weight * std::abs(portable::log(r));
             sum.area_max = std::max(sum.area_max, r > 0 ? std::max(r, 1 / r) : infinity);
             for (int k = 0; k < 3; ++k) {
                 const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/portable_math.h"
+
 namespace raps {
 namespace {
 
@@ -41,8 +43,8 @@ std::vector<Eigen::Vector2d> convex_boundary(const TriangleMesh& mesh,
         for (size_t i = 0; i < n; ++i) {
             const double t = cumulative[i] / total;
             uv[i] = shape == BoundaryShape::kCircle
-                        ? Eigen::Vector2d(0.5 + 0.5 * std::cos(2 * M_PI * t),
-                                          0.5 + 0.5 * std::sin(2 * M_PI * t))
+                        ? Eigen::Vector2d(0.5 + 0.5 * portable::cos(2 * M_PI * t),
+                                          0.5 + 0.5 * portable::sin(2 * M_PI * t))
                         : square_point(4.0 * t);
         }
         return uv;

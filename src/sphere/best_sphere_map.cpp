@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
 #include "sphere/mobius_centring.h"
 #include "sphere/spherical_geometry.h"
@@ -47,7 +48,7 @@ SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<
         for (int64_t t = begin; t < end; ++t) {
             const double weight = area_3d[t] / totals.area_3d;
             const double r = std::abs(area_map[t]) / totals.area_map / weight;
-            sum += weight * std::abs(std::log(r));
+            sum += weight * std::abs(portable::log(r));
         }
         return sum;
     });

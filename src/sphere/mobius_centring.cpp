@@ -4,6 +4,8 @@
 #include <cmath>
 #include <complex>
 
+#include "core/portable_complex.h"
+#include "core/portable_math.h"
 #include "sphere/spherical_geometry.h"
 
 namespace raps {
@@ -47,8 +49,8 @@ Mobius compose(const Mobius& f, const Mobius& g) {  // f after g
     Mobius h{f.a * g.a + f.b * g.c, f.a * g.b + f.b * g.d, f.c * g.a + f.d * g.c,
              f.c * g.b + f.d * g.d};
     // A Moebius matrix means the same map at any scale: keep the entries near 1.
-    const double big = std::max(std::max(std::abs(h.a), std::abs(h.b)),
-                                std::max(std::abs(h.c), std::abs(h.d)));
+    const double big = std::max(std::max(portable::abs(h.a), portable::abs(h.b)),
+                                std::max(portable::abs(h.c), portable::abs(h.d)));
     h.a /= big;
     h.b /= big;
     h.c /= big;
@@ -60,12 +62,12 @@ Mobius compose(const Mobius& f, const Mobius& g) {  // f after g
 // quotient and its inverse is at most 1, so that neither infinity nor points near the north
 // pole lose their relative precision.
 Eigen::Vector3d lift(Complex num, Complex den) {
-    if (std::abs(num) <= std::abs(den)) {
-        const Complex w = num / den;
+    if (portable::abs(num) <= portable::abs(den)) {
+        const Complex w = portable::divide(num, den);
         const double r2 = std::norm(w);
         return Eigen::Vector3d(2.0 * w.real(), 2.0 * w.imag(), r2 - 1.0) / (r2 + 1.0);
     }
-    const Complex v = den / num;
+    const Complex v = portable::divide(den, num);
     const double v2 = std::norm(v);
     return Eigen::Vector3d(2.0 * v.real(), -2.0 * v.imag(), 1.0 - v2) / (1.0 + v2);
 }
@@ -74,9 +76,9 @@ Eigen::Vector3d lift(Complex num, Complex den) {
 // (fixed points +-direction): R^-1 diag(1, k) R with R the rotation (an SU(2) matrix in
 // stereographic coordinates) that takes `direction` to the north pole.
 Mobius boost_towards(const Eigen::Vector3d& direction, double k) {
-    const double phi = std::atan2(direction.y(), direction.x());
+    const double phi = portable::atan2(direction.y(), direction.x());
     const Complex alpha = std::sqrt(std::max(0.0, 0.5 * (1.0 + direction.z()))) *
-                          std::polar(1.0, -phi);
+                          Complex(portable::cos(-phi), portable::sin(-phi));
     const Complex beta = std::sqrt(std::max(0.0, 0.5 * (1.0 - direction.z())));
     const Mobius rotation{alpha, beta, -std::conj(beta), std::conj(alpha)};
     const Mobius back{std::conj(alpha), -beta, std::conj(beta), alpha};

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
+#include "core/portable_rotation.h"
 #include "mesh/mesh_topology.h"
 #include "planar/laplace_system.h"
 #include "sphere/spherical_geometry.h"
@@ -26,10 +27,10 @@ Eigen::Matrix3d rotation_to_south(const Eigen::Vector3d& from) {
     const Eigen::Vector3d axis = from.cross(south);
     const double sine = axis.norm(), cosine = from.dot(south);
     if (sine > 1e-15) {
-        return Eigen::AngleAxisd(std::atan2(sine, cosine), axis / sine).toRotationMatrix();
+        return portable::rotation(portable::atan2(sine, cosine), axis / sine);
     }
     return cosine > 0.0 ? Eigen::Matrix3d::Identity()
-                        : Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+                        : portable::rotation(M_PI, Eigen::Vector3d::UnitX());
 }
 
 // Angular distance of longitude `angle` from seam k's meridian, in [0, pi].
@@ -59,9 +60,11 @@ std::vector<int32_t> seam_path(const VertexAdjacency& adjacency,
                                const std::vector<Eigen::Vector3d>& q, int32_t root, int k,
                                double width, const std::vector<char>& taken) {
     const int32_t n = static_cast<int32_t>(q.size());
-    const Eigen::Vector3d equator(std::cos(k * M_PI / 2.0), std::sin(k * M_PI / 2.0), 0.0);
+    const Eigen::Vector3d equator(portable::cos(k * M_PI / 2.0), portable::sin(k * M_PI / 2.0),
+                                  0.0);
     auto allowed = [&](int32_t v) {
-        return v == root || (!taken[v] && off_meridian(std::atan2(q[v].y(), q[v].x()), k) < width);
+        return v == root ||
+               (!taken[v] && off_meridian(portable::atan2(q[v].y(), q[v].x()), k) < width);
     };
     std::vector<double> distance(n, std::numeric_limits<double>::infinity());
     std::vector<int32_t> parent(n, -1);
@@ -213,7 +216,8 @@ OctahedralUnfold octahedral_unfold(const TriangleMesh& mesh,
         tau[k].resize(path.size());
         for (size_t j = 0; j < path.size(); ++j) {
             const double theta = 0.5 * M_PI * length[j] / length.back();
-            tau[k][j] = j + 1 == path.size() ? 1.0 : std::tan(theta) / (1.0 + std::tan(theta));
+            tau[k][j] =
+                j + 1 == path.size() ? 1.0 : portable::tan(theta) / (1.0 + portable::tan(theta));
         }
     }
     auto seam_point = [&](int k, double t, double side) -> Eigen::Vector2d {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/portable_math.h"
 #include "planar/laplace_system.h"
 #include "sphere/mobius_centring.h"
 #include "weights/laplacian_weights.h"
@@ -33,7 +34,7 @@ std::vector<double> ring_angles(const TriangleMesh& mesh, int32_t pole,
     for (size_t m = 0; m < k; ++m) {
         const Eigen::Vector3d a = mesh.positions[ring[m]] - mesh.positions[pole];
         const Eigen::Vector3d b = mesh.positions[ring[(m + 1) % k]] - mesh.positions[pole];
-        corner[m] = std::atan2(a.cross(b).norm(), a.dot(b));
+        corner[m] = portable::atan2(a.cross(b).norm(), a.dot(b));
         total += corner[m];
     }
     const double largest = *std::max_element(corner.begin(), corner.end());
@@ -67,7 +68,7 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(
     const std::vector<double> angle = ring_angles(mesh, pole, ring);
     for (size_t m = 0; m < ring.size(); ++m) {
         fixed[ring[m]] = 1;
-        plane[ring[m]] = Eigen::Vector2d(std::cos(angle[m]), std::sin(angle[m]));
+        plane[ring[m]] = Eigen::Vector2d(portable::cos(angle[m]), portable::sin(angle[m]));
     }
     const WeightScheme positive =
         weights == WeightScheme::kCotangent ? WeightScheme::kMeanValue : weights;

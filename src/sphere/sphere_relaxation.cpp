@@ -5,6 +5,7 @@
 
 #include <Eigen/SVD>
 
+#include "core/portable_math.h"
 #include "sphere/mobius_centring.h"
 #include "sphere/spherical_geometry.h"
 
@@ -183,7 +184,7 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
             static_cast<double>(report.sweeps) / static_cast<double>(options.max_sweeps);
         const double by_residual =
             first > options.tolerance && report.residual < first
-                ? std::log(first / report.residual) / std::log(first / options.tolerance)
+                ? portable::log(first / report.residual) / portable::log(first / options.tolerance)
                 : 0.0;
         const double fraction = std::min(1.0, std::max(by_sweeps, by_residual));
         if (fraction >= reported + 0.01 || report.sweeps - last_report >= 16) {

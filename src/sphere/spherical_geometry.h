@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/portable_math.h"
 #include "metrics/map_geometry.h"
 
 namespace raps {
@@ -27,12 +28,12 @@ inline double orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
 // negative for a flipped one; the areas of a bijective map add up to 4 pi.
 inline double spherical_triangle_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                       const Eigen::Vector3d& c) {
-    return 2.0 * std::atan2(orientation(a, b, c), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
+    return 2.0 * portable::atan2(orientation(a, b, c), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
 }
 
 // Great-circle distance between two unit vectors.
 inline double arc_length(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::atan2(a.cross(b).norm(), a.dot(b));
+    return portable::atan2(a.cross(b).norm(), a.dot(b));
 }
 
 // The angle at a between the great-circle arcs to b and to c, as sine and cosine times the same

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/portable_math.h"
+
 namespace raps {
 
 std::vector<double> adaptive_weights(const VertexAdjacency& adjacency,
@@ -14,8 +16,8 @@ std::vector<double> adaptive_weights(const VertexAdjacency& adjacency,
         const int32_t begin = adjacency.offsets[v], end = adjacency.offsets[v + 1];
         double row_sum = 0.0;
         for (int32_t s = begin; s < end; ++s) {
-            const double exponent = std::clamp(alpha * std::log(monitor[s]), -600.0, 600.0);
-            adapted[s] = weights[s] * std::exp(exponent);
+            const double exponent = std::clamp(alpha * portable::log(monitor[s]), -600.0, 600.0);
+            adapted[s] = weights[s] * portable::exp(exponent);
             row_sum += adapted[s];
         }
         // A row sum that is not positive (possible with negative cotangent weights) is left

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/portable_math.h"
 
 namespace raps {
 namespace {
@@ -83,11 +84,11 @@ std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacenc
             const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
             const Eigen::Vector3d a = mesh.positions[j] - mesh.positions[i];
             const Eigen::Vector3d b = mesh.positions[l] - mesh.positions[i];
-            const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+            const double angle = portable::atan2(a.cross(b).norm(), a.dot(b));
             double sine, cosine;
             map.angle(i, j, l, &sine, &cosine);
             // Signed: a flipped triangle has a negative angle in the map and gets the floor.
-            const double map_angle = std::atan2(sine, cosine);
+            const double map_angle = portable::atan2(sine, cosine);
             const double e = std::max(map_angle / angle, kMonitorFloor);
             average.add(adjacency.forward_slot[3 * t + k], e);             // i -> j
             average.add(adjacency.backward_slot[3 * t + (k + 2) % 3], e);  // i -> l
