@@ -110,14 +110,16 @@ static const char* kSpheres[] = {
 /* Every shared genus-0 mesh: the initial map (monitor none) and the area-adapted one are
  * bijective and centred, and the area monitor lowers the spherical area distortion by at least
  * 40 % (issue 18's promise). Measured (mean |log r| with exact spherical areas, initial -> area
- * alpha 1; docs/sphere-status.md): bunny 1.641 -> 0.651, cheburashka 2.455 -> 0.907, cow 2.840
- * -> 1.468, decimated-knight 4.550 -> 2.121, decimated-max 0.605 -> 0.211, fandisk 0.729 ->
- * 0.181, horse_quad 3.769 -> 1.664, spot 2.061 -> 0.650; centre of mass at most 1.5e-3 from
- * the origin. */
+ * alpha 1; docs/sphere-status.md): bunny 1.641 -> 0.651, cheburashka 2.455 -> 0.907, cow 2.839
+ * -> 1.631, decimated-knight 4.550 -> 2.121, decimated-max 0.605 -> 0.211, fandisk 0.729 ->
+ * 0.181, horse_quad 3.772 -> 1.650, spot 2.061 -> 0.650; centre of mass at most 1.5e-3 from
+ * the origin. The bounds below are those figures plus 8 % (cow: the 40 %), since last-bit
+ * changes move the continuation's path: the own elementary functions (issue 19) took cow from
+ * 1.468 to 1.631. */
 static void shared_meshes_map_bijectively_and_the_area_monitor_equidistributes(void** state) {
     (void)state;
     const double initial_at_least[] = {1.58, 2.40, 2.80, 4.50, 0.57, 0.70, 3.70, 2.00};
-    const double adapted_at_most[] = {0.68, 0.93, 1.52, 2.18, 0.22, 0.20, 1.72, 0.68};
+    const double adapted_at_most[] = {0.70, 0.98, 1.70, 2.29, 0.23, 0.20, 1.78, 0.70};
     raps_settings* initial = sphere_settings(RAPS_SPHERE_ROBUST, RAPS_MONITOR_NONE, 0);
     raps_settings* adapted = sphere_settings(RAPS_SPHERE_ROBUST, RAPS_MONITOR_AREA, 0);
     for (size_t m = 0; m < sizeof(kSpheres) / sizeof(kSpheres[0]); ++m) {
