@@ -77,7 +77,8 @@ long long parse_integer(std::string_view token, const std::string& path, size_t 
 }
 
 // A corner's `vt` index, 0-based, from "v/vt/vn"; kNoTexcoord when it has none or names one the
-// file does not have (raps reads texcoords only for --keep-uv-seams, which then says so).
+// file does not have. Not an error here: most callers never read texcoords, and the one that
+// does (raps-param --keep-uv-seams) refuses such a file itself.
 uint32_t texcoord_of(std::string_view corner, size_t texcoord_count) {
     const size_t slash = corner.find('/');
     if (slash == std::string_view::npos) return PolygonMesh::kNoTexcoord;

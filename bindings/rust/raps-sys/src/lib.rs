@@ -609,7 +609,8 @@ extern "C" {
     /// REPEATED_VERTEX, ZERO_AREA_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX,
     /// INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
     /// MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
-    /// INTERNAL.
+    /// INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
+    /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges).
     pub fn raps_parameterize(mesh: *const raps_mesh, settings: *const raps_settings, result: *mut raps_result) -> raps_status;
 
     /// Parameterizes several meshes into one atlas (settings must set RAPS_PARAM_DOMAIN to
