@@ -170,7 +170,13 @@ enum {
     RAPS_ERROR_OPEN_MESH = 22,
     /* raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
      * (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths). */
-    RAPS_ERROR_INVALID_TRANSFORM = 23
+    RAPS_ERROR_INVALID_TRANSFORM = 23,
+    /* Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) are not one per
+     * triangle (the indices changed since, or the count was wrong). */
+    RAPS_ERROR_GROUP_COUNT = 24,
+    /* Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
+     * joins by an edge (the message names the pair). */
+    RAPS_ERROR_SEAM_NOT_AN_EDGE = 25
 };
 
 /* A short static description of a status ("invalid argument", ...); "unknown status" for values
@@ -221,6 +227,33 @@ RAPS_API raps_status raps_mesh_set_indices_u32(raps_mesh* mesh, const uint32_t* 
  * Errors: INVALID_ARGUMENT (mesh NULL), INVALID_TRANSFORM (a non-finite coefficient, or the
  * 3x3 part singular; the mesh keeps its transform). */
 RAPS_API raps_status raps_mesh_set_transform(raps_mesh* mesh, const double* m);
+
+/* The artist's seams, read by the atlas domain only (raps_parameterize and
+ * raps_parameterize_scene; the disk and sphere domains ignore them). No chart crosses them: the
+ * charts are cut there even where the surface is smooth and welded.
+ *
+ * Sets (replaces) a group id per triangle (a material, a smoothing group, a user region):
+ * groups[t] is triangle t's, in the order of the indices; no chart holds triangles of two
+ * groups (zero-area triangles excepted, which take the chart of a neighbouring vertex). The ids
+ * are only compared. NULL with triangle_count 0 removes the groups (one group,
+ * the default). The data is copied. The count is checked against the triangles when the mesh
+ * is used, so groups and indices may be set in either order.
+ * Errors: INVALID_ARGUMENT (mesh NULL, groups NULL with a nonzero count), TOO_LARGE (more than
+ * 2^28), OUT_OF_MEMORY; when used: GROUP_COUNT (not one per triangle). */
+RAPS_API raps_status raps_mesh_set_triangle_groups(raps_mesh* mesh, const uint32_t* groups,
+                                                   size_t triangle_count);
+/* Sets (replaces) the seam edges: edge_count pairs of input vertex indices, vertex_pairs[2i] and
+ * vertex_pairs[2i + 1], in either order. Charts do not grow or merge across them, and seams
+ * that close a loop or run from boundary to boundary separate charts. A chart may still hold
+ * both sides of a seam path that ends inside it: it is cut open along the path, its end
+ * vertices excepted, which both sides keep sharing. NULL with edge_count 0 removes them (the
+ * default). The data is copied and checked when the mesh is used.
+ * Errors: INVALID_ARGUMENT (mesh NULL, vertex_pairs NULL with a nonzero count), TOO_LARGE (more
+ * than 3 * 2^28 pairs), OUT_OF_MEMORY; when used: INDEX_OUT_OF_RANGE (a pair names a vertex >=
+ * the vertex count), SEAM_NOT_AN_EDGE (no triangle has the pair as an edge); the message names
+ * the first such pair. */
+RAPS_API raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pairs,
+                                              size_t edge_count);
 
 /* Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers. */
 RAPS_API size_t raps_mesh_vertex_count(const raps_mesh* mesh);
@@ -350,7 +383,13 @@ enum {
      * chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
      * size. The atlas may then be smaller than the resolution on both sides. Refused
      * (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0. */
-    RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45
+    RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45,
+    /* int, 0 or 1. 0 welds vertices that share a position (within RAPS_PARAM_WELD_TOLERANCE)
+     * before growing charts, so the input's own vertex splits (an exporter's uv seams, split
+     * normals) do not split charts. 1 keeps every edge where the triangles on its two sides use
+     * different input vertices as a chart boundary: the seams of the input's existing uvs,
+     * when those are expressed, as usual, by split vertices. */
+    RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
 };
 
 /* RAPS_PARAM_ATLAS_ROTATION values */
@@ -552,7 +591,8 @@ RAPS_API void raps_result_destroy(raps_result* result);
  * REPEATED_VERTEX, ZERO_AREA_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX,
  * INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
  * MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
- * INTERNAL. */
+ * INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
+ * seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges). */
 RAPS_API raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
                                        raps_result* result);
 

@@ -53,6 +53,8 @@ RAPS_CHECK_CODE(kInvalidOperation, RAPS_ERROR_INVALID_OPERATION);
 RAPS_CHECK_CODE(kInternal, RAPS_ERROR_INTERNAL);
 RAPS_CHECK_CODE(kOpenMesh, RAPS_ERROR_OPEN_MESH);
 RAPS_CHECK_CODE(kInvalidTransform, RAPS_ERROR_INVALID_TRANSFORM);
+RAPS_CHECK_CODE(kGroupCount, RAPS_ERROR_GROUP_COUNT);
+RAPS_CHECK_CODE(kSeamNotAnEdge, RAPS_ERROR_SEAM_NOT_AN_EDGE);
 #undef RAPS_CHECK_CODE
 
 struct raps_mesh {
@@ -185,6 +187,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_BLOCK_ALIGN, "atlas_block_align", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, "atlas_keep_input_seams", false, 0, 1, 0},
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -266,6 +269,8 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.atlas_mesh_per_page ? 1 : 0;
         case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
             return s.atlas_whole_texels ? 1 : 0;
+        case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
+            return s.atlas_keep_input_seams ? 1 : 0;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -338,6 +343,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
             break;
         case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
             s.atlas_whole_texels = v != 0;
+            break;
+        case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
+            s.atlas_keep_input_seams = v != 0;
             break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
@@ -691,6 +699,10 @@ const char* raps_status_string(raps_status status) {
             return "open mesh (the sphere domain needs a closed one)";
         case RAPS_ERROR_INVALID_TRANSFORM:
             return "invalid transform";
+        case RAPS_ERROR_GROUP_COUNT:
+            return "triangle group count differs from the triangle count";
+        case RAPS_ERROR_SEAM_NOT_AN_EDGE:
+            return "seam edge is not an edge of the mesh";
         default:
             return "unknown status";
     }
@@ -734,6 +746,36 @@ raps_status raps_mesh_set_transform(raps_mesh* mesh, const double* m) {
     return guarded(mesh ? &mesh->last_error : nullptr, [&] {
         require(mesh != nullptr, "mesh is NULL");
         mesh->transform = m ? checked_transform(m) : Eigen::Matrix<double, 3, 4>::Identity();
+    });
+}
+
+raps_status raps_mesh_set_triangle_groups(raps_mesh* mesh, const uint32_t* groups,
+                                          size_t triangle_count) {
+    return guarded(mesh ? &mesh->last_error : nullptr, [&] {
+        require(mesh != nullptr, "mesh is NULL");
+        require(groups != nullptr || triangle_count == 0, "groups is NULL");
+        if (triangle_count > static_cast<size_t>(kMaxTriangles)) {
+            throw Error(ErrorCode::kTooLarge, "triangle_count " + std::to_string(triangle_count) +
+                                                  " is more than raps accepts (2^28)");
+        }
+        mesh->mesh.triangle_group.assign(groups, groups + triangle_count);
+    });
+}
+
+raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pairs,
+                                     size_t edge_count) {
+    return guarded(mesh ? &mesh->last_error : nullptr, [&] {
+        require(mesh != nullptr, "mesh is NULL");
+        require(vertex_pairs != nullptr || edge_count == 0, "vertex_pairs is NULL");
+        if (edge_count > static_cast<size_t>(3 * kMaxTriangles)) {
+            throw Error(ErrorCode::kTooLarge, "edge_count " + std::to_string(edge_count) +
+                                                  " is more than the edges of the largest mesh "
+                                                  "raps accepts (3 * 2^28)");
+        }
+        std::vector<std::array<uint32_t, 2>> edges(edge_count);
+        for (size_t i = 0; i < edge_count; ++i)
+            edges[i] = {vertex_pairs[2 * i], vertex_pairs[2 * i + 1]};
+        mesh->mesh.seam_edges = std::move(edges);
     });
 }
 

@@ -359,6 +359,16 @@ namespace Raps
         /// (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
         /// </summary>
         public const int RAPS_ERROR_INVALID_TRANSFORM = 23;
+        /// <summary>
+        /// Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) are not one per
+        /// triangle (the indices changed since, or the count was wrong).
+        /// </summary>
+        public const int RAPS_ERROR_GROUP_COUNT = 24;
+        /// <summary>
+        /// Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
+        /// joins by an edge (the message names the pair).
+        /// </summary>
+        public const int RAPS_ERROR_SEAM_NOT_AN_EDGE = 25;
 
         /// <summary>
         /// int. The parameter domain. Default RAPS_DOMAIN_DISK.
@@ -525,6 +535,14 @@ namespace Raps
         /// (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45;
+        /// <summary>
+        /// int, 0 or 1. 0 welds vertices that share a position (within RAPS_PARAM_WELD_TOLERANCE)
+        /// before growing charts, so the input's own vertex splits (an exporter's uv seams, split
+        /// normals) do not split charts. 1 keeps every edge where the triangles on its two sides use
+        /// different input vertices as a chart boundary: the seams of the input's existing uvs,
+        /// when those are expressed, as usual, by split vertices.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46;
 
         // RAPS_PARAM_ATLAS_ROTATION values
         /// <summary>
@@ -793,6 +811,38 @@ namespace Raps
         public static extern int raps_mesh_set_transform(MeshHandle mesh, double[] m);
 
         /// <summary>
+        /// The artist's seams, read by the atlas domain only (raps_parameterize and
+        /// raps_parameterize_scene; the disk and sphere domains ignore them). No chart crosses them: the
+        /// charts are cut there even where the surface is smooth and welded.
+        ///
+        /// Sets (replaces) a group id per triangle (a material, a smoothing group, a user region):
+        /// groups[t] is triangle t's, in the order of the indices; no chart holds triangles of two
+        /// groups (zero-area triangles excepted, which take the chart of a neighbouring vertex). The ids
+        /// are only compared. NULL with triangle_count 0 removes the groups (one group,
+        /// the default). The data is copied. The count is checked against the triangles when the mesh
+        /// is used, so groups and indices may be set in either order.
+        /// Errors: INVALID_ARGUMENT (mesh NULL, groups NULL with a nonzero count), TOO_LARGE (more than
+        /// 2^28), OUT_OF_MEMORY; when used: GROUP_COUNT (not one per triangle).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_triangle_groups(MeshHandle mesh, uint[] groups, UIntPtr triangle_count);
+
+        /// <summary>
+        /// Sets (replaces) the seam edges: edge_count pairs of input vertex indices, vertex_pairs[2i] and
+        /// vertex_pairs[2i + 1], in either order. Charts do not grow or merge across them, and seams
+        /// that close a loop or run from boundary to boundary separate charts. A chart may still hold
+        /// both sides of a seam path that ends inside it: it is cut open along the path, its end
+        /// vertices excepted, which both sides keep sharing. NULL with edge_count 0 removes them (the
+        /// default). The data is copied and checked when the mesh is used.
+        /// Errors: INVALID_ARGUMENT (mesh NULL, vertex_pairs NULL with a nonzero count), TOO_LARGE (more
+        /// than 3 * 2^28 pairs), OUT_OF_MEMORY; when used: INDEX_OUT_OF_RANGE (a pair names a vertex &gt;=
+        /// the vertex count), SEAM_NOT_AN_EDGE (no triangle has the pair as an edge); the message names
+        /// the first such pair.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_seam_edges(MeshHandle mesh, uint[] vertex_pairs, UIntPtr edge_count);
+
+        /// <summary>
         /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -909,7 +959,8 @@ namespace Raps
         /// REPEATED_VERTEX, ZERO_AREA_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX,
         /// INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
         /// MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
-        /// INTERNAL.
+        /// INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
+        /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_parameterize(MeshHandle mesh, SettingsHandle settings, ResultHandle result);

@@ -42,7 +42,13 @@ namespace Raps
         OpenMesh = Native.RAPS_ERROR_OPEN_MESH,
         /// <summary>Mesh.SetTransform: a coefficient is not finite, or the 3x3 part is
         /// singular.</summary>
-        InvalidTransform = Native.RAPS_ERROR_INVALID_TRANSFORM
+        InvalidTransform = Native.RAPS_ERROR_INVALID_TRANSFORM,
+        /// <summary>Atlas domain: the triangle groups (Mesh.SetTriangleGroups) are not one per
+        /// triangle.</summary>
+        GroupCount = Native.RAPS_ERROR_GROUP_COUNT,
+        /// <summary>Atlas domain: a seam edge (Mesh.SetSeamEdges) is not an edge of the
+        /// mesh.</summary>
+        SeamNotAnEdge = Native.RAPS_ERROR_SEAM_NOT_AN_EDGE
     }
 
     public enum Param
@@ -76,7 +82,8 @@ namespace Raps
         AtlasMargin = Native.RAPS_PARAM_ATLAS_MARGIN,
         AtlasBlockAlign = Native.RAPS_PARAM_ATLAS_BLOCK_ALIGN,
         AtlasMeshPerPage = Native.RAPS_PARAM_ATLAS_MESH_PER_PAGE,
-        AtlasWholeTexels = Native.RAPS_PARAM_ATLAS_WHOLE_TEXELS
+        AtlasWholeTexels = Native.RAPS_PARAM_ATLAS_WHOLE_TEXELS,
+        AtlasKeepInputSeams = Native.RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS
     }
 
     /// <summary>Which turns the atlas's packing may give a chart (Param.AtlasRotation).</summary>
@@ -310,6 +317,33 @@ namespace Raps
                 throw Interop.BadInput("a transform is 12 doubles (3x4, row-major), not " +
                                        m.Length);
             Interop.Check(Native.raps_mesh_set_transform(handle, m), LastError);
+        }
+
+        /// <summary>Atlas domain: a group id per triangle (a material, a smoothing group, a
+        /// region); no chart holds triangles of two groups. null or an empty array removes
+        /// them. A count other than the triangle count throws Status.GroupCount when the mesh
+        /// is used.</summary>
+        public void SetTriangleGroups(uint[] groups)
+        {
+            uint[] data = groups != null && groups.Length > 0 ? groups : null;
+            Interop.Check(Native.raps_mesh_set_triangle_groups(
+                              handle, data, Interop.Size(data == null ? 0 : data.Length)),
+                          LastError);
+        }
+
+        /// <summary>Atlas domain: seam edges as pairs of vertex indices, packed (a0, b0, a1,
+        /// b1, ...); no chart grows or merges across them. null or an empty array removes them.
+        /// When the mesh is used, a pair that is not an edge throws Status.SeamNotAnEdge, one
+        /// beyond the vertices Status.IndexOutOfRange.</summary>
+        public void SetSeamEdges(uint[] vertexPairs)
+        {
+            if (vertexPairs != null && vertexPairs.Length % 2 != 0)
+                throw Interop.BadInput("seam edges are pairs of vertex indices, not " +
+                                       vertexPairs.Length + " indices");
+            uint[] data = vertexPairs != null && vertexPairs.Length > 0 ? vertexPairs : null;
+            Interop.Check(Native.raps_mesh_set_seam_edges(
+                              handle, data, Interop.Size(data == null ? 0 : data.Length / 2)),
+                          LastError);
         }
 
         /// <summary>Replaces the positions from an interleaved buffer: vertex i starts at

@@ -76,9 +76,31 @@ long long parse_integer(std::string_view token, const std::string& path, size_t 
     return value;
 }
 
+// A corner's `vt` index, 0-based, from "v/vt/vn"; kNoTexcoord when it has none or names one the
+// file does not have. Not an error here: most callers never read texcoords, and the one that
+// does (raps-param --keep-uv-seams) refuses such a file itself.
+uint32_t texcoord_of(std::string_view corner, size_t texcoord_count) {
+    const size_t slash = corner.find('/');
+    if (slash == std::string_view::npos) return PolygonMesh::kNoTexcoord;
+    std::string_view text = corner.substr(slash + 1);
+    text = text.substr(0, text.find('/'));
+    long long index = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), index);
+    if (ec != std::errc() || ptr != text.data() + text.size() || index == 0)
+        return PolygonMesh::kNoTexcoord;
+    const long long resolved =
+        index > 0 ? index - 1 : static_cast<long long>(texcoord_count) + index;
+    if (resolved < 0 || resolved >= static_cast<long long>(texcoord_count))
+        return PolygonMesh::kNoTexcoord;
+    return static_cast<uint32_t>(resolved);
+}
+
 PolygonMesh read_obj(const std::string& path, const std::string& text) {
     PolygonMesh mesh;
     mesh.polygon_offsets.push_back(0);
+    size_t texcoord_count = 0;
+    std::string group_name, material;
+    std::map<std::pair<std::string, std::string>, uint32_t> group_ids;
     size_t line_number = 0;
     const char* p = text.data();
     const char* end = p + text.size();
@@ -110,12 +132,23 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
                          "vertex index " + std::to_string(index) + " is invalid");
                 }
                 mesh.corners.push_back(static_cast<uint32_t>(resolved));
+                mesh.texcoord_corners.push_back(texcoord_of(corner, texcoord_count));
                 ++corners;
             }
             if (corners < 3) fail(path, line_number, "face with fewer than 3 vertices");
             mesh.polygon_offsets.push_back(static_cast<uint32_t>(mesh.corners.size()));
+            mesh.polygon_groups.push_back(group_ids
+                                              .emplace(std::make_pair(group_name, material),
+                                                       static_cast<uint32_t>(group_ids.size()))
+                                              .first->second);
+        } else if (keyword == "vt") {
+            ++texcoord_count;
+        } else if (keyword == "g" || keyword == "usemtl") {
+            std::string name;
+            for (std::string_view part; tokens.next(part);) name += std::string(part) + ' ';
+            (keyword == "g" ? group_name : material) = name;
         }
-        // vt, vn, o, g, s, usemtl, mtllib, l, p and comments carry nothing raps uses.
+        // vn, o, s, mtllib, l, p and comments carry nothing raps uses.
     }
     return mesh;
 }
@@ -197,6 +230,30 @@ std::vector<uint32_t> PolygonMesh::triangles() const {
         }
     }
     return out;
+}
+
+std::vector<uint32_t> PolygonMesh::triangle_groups() const {
+    std::vector<uint32_t> out;
+    if (polygon_groups.empty()) return out;
+    for (size_t f = 0; f < polygon_count(); ++f)
+        out.insert(out.end(), polygon_offsets[f + 1] - polygon_offsets[f] - 2, polygon_groups[f]);
+    return out;
+}
+
+PolygonMesh PolygonMesh::split_at_texcoord_seams() const {
+    PolygonMesh split = *this;
+    split.positions.clear();
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> vertex_of;
+    for (size_t c = 0; c < corners.size(); ++c) {
+        const auto [it, added] = vertex_of.emplace(std::make_pair(corners[c], texcoord_corners[c]),
+                                                   static_cast<uint32_t>(vertex_of.size()));
+        if (added) {
+            split.positions.insert(split.positions.end(), positions.begin() + 3 * corners[c],
+                                   positions.begin() + 3 * corners[c] + 3);
+        }
+        split.corners[c] = it->second;
+    }
+    return split;
 }
 
 PolygonMesh read_mesh(const std::string& path) {

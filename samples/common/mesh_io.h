@@ -13,11 +13,22 @@ struct PolygonMesh {
     std::vector<double> positions;          // x, y, z per vertex
     std::vector<uint32_t> polygon_offsets;  // polygon p: corners [offsets[p], offsets[p + 1])
     std::vector<uint32_t> corners;          // vertex index per polygon corner
+    // OBJ only (empty for OFF): per corner its `vt` index, 0-based (kNoTexcoord where the
+    // corner names none, or one the file does not have), and per polygon its group: one id per
+    // distinct (`g`, `usemtl`) pair, numbered from 0 in order of first use.
+    static constexpr uint32_t kNoTexcoord = 0xffffffffu;
+    std::vector<uint32_t> texcoord_corners;
+    std::vector<uint32_t> polygon_groups;
 
     size_t vertex_count() const { return positions.size() / 3; }
     size_t polygon_count() const { return polygon_offsets.size() - 1; }
     // Triangle indices, polygons fanned from their first corner, in polygon order.
     std::vector<uint32_t> triangles() const;
+    // Per triangle of triangles(), its polygon's group (empty without groups).
+    std::vector<uint32_t> triangle_groups() const;
+    // The mesh with one vertex per distinct (vertex, texcoord) pair of its corners, in order of
+    // first use: the input's uv seams become vertex splits. Needs texcoord_corners.
+    PolygonMesh split_at_texcoord_seams() const;
 };
 
 // Reads .obj or .off (chosen by extension, case-insensitive). Throws std::runtime_error with the

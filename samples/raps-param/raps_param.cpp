@@ -7,6 +7,7 @@
 // Prints one JSON object on stdout (statistics, settings, per-phase times); see --help. This
 // tool is a contract other tools and tests drive: keep its name, flags and OBJ-in/OBJ-out
 // behaviour stable.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -89,6 +90,11 @@ atlas options:
   --whole-texels             without a density: charts on whole texels (as with a density,
                              --margin and --block-align too) on one page of --resolution, at
                              the largest density that fits
+  --keep-uv-seams            keep the input's uv seams as chart boundaries: an OBJ's corners
+                             with different `vt` are different vertices to the atlas, which
+                             does not weld across them (every face corner needs a vt)
+  --obj-groups               no chart crosses from one OBJ group to another: faces under
+                             different `g` or `usemtl` lines never share a chart
   --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
                              --mesh-per-page --whole-texels (--padding and --rotate given
                              override theirs)
@@ -202,6 +208,8 @@ std::vector<double> sphere_positions(const raps_samples::PolygonMesh& polygons,
 struct Options {
     std::vector<std::string> inputs;
     std::string output;
+    bool keep_uv_seams = false;  // the library sees a vertex per (v, vt) pair of the OBJ
+    bool obj_groups = false;     // OBJ `g` / `usemtl` as triangle groups
 };
 
 // A flag that sets one int parameter to 1.
@@ -270,6 +278,11 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
             set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
         } else if (arg == "--whole-texels") {
             set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
+        } else if (arg == "--keep-uv-seams") {
+            set_switch(settings, RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS);
+            options.keep_uv_seams = true;
+        } else if (arg == "--obj-groups") {
+            options.obj_groups = true;
         } else if (const raps_samples::ParameterFlag* flag =
                        raps_samples::find_parameter_flag(arg)) {
             const std::string error =
@@ -302,18 +315,44 @@ struct Input {
     ~Input() { raps_mesh_destroy(mesh); }
 };
 
-void load_input(const std::string& path, Input& input) {
+// With --keep-uv-seams the library gets one vertex per (v, vt) pair, so the file's uv seams are
+// vertex splits it keeps; the OBJ is still written with the file's own `v` (the output's faces
+// are matched to the input's corners in order, never through the remap).
+raps_samples::PolygonMesh library_view(const std::string& path,
+                                       const raps_samples::PolygonMesh& polygons,
+                                       const Options& options) {
+    if (!options.keep_uv_seams) return polygons;
+    const auto missing =
+        std::find(polygons.texcoord_corners.begin(), polygons.texcoord_corners.end(),
+                  raps_samples::PolygonMesh::kNoTexcoord);
+    if (polygons.texcoord_corners.empty() || missing != polygons.texcoord_corners.end()) {
+        const size_t corner = static_cast<size_t>(missing - polygons.texcoord_corners.begin());
+        throw Failure(RAPS_ERROR_INVALID_ARGUMENT,
+                      path + ": --keep-uv-seams needs an OBJ whose every face corner names a vt" +
+                          (polygons.texcoord_corners.empty()
+                               ? std::string(" (this file has no faces with vt)")
+                               : "; face corner " + std::to_string(corner) + " names none"));
+    }
+    return polygons.split_at_texcoord_seams();
+}
+
+void load_input(const std::string& path, const Options& options, Input& input) {
     input.polygons = raps_samples::read_mesh(path);
-    const std::vector<uint32_t> triangles = input.polygons.triangles();
+    const raps_samples::PolygonMesh library = library_view(path, input.polygons, options);
+    const std::vector<uint32_t> triangles = library.triangles();
     check(raps_mesh_create(&input.mesh), [] { return "cannot create a mesh"; });
-    if (input.polygons.vertex_count() == 0)
-        throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no vertices");
+    if (library.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no vertices");
     if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no faces");
-    check(raps_mesh_set_positions_f64(input.mesh, input.polygons.positions.data(),
-                                      input.polygons.vertex_count(), 0),
+    check(raps_mesh_set_positions_f64(input.mesh, library.positions.data(), library.vertex_count(),
+                                      0),
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
     check(raps_mesh_set_indices_u32(input.mesh, triangles.data(), triangles.size()),
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    if (options.obj_groups) {
+        const std::vector<uint32_t> groups = library.triangle_groups();
+        check(raps_mesh_set_triangle_groups(input.mesh, groups.data(), groups.size()),
+              [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    }
 }
 
 // An `o` line's name: the file name without its folder and extension.
@@ -367,7 +406,7 @@ int run(int argc, char** argv) {
     size_t polygons = 0;
     for (const std::string& path : options.inputs) {
         inputs.push_back(std::make_unique<Input>());
-        load_input(path, *inputs.back());
+        load_input(path, options, *inputs.back());
         meshes.push_back(inputs.back()->mesh);
         polygons += inputs.back()->polygons.polygon_count();
     }

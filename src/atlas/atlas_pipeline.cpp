@@ -12,6 +12,7 @@
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
 #include "atlas/page_packing.h"
+#include "atlas/user_seams.h"
 #include "atlas/vertex_welding.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
@@ -325,11 +326,13 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
         PhaseTimer timer(Phase::kValidate, progress, times);
         check_page_settings(settings);
         check_indices_in_range(mesh);  // everything else an atlas takes as it comes
+        check_user_seams(mesh, "");
         timer.finish();
     }
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
     const std::vector<int32_t> welded = weld_parts(mesh, parts, settings.weld_tolerance);
-    const AtlasSurface surface = build_atlas_surface(mesh, welded, pool);
+    const UserSeams seams(mesh, settings.atlas_keep_input_seams);
+    const AtlasSurface surface = build_atlas_surface(mesh, welded, seams, pool);
     topology_timer.finish();
 
     PhaseTimer segment_timer(Phase::kSegment, progress, times);

@@ -12,7 +12,7 @@
 namespace raps {
 
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 ThreadPool& pool) {
+                                 const UserSeams& seams, ThreadPool& pool) {
     AtlasSurface surface;
     const int32_t input_count = input.triangle_count();
 
@@ -29,7 +29,8 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     const double zero_area = 1e-12 * total / std::max(input_count, 1);
 
     // Exact duplicates (same welded vertices in the same rotation) follow their first copy.
-    // A copy wound the other way is the back of a two-sided surface and keeps its own chart.
+    // A copy wound the other way is the back of a two-sided surface and keeps its own chart, and
+    // so does a copy in another group (it belongs to another material or region).
     // Found with a hash table of the rotated vertex triples, triangles in input order (linear,
     // where sorting the triples was a quarter of fandisk's topology phase).
     std::vector<std::array<int32_t, 3>> rotated(input_count);
@@ -50,7 +51,8 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             mix_bits(mix_bits(static_cast<uint64_t>(w[0]) << 32 | static_cast<uint32_t>(w[1])) ^
                      static_cast<uint32_t>(w[2]));
         size_t i = hash & (capacity - 1);
-        while (slot[i] >= 0 && rotated[slot[i]] != w) i = (i + 1) & (capacity - 1);
+        while (slot[i] >= 0 && (rotated[slot[i]] != w || seams.group(slot[i]) != seams.group(t)))
+            i = (i + 1) & (capacity - 1);
         if (slot[i] < 0) {
             slot[i] = t;
         } else {
@@ -114,7 +116,8 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             while (j != end && j->first == i->first) ++j;
             if (j - i == 2) {
                 const int32_t h = i->second, g = (i + 1)->second;
-                if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g)) {
+                if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
+                    !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
                     surface.twin[h] = g;
                     surface.twin[g] = h;
                 }

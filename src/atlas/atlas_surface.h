@@ -1,6 +1,7 @@
 // Step 2 of the atlas pipeline: turn any triangle soup into a manifold, consistently oriented
 // surface that charts can be grown on. Vertices are welded by position; edges shared by more
-// than two triangles, or traversed twice in the same direction, become cuts; each vertex is
+// than two triangles, or traversed twice in the same direction, become cuts, and so do the
+// artist's seams (user_seams.h); each vertex is
 // split into one surface vertex per fan of triangles around it. Triangles that cannot take part
 // (repeated welded vertex, zero area, an exact duplicate of another) are kept aside: they still
 // get uvs, on the chart of a neighbour.
@@ -11,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "atlas/user_seams.h"
 #include "core/triangle_mesh.h"
 #include "parallel/thread_pool.h"
 
@@ -30,9 +32,9 @@ struct AtlasSurface {
     std::vector<int32_t> aside_primary;
 };
 
-// `welded[v]`: the representative of input vertex v (vertex_welding.h). Corner angles are
-// measured on `pool`.
+// `welded[v]`: the representative of input vertex v (vertex_welding.h); `seams` of `input`.
+// Corner angles are measured on `pool`.
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 ThreadPool& pool);
+                                 const UserSeams& seams, ThreadPool& pool);
 
 }  // namespace raps

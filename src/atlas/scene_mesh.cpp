@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "atlas/user_seams.h"
 #include "core/error.h"
 
 namespace raps {
@@ -33,6 +34,7 @@ void check_part(const TriangleMesh& mesh, size_t index) {
             }
         }
     }
+    check_user_seams(mesh, name);
 }
 
 }  // namespace
@@ -41,8 +43,10 @@ SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
                         const std::vector<Eigen::Matrix<double, 3, 4>>& transforms) {
     SceneMesh scene;
     int64_t vertices = 0, triangles = 0;
+    bool any_groups = false;
     for (size_t i = 0; i < meshes.size(); ++i) {
         check_part(*meshes[i], i);
+        any_groups = any_groups || !meshes[i]->triangle_group.empty();
         vertices += meshes[i]->vertex_count();
         triangles += meshes[i]->triangle_count();
     }
@@ -71,6 +75,21 @@ SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
         }
         for (const Triangle& t : meshes[i]->triangles)
             scene.mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        // Parts are welded apart, so groups need not differ between meshes: a mesh without
+        // groups is all group 0.
+        if (any_groups) {
+            const std::vector<uint32_t>& group = meshes[i]->triangle_group;
+            if (group.empty()) {
+                scene.mesh.triangle_group.resize(scene.mesh.triangles.size(), 0);
+            } else {
+                scene.mesh.triangle_group.insert(scene.mesh.triangle_group.end(), group.begin(),
+                                                 group.end());
+            }
+        }
+        for (const std::array<uint32_t, 2>& pair : meshes[i]->seam_edges) {
+            scene.mesh.seam_edges.push_back(
+                {pair[0] + static_cast<uint32_t>(offset), pair[1] + static_cast<uint32_t>(offset)});
+        }
         scene.parts.first_vertex.push_back(static_cast<int32_t>(scene.mesh.positions.size()));
         scene.parts.first_triangle.push_back(static_cast<int32_t>(scene.mesh.triangles.size()));
     }

@@ -34,6 +34,8 @@ enum class ErrorCode : int32_t {
     kInternal = 21,
     kOpenMesh = 22,
     kInvalidTransform = 23,
+    kGroupCount = 24,
+    kSeamNotAnEdge = 25,
 };
 
 class Error : public std::runtime_error {

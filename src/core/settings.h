@@ -48,10 +48,11 @@ struct Settings {
     double atlas_texels_per_unit = 0;
     int32_t atlas_max_width = 4096, atlas_max_height = 4096;  // pages, with a density
     ChartRotation atlas_rotation = ChartRotation::kAny;
-    int32_t atlas_margin = 0;          // texels at the page border, with a density
-    bool atlas_block_align = false;    // charts on whole 4x4 blocks, with a density
-    bool atlas_mesh_per_page = false;  // a scene's mesh on one page, with a density
-    bool atlas_whole_texels = false;   // without a density: whole texels on one page
+    int32_t atlas_margin = 0;             // texels at the page border, with a density
+    bool atlas_block_align = false;       // charts on whole 4x4 blocks, with a density
+    bool atlas_mesh_per_page = false;     // a scene's mesh on one page, with a density
+    bool atlas_whole_texels = false;      // without a density: whole texels on one page
+    bool atlas_keep_input_seams = false;  // input vertex splits stay chart boundaries
 };
 
 }  // namespace raps

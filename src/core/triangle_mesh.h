@@ -18,6 +18,10 @@ using Triangle = std::array<int32_t, 3>;
 struct TriangleMesh {
     std::vector<Eigen::Vector3d> positions;
     std::vector<Triangle> triangles;
+    // The artist's seams, which only the atlas reads (atlas/user_seams.h): per triangle its group
+    // (empty: one group), and input vertex pairs that are seams. Checked when the mesh is used.
+    std::vector<uint32_t> triangle_group;
+    std::vector<std::array<uint32_t, 2>> seam_edges;
 
     int32_t vertex_count() const { return static_cast<int32_t>(positions.size()); }
     int32_t triangle_count() const { return static_cast<int32_t>(triangles.size()); }

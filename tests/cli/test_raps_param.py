@@ -238,7 +238,7 @@ class RapsParamTest(unittest.TestCase):
                      '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
                      '--tolerance', '--max-sweeps', '--alpha-steps', '--texels-per-unit',
                      '--max-size', '--rotate', '--margin', '--block-align', '--mesh-per-page',
-                     '--whole-texels', '--lightmap'):
+                     '--whole-texels', '--lightmap', '--keep-uv-seams', '--obj-groups'):
             self.assertIn(flag, out)
 
     def test_sphere_writes_the_points_on_the_unit_sphere(self):
@@ -424,6 +424,89 @@ class RapsParamTest(unittest.TestCase):
             self.assertEqual(chart['rotation_deg'], 0)
             self.assertGreaterEqual(min(chart['x'], chart['y']), 4)  # 3 rounded up to a block
             self.assertLessEqual(chart['x'] + chart['width'] + 4, st['atlas_width'])
+
+    def write_grid(self, name, n, face_prefix):
+        """An n x n grid of quads in the plane; face_prefix(i, j) gives the lines before quad
+        (i, j) and its corners' vt indices (or None for `f v`). One vt per grid vertex and side:
+        vt k on the left half, k + (n + 1)^2 on the right."""
+        path = os.path.join(self.dir.name, name)
+        lines = [f'v {i / n} {j / n} 0' for j in range(n + 1) for i in range(n + 1)]
+        lines += [f'vt {i / n} {j / n}' for _ in range(2) for j in range(n + 1) for i in range(n + 1)]
+        for j in range(n):
+            for i in range(n):
+                prefix, vt_offset = face_prefix(i, j)
+                lines += prefix
+                corners = [j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+                           (j + 1) * (n + 1) + i]
+                lines.append('f ' + ' '.join(f'{c + 1}' if vt_offset is None else
+                                             f'{c + 1}/{c + 1 + vt_offset}' for c in corners))
+        with open(path, 'w') as fh:
+            fh.write('\n'.join(lines) + '\n')
+        return path
+
+    def faces_joined_across(self, obj, label):
+        """Pairs of faces with different labels (per face, in order) that share a `v` edge and
+        both its `vt`: one chart holds both."""
+        _, _, faces = obj_records(obj)
+        edges = {}
+        for f, face in enumerate(faces):
+            for k in range(len(face)):
+                a, b = face[k], face[(k + 1) % len(face)]
+                edges.setdefault(frozenset((a[0], b[0])), []).append((f, {a[0]: a[1], b[0]: b[1]}))
+        joined = 0
+        for sides in edges.values():
+            for (f, vt_f), (g, vt_g) in zip(sides, sides[1:]):
+                joined += label[f] != label[g] and vt_f == vt_g
+        return joined
+
+    def test_keep_uv_seams_keeps_the_files_vt_splits_as_chart_boundaries(self):
+        n = 8
+        grid = self.write_grid('split.obj', n, lambda i, j: ([], 0 if i < n // 2 else (n + 1) ** 2))
+        # The output is written face by face (triangles where a seam crosses a quad), so the
+        # side of each output face is read from its first vertex's position and its others.
+        def sides(obj):
+            v, _, faces = obj_records(obj)
+            return [int(sum(v[c[0] - 1][0] for c in face) / len(face) > 0.5) for face in faces]
+        rc, out, err = run(grid, '-o', self.out, '--atlas')
+        self.assertEqual(rc, 0, err)
+        self.assertGreater(self.faces_joined_across(self.out, sides(self.out)), 0)
+        self.assertFalse(json.loads(out)['settings']['keep_uv_seams'])
+        rc, out, err = run(grid, '-o', self.out, '--atlas', '--keep-uv-seams')
+        self.assertEqual(rc, 0, err)
+        self.assertTrue(json.loads(out)['settings']['keep_uv_seams'])
+        self.assertEqual(self.faces_joined_across(self.out, sides(self.out)), 0)
+        v_in, _, _ = obj_records(grid)
+        v_out, _, _ = obj_records(self.out)
+        self.assertEqual(v_out, v_in)  # the file's own `v`, not the split vertices
+        # Without vt on every corner, there are no seams to keep: refused, no output.
+        os.remove(self.out)
+        rc, out, err = run(self.mesh('suzanne.obj'), '-o', self.out, '--atlas', '--keep-uv-seams')
+        self.assertEqual(rc, 1)
+        self.assertIn('needs an OBJ whose every face corner names a vt', json.loads(out)['error']['message'])
+        self.assertFalse(os.path.exists(self.out))
+
+    def test_obj_groups_keep_charts_within_a_group_and_usemtl(self):
+        n = 8
+        def prefix(i, j):
+            lines = []
+            if i == 0:
+                lines.append('g bottom' if j < n // 2 else 'g top')
+            if i == 0 or i == n // 2:
+                lines.append('usemtl left' if i < n // 2 else 'usemtl right')
+            return lines, None
+        grid = self.write_grid('groups.obj', n, prefix)
+        quads = [(i, j) for j in range(n) for i in range(n)]
+        label = [(2 * (j < n // 2) + (i < n // 2)) for i, j in quads]
+        rc, _, err = run(grid, '-o', self.out, '--atlas')
+        self.assertEqual(rc, 0, err)
+        _, _, faces = obj_records(self.out)
+        self.assertEqual(len(faces), len(quads))  # one chart: quads come back whole
+        self.assertGreater(self.faces_joined_across(self.out, label), 0)
+        rc, _, err = run(grid, '-o', self.out, '--atlas', '--obj-groups')
+        self.assertEqual(rc, 0, err)
+        _, _, faces = obj_records(self.out)
+        self.assertEqual(len(faces), len(quads))  # groups follow the quads: none is cut
+        self.assertEqual(self.faces_joined_across(self.out, label), 0)
 
     def test_scene_usage_errors_exit_2(self):
         spot, teapot = self.mesh('spot.obj'), self.mesh('teapot.obj')

@@ -936,6 +936,38 @@ static class RapsTests
         }
     }
 
+    // The artist's seams: groups and seam edges split the cap's atlas into its two halves, and
+    // bad ones are refused with their own statuses.
+    static void GroupsAndSeamEdges()
+    {
+        Off cap = FanDisk();
+        using (var mesh = new Mesh(cap.Xyz, cap.Indices))
+        using (var settings = new Settings())
+        {
+            settings.SetInt(Param.Domain, (long)Domain.Atlas);
+            Func<uint[]> charts = () =>
+            {
+                using (Result result = Library.Parameterize(mesh, settings))
+                    return result.GetChartIds();
+            };
+            Expect(charts().All(c => c == 0), "one chart without seams");
+            mesh.SetTriangleGroups(new uint[] { 0, 0, 0, 1, 1, 1 });
+            uint[] ids = charts();
+            Expect(!ids.Take(3).Intersect(ids.Skip(3)).Any(), "no chart holds two groups");
+            mesh.SetTriangleGroups(new uint[] { 0, 1 });
+            ExpectFailure(Status.GroupCount, () => charts());
+            mesh.SetTriangleGroups(null);
+            mesh.SetSeamEdges(new uint[] { 0, 1, 4, 0 });  // rim to rim through the apex
+            ids = charts();
+            Expect(!ids.Take(3).Intersect(ids.Skip(3)).Any(), "the seams split the cap");
+            mesh.SetSeamEdges(new uint[] { 1, 3 });
+            ExpectFailure(Status.SeamNotAnEdge, () => charts());
+            mesh.SetSeamEdges(new uint[] { 0, 9 });
+            ExpectFailure(Status.IndexOutOfRange, () => charts());
+            settings.SetInt(Param.AtlasKeepInputSeams, 1);
+        }
+    }
+
     static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -984,6 +1016,7 @@ static class RapsTests
             new KeyValuePair<string, Action>("layout and version match the library",
                                              LayoutAndVersionMatchTheLibrary),
             new KeyValuePair<string, Action>("scene of several meshes", SceneOfSeveralMeshes),
+            new KeyValuePair<string, Action>("groups and seam edges", GroupsAndSeamEdges),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

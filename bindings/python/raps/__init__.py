@@ -327,6 +327,33 @@ class Mesh(_Handle):
             status = _lib.raps_mesh_set_transform(self._ptr(), (ctypes.c_double * 12)(*flat))
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
+    def set_triangle_groups(self, groups):
+        """Atlas domain: a group id per triangle (a material, a smoothing group, a region); no
+        chart holds triangles of two groups. None removes them. A count that is not the
+        triangle count raises Error(Status.GROUP_COUNT) when the mesh is used."""
+        if groups is None:
+            groups = []
+        flat = [int(g) for g in (groups.reshape(-1).tolist() if _is_ndarray(groups) else groups)]
+        if any(g < 0 or g > 0xFFFFFFFF for g in flat):
+            raise ValueError("raps: a group id is outside [0, 2^32)")
+        status = _lib.raps_mesh_set_triangle_groups(
+            self._ptr(), (ctypes.c_uint32 * len(flat))(*flat) if flat else None, len(flat))
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
+    def set_seam_edges(self, pairs):
+        """Atlas domain: seam edges as (a, b) pairs of vertex indices (or 2n integers); no
+        chart grows or merges across them. None removes them. A pair that is not an edge raises
+        Error(Status.SEAM_NOT_AN_EDGE), one beyond the vertices Error(Status.INDEX_OUT_OF_RANGE),
+        when the mesh is used."""
+        if _is_ndarray(pairs):
+            pairs = pairs.reshape(-1).tolist()
+        flat = [] if pairs is None else [int(i) for i in _flatten(pairs, 2, "seam edges")]
+        if any(i < 0 or i > 0xFFFFFFFF for i in flat):
+            raise ValueError("raps: a vertex index is outside [0, 2^32)")
+        status = _lib.raps_mesh_set_seam_edges(
+            self._ptr(), (ctypes.c_uint32 * len(flat))(*flat) if flat else None, len(flat) // 2)
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
     @property
     def vertex_count(self):
         return _lib.raps_mesh_vertex_count(self._ptr())

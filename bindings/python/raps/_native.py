@@ -67,6 +67,12 @@ RAPS_ERROR_OPEN_MESH = 22
 #   raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
 #   (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
 RAPS_ERROR_INVALID_TRANSFORM = 23
+#   Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) are not one per
+#   triangle (the indices changed since, or the count was wrong).
+RAPS_ERROR_GROUP_COUNT = 24
+#   Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
+#   joins by an edge (the message names the pair).
+RAPS_ERROR_SEAM_NOT_AN_EDGE = 25
 
 #   int. The parameter domain. Default RAPS_DOMAIN_DISK.
 RAPS_PARAM_DOMAIN = 1
@@ -175,6 +181,12 @@ RAPS_PARAM_ATLAS_MESH_PER_PAGE = 44
 #   size. The atlas may then be smaller than the resolution on both sides. Refused
 #   (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
 RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45
+#   int, 0 or 1. 0 welds vertices that share a position (within RAPS_PARAM_WELD_TOLERANCE)
+#   before growing charts, so the input's own vertex splits (an exporter's uv seams, split
+#   normals) do not split charts. 1 keeps every edge where the triangles on its two sides use
+#   different input vertices as a chart boundary: the seams of the input's existing uvs,
+#   when those are expressed, as usual, by split vertices.
+RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
 
 # RAPS_PARAM_ATLAS_ROTATION values
 #   Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
@@ -439,6 +451,8 @@ FUNCTIONS = {
     'raps_mesh_set_indices_u16': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint16), ctypes.c_size_t]),
     'raps_mesh_set_indices_u32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_transform': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double)]),
+    'raps_mesh_set_triangle_groups': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_mesh_set_seam_edges': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_vertex_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_triangle_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_last_error': (ctypes.c_char_p, [ctypes.POINTER(raps_mesh)]),

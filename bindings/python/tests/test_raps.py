@@ -437,6 +437,35 @@ class Scene(unittest.TestCase):
         ico.close()
 
 
+class Seams(unittest.TestCase):
+    """The artist's seams in an atlas: triangle groups and seam edges on the hexagonal cap."""
+
+    def test_groups_split_charts_and_bad_seams_are_refused(self):
+        with raps.Mesh(*fan_disk()) as cap, raps.Settings(domain="atlas") as settings:
+            self.assertEqual(raps.parameterize(cap, settings).stats().chart_count, 1)
+            cap.set_triangle_groups([0, 0, 0, 1, 1, 1])
+            charts = raps.parameterize(cap, settings).chart_ids()
+            self.assertEqual(len(set(list(charts)[:3]) & set(list(charts)[3:])), 0)
+            cap.set_triangle_groups([0, 1])
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, settings)
+            self.assertEqual(caught.exception.status, raps.Status.GROUP_COUNT)
+            cap.set_triangle_groups(None)
+            cap.set_seam_edges([(0, 1), (0, 4)])  # rim to rim through the apex: two halves
+            self.assertEqual(raps.parameterize(cap, settings).stats().chart_count, 2)
+            cap.set_seam_edges([(1, 3)])
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, settings)
+            self.assertEqual(caught.exception.status, raps.Status.SEAM_NOT_AN_EDGE)
+            self.assertIn("seam edge 0 (1, 3)", str(caught.exception))
+            cap.set_seam_edges([0, 9])
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, settings)
+            self.assertEqual(caught.exception.status, raps.Status.INDEX_OUT_OF_RANGE)
+            settings.atlas_keep_input_seams = 1
+            self.assertEqual(settings.atlas_keep_input_seams, 1)
+
+
 class Sphere(unittest.TestCase):
     """The sphere domain on a built icosahedron and on bunny.off, closed genus-0 meshes."""
 

@@ -102,6 +102,11 @@ int_values! {
         OPEN_MESH = sys::RAPS_ERROR_OPEN_MESH,
         /// [`Mesh::set_transform`]: a coefficient is not finite, or the 3x3 part is singular.
         INVALID_TRANSFORM = sys::RAPS_ERROR_INVALID_TRANSFORM,
+        /// Atlas domain: the triangle groups ([`Mesh::set_triangle_groups`]) are not one per
+        /// triangle.
+        GROUP_COUNT = sys::RAPS_ERROR_GROUP_COUNT,
+        /// Atlas domain: a seam edge ([`Mesh::set_seam_edges`]) is not an edge of the mesh.
+        SEAM_NOT_AN_EDGE = sys::RAPS_ERROR_SEAM_NOT_AN_EDGE,
     }
 }
 
@@ -138,6 +143,7 @@ int_values! {
         ATLAS_BLOCK_ALIGN = sys::RAPS_PARAM_ATLAS_BLOCK_ALIGN,
         ATLAS_MESH_PER_PAGE = sys::RAPS_PARAM_ATLAS_MESH_PER_PAGE,
         ATLAS_WHOLE_TEXELS = sys::RAPS_PARAM_ATLAS_WHOLE_TEXELS,
+        ATLAS_KEEP_INPUT_SEAMS = sys::RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
     }
 }
 
@@ -499,6 +505,36 @@ impl Mesh {
         let matrix = m.map_or(ptr::null(), |m| m.as_ptr());
         // SAFETY: NULL or twelve doubles, only read.
         let status = unsafe { sys::raps_mesh_set_transform(self.raw.as_ptr(), matrix) };
+        check(status, || self.last_error())
+    }
+
+    /// Atlas domain: a group id per triangle (a material, a smoothing group, a region); no
+    /// chart holds triangles of two groups. An empty slice removes them. A count other than
+    /// the triangle count is refused with [`Status::GROUP_COUNT`] when the mesh is used.
+    pub fn set_triangle_groups(&mut self, groups: &[u32]) -> Result<()> {
+        let data = if groups.is_empty() {
+            ptr::null()
+        } else {
+            groups.as_ptr()
+        };
+        // SAFETY: NULL with 0, or groups.len() integers, only read.
+        let status =
+            unsafe { sys::raps_mesh_set_triangle_groups(self.raw.as_ptr(), data, groups.len()) };
+        check(status, || self.last_error())
+    }
+
+    /// Atlas domain: seam edges as pairs of vertex indices; no chart grows or merges across
+    /// them. An empty slice removes them. When the mesh is used, a pair that is not an edge is
+    /// refused with [`Status::SEAM_NOT_AN_EDGE`], one beyond the vertices with
+    /// [`Status::INDEX_OUT_OF_RANGE`].
+    pub fn set_seam_edges(&mut self, pairs: &[[u32; 2]]) -> Result<()> {
+        let data = if pairs.is_empty() {
+            ptr::null()
+        } else {
+            pairs.as_ptr().cast::<u32>()
+        };
+        // SAFETY: NULL with 0, or 2 * pairs.len() contiguous integers, only read.
+        let status = unsafe { sys::raps_mesh_set_seam_edges(self.raw.as_ptr(), data, pairs.len()) };
         check(status, || self.last_error())
     }
 

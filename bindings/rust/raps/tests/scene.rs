@@ -107,3 +107,31 @@ fn bad_transforms_and_scenes_are_refused() {
     let error = raps::parameterize_scene(&[], &atlas_settings()).unwrap_err();
     assert_eq!(error.status(), Status::EMPTY_MESH);
 }
+
+#[test]
+fn groups_and_seam_edges_split_charts_and_bad_ones_are_refused() {
+    let (xyz, indices) = cap();
+    let mut mesh = Mesh::from_f64(&xyz, &indices).unwrap();
+    let settings = atlas_settings();
+    let charts =
+        |mesh: &Mesh| raps::parameterize(mesh, Some(&settings)).map(|r| r.chart_ids().unwrap());
+    assert!(charts(&mesh).unwrap().iter().all(|&c| c == 0));
+    mesh.set_triangle_groups(&[0, 0, 0, 1, 1, 1]).unwrap();
+    let ids = charts(&mesh).unwrap();
+    assert!(ids[..3].iter().all(|c| !ids[3..].contains(c)));
+    mesh.set_triangle_groups(&[0, 1]).unwrap();
+    assert_eq!(charts(&mesh).unwrap_err().status(), Status::GROUP_COUNT);
+    mesh.set_triangle_groups(&[]).unwrap();
+    mesh.set_seam_edges(&[[0, 1], [4, 0]]).unwrap(); // rim to rim through the apex
+    let ids = charts(&mesh).unwrap();
+    assert!(ids[..3].iter().all(|c| !ids[3..].contains(c)));
+    mesh.set_seam_edges(&[[1, 3]]).unwrap();
+    let error = charts(&mesh).unwrap_err();
+    assert_eq!(error.status(), Status::SEAM_NOT_AN_EDGE);
+    assert!(error.message().contains("seam edge 0 (1, 3)"));
+    mesh.set_seam_edges(&[[0, 9]]).unwrap();
+    assert_eq!(
+        charts(&mesh).unwrap_err().status(),
+        Status::INDEX_OUT_OF_RANGE
+    );
+}
