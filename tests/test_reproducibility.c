@@ -43,6 +43,16 @@ static const test_case kCases[] = {
 };
 enum { kCaseCount = sizeof(kCases) / sizeof(kCases[0]), kMaxThreads = 3 };
 
+/* Under the sanitizers (RAPS_TEST_SANITIZER, tests/CMakeLists.txt) only the cases that share
+ * work among threads, one or two per domain (face, the uv sphere, rocker-arm, teapot): ASan runs
+ * this test about six times slower, and the shared and static builds compare every case. */
+static int case_runs(int c) {
+    if (getenv("RAPS_TEST_SANITIZER") == NULL) return 1;
+    return strcmp(kCases[c].name, "face.obj") == 0 || strcmp(kCases[c].name, "uv-sphere") == 0 ||
+           strcmp(kCases[c].name, "rocker-arm.obj") == 0 ||
+           strcmp(kCases[c].name, "teapot.obj") == 0;
+}
+
 typedef struct digest {
     uint64_t field[kFields];
     uint64_t threads_used;
@@ -108,7 +118,8 @@ static int g_computed = 0;
 static void compute_digests(void) {
     if (g_computed) return;
     for (int c = 0; c < kCaseCount; ++c)
-        for (int32_t t = 1; t <= kMaxThreads; ++t) g_digests[c][t - 1] = run_case(&kCases[c], t);
+        for (int32_t t = 1; t <= kMaxThreads && case_runs(c); ++t)
+            g_digests[c][t - 1] = run_case(&kCases[c], t);
     g_computed = 1;
 }
 
@@ -134,6 +145,7 @@ static void thread_counts_give_the_same_bits(void** state) {
     int retried[3] = {-1, -1, -1}; /* per domain: the case that shared most, else its last */
     uint64_t most[3] = {0, 0, 0};
     for (int c = 0; c < kCaseCount; ++c) {
+        if (!case_runs(c)) continue;
         const int domain = kCases[c].domain;
         for (int t = 2; t <= kMaxThreads; ++t) {
             check_same_bits(c, t, &g_digests[c][t - 1]);
@@ -168,6 +180,7 @@ static int processor_has_avx2(void) {
 /* The child: one line per case, its 1-thread digest, on stdout. */
 static int print_digests(void) {
     for (int c = 0; c < kCaseCount; ++c) {
+        if (!case_runs(c)) continue;
         const digest d = run_case(&kCases[c], 1);
         printf("%d", c);
         for (int f = 0; f < kFields; ++f) printf(" %016llx", (unsigned long long)d.field[f]);
@@ -219,7 +232,9 @@ static void baseline_kernels_give_the_same_bits(void** state) {
     int status = 0;
     assert_int_equal(waitpid(pid, &status, 0), pid);
     assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    assert_int_equal(seen, kCaseCount);
+    int expected = 0;
+    for (int c = 0; c < kCaseCount; ++c) expected += case_runs(c);
+    assert_int_equal(seen, expected);
 }
 
 int main(void) {
