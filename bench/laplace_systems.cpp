@@ -1,5 +1,6 @@
 #include "laplace_systems.h"
 
+#include <cstring>
 #include <map>
 #include <stdexcept>
 
@@ -165,6 +166,16 @@ FactorSize cholesky_size(const raps::SparsePattern& pattern, const std::vector<i
         size.flops += static_cast<double>(c) * static_cast<double>(c);
     }
     return size;
+}
+
+uint64_t bits_hash(const std::vector<double>& x) {
+    uint64_t h = 1469598103934665603ull;
+    for (double value : x) {
+        uint64_t bits;
+        std::memcpy(&bits, &value, sizeof(bits));
+        for (int b = 0; b < 8; ++b) h = (h ^ ((bits >> (8 * b)) & 0xff)) * 1099511628211ull;
+    }
+    return h;
 }
 
 }  // namespace raps_bench

@@ -44,4 +44,8 @@ struct FactorSize {
 };
 FactorSize cholesky_size(const raps::SparsePattern& pattern, const std::vector<int32_t>& order);
 
+// FNV-1a over the bytes of a solution: the benchmarks print it to show which runs gave the
+// same bits.
+uint64_t bits_hash(const std::vector<double>& x);
+
 }  // namespace raps_bench

@@ -54,16 +54,6 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-uint64_t bits_hash(const std::vector<double>& x) {
-    uint64_t h = 1469598103934665603ull;
-    for (double value : x) {
-        uint64_t bits;
-        std::memcpy(&bits, &value, sizeof(bits));
-        for (int b = 0; b < 8; ++b) h = (h ^ ((bits >> (8 * b)) & 0xff)) * 1099511628211ull;
-    }
-    return h;
-}
-
 std::vector<int32_t> order_of(const raps_bench::System& system, const std::string& ordering) {
     if (ordering == "amd") return raps::minimum_degree_order(system.pattern);
     if (ordering == "nd") return raps::nested_dissection_order(system.pattern, system.coordinates);
@@ -104,7 +94,7 @@ Row measure(const raps_bench::System& mean_value, const raps_bench::System& cota
         start = now();
         lu.solve(x.data(), mean_value.rhs_count);
         solve_s.push_back(now() - start);
-        const uint64_t hash = bits_hash(x);
+        const uint64_t hash = raps_bench::bits_hash(x);
         if (r == 0) {
             row.hash = hash;
             row.factor = raps_bench::cholesky_size(mean_value.pattern, order);

@@ -83,16 +83,6 @@ double residual(const System& system, const std::vector<double>& x) {
     return std::sqrt(r2 / std::max(b2, 1e-300));
 }
 
-uint64_t bits_hash(const std::vector<double>& x) {
-    uint64_t h = 1469598103934665603ull;
-    for (double value : x) {
-        uint64_t bits;
-        std::memcpy(&bits, &value, sizeof(bits));
-        for (int b = 0; b < 8; ++b) h = (h ^ ((bits >> (8 * b)) & 0xff)) * 1099511628211ull;
-    }
-    return h;
-}
-
 struct Run {
     double analysis = 0, factor = 0, solve = 0;
     std::vector<double> x;
@@ -301,7 +291,7 @@ int child(const std::string& data, const std::string& name, const std::string& k
         analysis.push_back(run.analysis);
         factor.push_back(run.factor);
         solve.push_back(run.solve);
-        hashes.push_back(bits_hash(run.x));
+        hashes.push_back(raps_bench::bits_hash(run.x));
     }
     const long long peak = status_bytes("VmHWM:") - before;
     const bool runs_agree =
