@@ -61,6 +61,16 @@ static void set_scale_move(double m[12], double s, double dx, double dy, double 
     m[11] = dz;
 }
 
+/* One mesh twice, both in place (a test moves or scales a copy by its transform). */
+static scene two_copies(const test_mesh* mesh) {
+    scene sc;
+    sc.mesh_count = 2;
+    sc.meshes[0] = sc.meshes[1] = mesh;
+    set_identity(sc.transforms[0]);
+    set_identity(sc.transforms[1]);
+    return sc;
+}
+
 static raps_settings* atlas_settings(int64_t threads, int64_t padding) {
     raps_settings* s = NULL;
     assert_int_equal(raps_settings_create(&s), RAPS_OK);
@@ -322,10 +332,7 @@ static void several_meshes_share_one_atlas_without_overlap(void** state) {
 static void a_scaled_mesh_gets_texels_in_proportion(void** state) {
     (void)state;
     test_mesh cone = make_open_cone(8, 24, 1.0);
-    scene sc;
-    sc.mesh_count = 2;
-    sc.meshes[0] = sc.meshes[1] = &cone;
-    set_identity(sc.transforms[0]);
+    scene sc = two_copies(&cone);
     set_scale_move(sc.transforms[1], 2.0, 0.0, 0.0, 0.0);
     raps_settings* s = atlas_settings(0, 1);
     scene_atlas a = run_scene(&sc, s);
@@ -549,11 +556,7 @@ static void check_whole_texel_copies(const scene_atlas* a, int step, int rotatio
 static void charts_sit_on_whole_texels_under_each_rotation_policy(void** state) {
     (void)state;
     test_mesh cone = make_open_cone(8, 24, 1.0);
-    scene sc;
-    sc.mesh_count = 2;
-    sc.meshes[0] = sc.meshes[1] = &cone;
-    set_identity(sc.transforms[0]);
-    set_identity(sc.transforms[1]);
+    scene sc = two_copies(&cone);
     const int policies[3] = {RAPS_ROTATION_ANY, RAPS_ROTATION_QUARTER, RAPS_ROTATION_NONE};
     for (int p = 0; p < 3; ++p) {
         /* Pages too small for both copies: charts go into holes and onto a second page. */
@@ -574,11 +577,7 @@ static void charts_sit_on_whole_texels_under_each_rotation_policy(void** state) 
 static void blocks_and_margins(void** state) {
     (void)state;
     test_mesh cone = make_open_cone(8, 24, 1.0);
-    scene sc;
-    sc.mesh_count = 2;
-    sc.meshes[0] = sc.meshes[1] = &cone;
-    set_identity(sc.transforms[0]);
-    set_identity(sc.transforms[1]);
+    scene sc = two_copies(&cone);
     raps_settings* s = density_settings(0, 1, 60.0, 200, 200);
     assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_BLOCK_ALIGN, 1), RAPS_OK);
     assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_MARGIN, 5), RAPS_OK);
