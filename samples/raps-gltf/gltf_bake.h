@@ -18,13 +18,20 @@
 
 #include "gltf_load.h"
 #include "raps.h"
+#include "texcoord_encoding.h"
 
 namespace raps_gltf {
+
+// What shares an atlas: each mesh's primitives, each primitive alone, or every mesh the default
+// scene draws (scene_instances.h), placed at its world scale.
+enum class Grouping { kMesh, kPrimitive, kScene };
 
 struct BakeOptions {
     int texcoord = 0;                         // TEXCOORD_<texcoord> is written
     bool overwrite = false;                   // replace a set the asset already has
-    bool group_by_mesh = true;                // one atlas per mesh (else one per primitive)
+    Grouping grouping = Grouping::kMesh;
+    bool keep_uv_seams = false;               // the seams of TEXCOORD_0 stay chart boundaries
+    UvFormat uv_format = UvFormat::kFloat;
     const raps_settings* settings = nullptr;  // the library's settings (domain set to atlas here)
     // Called from the library's progress callback: a label ("mesh 2/5 'wheels'"), the phase and
     // its fraction. Return false to cancel.
@@ -36,6 +43,7 @@ struct PrimitiveReport {
     int input_mode = 4;
     uint64_t input_vertices = 0, output_vertices = 0, triangles = 0;
     int index_component_type = 0;
+    int texcoord_component_type = 0;  // of the new set: FLOAT or UNSIGNED_SHORT (normalized)
     std::vector<std::string> attributes;  // as written, in order
     std::vector<int> texcoord_sets;       // sets that now hold the new uvs (continuity copies)
     bool tangents_dropped = false;        // renderers derive them from the new uvs
@@ -55,6 +63,30 @@ struct GroupReport {
     double phase_ms[RAPS_PHASE_COUNT] = {};
     double total_ms = 0;
     int reused_from_mesh = -1;  // >= 0: the same primitives were baked for that mesh
+    uint32_t page = 0;          // the atlas page its charts lie on
+    double uv_error_texels = 0; // unorm16: the largest move of a coordinate, in texels
+};
+
+// --group scene: the one atlas of the default scene.
+struct SceneMeshReport {
+    int mesh = 0;
+    int instances = 0;
+    bool skinned = false;
+    double scale = 1;            // the instance it was packed at: sqrt(world area / own area)
+    std::vector<double> scales;  // every distinct instance's; more than one: the largest taken
+    int shares_atlas_of = -1;    // >= 0: defined alike to that mesh, packed once with it
+};
+
+struct SceneReport {
+    bool enabled = false;
+    int scene = -1;              // the default scene
+    bool scene_implied = false;  // no `scene` member: scenes[0]
+    raps_stats stats{};
+    double phase_ms[RAPS_PHASE_COUNT] = {};
+    double total_ms = 0;
+    std::vector<raps_chart> charts;  // chart.mesh: the index into packed_meshes
+    std::vector<int> packed_meshes;  // the glTF mesh of each mesh packed
+    std::vector<SceneMeshReport> meshes;
 };
 
 struct SkipReport {
@@ -79,6 +111,7 @@ struct BakeResult {
     std::vector<std::vector<uint8_t>> new_views;
     std::vector<PrimitiveReport> primitives;
     std::vector<GroupReport> groups;
+    SceneReport scene;
     std::vector<SkipReport> skipped;
     std::vector<std::string> notes;
     std::vector<PreviewGeometry> preview;

@@ -47,7 +47,8 @@ OUT's extension picks the format. Points and lines are left as they are.
 
 Prints one JSON object on stdout: the settings, per atlas (one per mesh by default) its charts,
 size, utilization, distortion figures and times, per primitive its counts and attributes, what
-was skipped and why, and the files written. On failure it prints {"error": {...}} and a message
+was skipped and why, and the files written; with --group scene also "scene": per page its size
+and utilization, per mesh its instances and scale, per chart its mesh, page and texel rectangle. On failure it prints {"error": {...}} and a message
 on stderr and writes nothing. Exit status: 0 baked, 1 refused or failed, 2 usage error,
 3 nothing to bake (no triangle primitive; no output written).
 
@@ -56,8 +57,21 @@ options:
                              sets the asset lacks get the same uvs (glTF's continuity rule)
   --overwrite                replace the set when a primitive already has it (without this flag
                              such an asset is refused)
-  --group mesh|primitive     one atlas per mesh (default; primitives sharing a texture must
-                             share an atlas) or one per primitive
+  --group mesh|primitive|scene
+                             one atlas per mesh (default; primitives sharing a texture must
+                             share an atlas), one per primitive, or one for every mesh the
+                             default scene draws, each at its world scale (a mesh drawn at
+                             several scales at its largest), so one texel covers the same
+                             surface everywhere; each mesh's page goes into its extras
+                             ("raps_atlas": {"page": N})
+  --uv-format float|unorm16  the new set's components: float (default) or normalized unsigned
+                             shorts (core glTF; half the size; every vertex stays in its texel)
+  --keep-uv-seams            the seams of the asset's TEXCOORD_0 stay chart boundaries (split
+                             normals and colours do not cut charts)
+  --lightmap                 a lightmap: writes TEXCOORD_1 (unless --texcoord says otherwise)
+                             beside the asset's own uvs, padding 2, --rotate quarter, each
+                             mesh's charts on one page, charts on whole texels at --resolution
+                             or at --texels-per-unit (--padding and --rotate given override)
   --embed                    .gltf output: the buffer as a data uri instead of OUT.<hash>.bin
   --report FILE              also write the JSON to FILE
   --preview FILE.png         write a picture: the uv layout with chart outlines beside the model
@@ -78,6 +92,14 @@ atlas (the library's settings; see include/raps.h):
   --weights mvc|cotan|uniform
   --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
   --padding N                texels between charts, 0..64 (default 1)
+  --texels-per-unit T        pack at T texels per unit of the positions (--group scene: per
+                             world unit) instead of filling --resolution: charts on whole
+                             texels, pages of at most --max-size, each mesh on one page
+  --max-size N               with a density: pages of at most N x N texels, 16..16384
+                             (default 4096), never exceeded (a mesh too large is shrunk)
+  --rotate any|quarter|none  turns the packing may give a chart (default any)
+  --margin N                 with a density or --lightmap: texels free at each page's border
+  --block-align              with a density or --lightmap: charts on whole 4x4 blocks
   --weld-tolerance D         weld vertices closer than D (default 0: identical positions)
   --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)
   --max-l2-stretch S         split charts until the L2 stretch is <= S (default 1.008)
@@ -283,11 +305,21 @@ struct SettingsHandle {
     ~SettingsHandle() { raps_settings_destroy(settings); }
 };
 
-int run(int argc, char** argv) {
-    Options options;
-    SettingsHandle h;
-    if (raps_settings_create(&h.settings) != RAPS_OK)
-        throw std::runtime_error("cannot create settings");
+// Which flags the command line gave, for the checks of their combinations.
+struct GivenFlags {
+    bool texcoord = false, lightmap = false, resolution = false, max_size = false,
+         margin = false, block_align = false;
+};
+
+// Reads the command line into the options and the library's settings. Returns false for --help
+// and --version (printed).
+bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& options,
+                     GivenFlags& given) {
+    for (int i = 1; i < argc; ++i) given.lightmap = given.lightmap || !std::strcmp(argv[i], "--lightmap");
+    if (given.lightmap) {
+        const std::string error = raps_samples::apply_lightmap_preset(settings);
+        if (!error.empty()) throw std::runtime_error(error);
+    }
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&]() -> std::string {
@@ -306,18 +338,39 @@ int run(int argc, char** argv) {
         };
         if (arg == "-h" || arg == "--help") {
             std::fputs(kUsage, stdout);
-            return 0;
+            return false;
         } else if (arg == "--version") {
             std::printf("raps-gltf (raps %s)\n", raps_version_string());
-            return 0;
+            return false;
         } else if (arg == "--texcoord") {
             options.bake.texcoord = whole(value(), 0, 31);
+            given.texcoord = true;
         } else if (arg == "--overwrite") {
             options.bake.overwrite = true;
         } else if (arg == "--group") {
             const std::string g = value();
-            if (g != "mesh" && g != "primitive") throw UsageError("--group is mesh or primitive");
-            options.bake.group_by_mesh = g == "mesh";
+            if (g != "mesh" && g != "primitive" && g != "scene")
+                throw UsageError("--group is mesh, primitive or scene");
+            options.bake.grouping = g == "mesh"        ? raps_gltf::Grouping::kMesh
+                                    : g == "primitive" ? raps_gltf::Grouping::kPrimitive
+                                                       : raps_gltf::Grouping::kScene;
+        } else if (arg == "--lightmap") {
+            continue;  // applied above
+        } else if (arg == "--max-size") {
+            const std::string error = raps_samples::set_max_size(settings, value());
+            if (!error.empty()) throw UsageError(error);
+            given.max_size = true;
+        } else if (arg == "--uv-format") {
+            const std::string f = value();
+            if (f != "float" && f != "unorm16") throw UsageError("--uv-format is float or unorm16");
+            options.bake.uv_format =
+                f == "float" ? raps_gltf::UvFormat::kFloat : raps_gltf::UvFormat::kUnorm16;
+        } else if (const raps_samples::SwitchFlag* on = raps_samples::find_switch_flag(arg);
+                   on && on->gltf) {
+            const std::string error = raps_samples::set_switch(settings, *on);
+            if (!error.empty()) throw UsageError(arg + ": " + error);
+            options.bake.keep_uv_seams = options.bake.keep_uv_seams || arg == "--keep-uv-seams";
+            given.block_align = given.block_align || arg == "--block-align";
         } else if (arg == "--embed") {
             options.embed = true;
         } else if (arg == "--report") {
@@ -342,15 +395,45 @@ int run(int argc, char** argv) {
         } else if (const raps_samples::ParameterFlag* flag = raps_samples::find_parameter_flag(arg);
                    flag && flag->atlas) {
             const std::string error =
-                raps_samples::set_parameter_from_text(h.settings, *flag, value());
+                raps_samples::set_parameter_from_text(settings, *flag, value());
             if (!error.empty()) throw UsageError(error);
-            if (arg == "--threads") options.threads_set = true;
+            options.threads_set = options.threads_set || arg == "--threads";
+            given.resolution = given.resolution || arg == "--resolution";
+            given.margin = given.margin || arg == "--margin";
         } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
             throw UsageError("unknown option " + arg);
         } else {
             options.inputs.push_back(arg);
         }
     }
+    // A lightmap goes beside the asset's own uvs unless told otherwise.
+    if (given.lightmap && !given.texcoord) options.bake.texcoord = 1;
+    return true;
+}
+
+// Flags that would be ignored are refused: a user who asks for pages or a margin must get them.
+void check_atlas_flags(const GivenFlags& given, const raps_settings* settings) {
+    double density = 0;
+    int64_t whole_texels = 0;
+    raps_settings_get_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, &density);
+    raps_settings_get_int(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS, &whole_texels);
+    if (density > 0 && given.resolution) {
+        throw UsageError("--resolution and --texels-per-unit exclude each other: a density sizes "
+                         "the pages itself (bounded by --max-size)");
+    }
+    if (density == 0 && given.max_size) {
+        throw UsageError("--max-size bounds the pages of a density: give --texels-per-unit too "
+                         "(without one, --resolution sizes the atlas)");
+    }
+    if (density == 0 && !whole_texels && (given.margin || given.block_align)) {
+        throw UsageError(std::string(given.margin ? "--margin" : "--block-align") +
+                         " places charts on whole texels: give --texels-per-unit or --lightmap "
+                         "too");
+    }
+}
+
+// Checks the inputs and outputs of single and batch mode.
+void check_files(Options& options) {
     const bool batch = !options.output_dir.empty();
     if (!batch) {
         if (options.inputs.size() != 2) {
@@ -375,6 +458,18 @@ int run(int argc, char** argv) {
         if (!options.preview.empty())
             throw UsageError("batch mode writes previews with --previews");
     }
+}
+
+int run(int argc, char** argv) {
+    Options options;
+    GivenFlags given;
+    SettingsHandle h;
+    if (raps_settings_create(&h.settings) != RAPS_OK)
+        throw std::runtime_error("cannot create settings");
+    if (!parse_arguments(argc, argv, h.settings, options, given)) return 0;
+    check_atlas_flags(given, h.settings);
+    check_files(options);
+    const bool batch = !options.output_dir.empty();
     if (options.jobs > 1 && !options.threads_set) {
         raps_settings_set_int(h.settings, RAPS_PARAM_THREADS, 1);  // files in parallel instead
     }
