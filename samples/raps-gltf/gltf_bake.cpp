@@ -1,7 +1,7 @@
 #include "gltf_bake.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -64,8 +64,8 @@ PrimitiveShare share_of(const GroupMap& map, const PrimitiveInput& p, size_t i,
         for (int k = 0; k < 3; ++k) {
             const uint32_t o = map.indices[3 * t + k];
             const uint32_t v = p.triangles[3 * (t - first) + k];
-            const auto added =
-                local.emplace((uint64_t(o) << 32) | v, static_cast<uint32_t>(share.vertex_of.size()));
+            const auto added = local.emplace((uint64_t(o) << 32) | v,
+                                             static_cast<uint32_t>(share.vertex_of.size()));
             if (added.second) {
                 share.vertex_of.push_back(v);
                 // raps puts v up; glTF's uv origin is the image's top-left corner.
@@ -174,14 +174,13 @@ int copy_attribute(PrimitiveWrite& w, const std::string& name, int accessor) {
 
 // New tangent frames for the new uvs (tangent_frames.h), in an accessor like the old one.
 int write_generated_tangents(PrimitiveWrite& w, const Json& old_attributes, int old_tangents) {
-    const std::vector<float> frames =
-        tangent_frames(w.gathered.floats(old_attributes["POSITION"].get<int>()),
-                       w.gathered.floats(old_attributes["NORMAL"].get<int>()), w.share.uv,
-                       w.share.indices);
+    const std::vector<float> frames = tangent_frames(
+        w.gathered.floats(old_attributes["POSITION"].get<int>()),
+        w.gathered.floats(old_attributes["NORMAL"].get<int>()), w.share.uv, w.share.indices);
     std::vector<uint8_t> bytes(frames.size() * sizeof(float));
     std::memcpy(bytes.data(), frames.data(), bytes.size());
-    return w.writer.add(w.asset.doc["accessors"][static_cast<size_t>(old_tangents)], "VEC4",
-                        kFloat, w.share.vertex_of.size(), bytes, true, false);
+    return w.writer.add(w.asset.doc["accessors"][static_cast<size_t>(old_tangents)], "VEC4", kFloat,
+                        w.share.vertex_of.size(), bytes, true, false);
 }
 
 // The primitive's attributes, the new set among them; lower sets it lacks get the new uvs too
@@ -197,7 +196,8 @@ Json write_attributes(PrimitiveWrite& w, int uv_accessor, PrimitiveReport* pr) {
         } else if (it.key() == "TANGENT" && w.input.tangents == TangentPolicy::kDrop) {
             pr->tangents_dropped = true;
         } else if (it.key() == "TANGENT" && w.input.tangents == TangentPolicy::kGenerate) {
-            attributes[it.key()] = write_generated_tangents(w, old_attributes, it.value().get<int>());
+            attributes[it.key()] =
+                write_generated_tangents(w, old_attributes, it.value().get<int>());
             pr->tangents_generated = true;
         } else {
             attributes[it.key()] = copy_attribute(w, it.key(), it.value().get<int>());
@@ -248,7 +248,8 @@ Json write_primitive(const Asset& asset, const BakeOptions& options, AccessorWri
                      PrimitiveReport* pr, GroupReport* report, PreviewGeometry* preview) {
     PrimitiveWrite w{asset, options, writer, p, share, GatheredAttributes(asset, share.vertex_of)};
     Json edit = Json::object();
-    edit["attributes"] = write_attributes(w, write_texcoords(w, map, pr, &report->uv_error_texels), pr);
+    edit["attributes"] =
+        write_attributes(w, write_texcoords(w, map, pr, &report->uv_error_texels), pr);
     if (p.json->contains("targets")) edit["targets"] = write_targets(w, pr);
     pr->unnormalized_weights =
         unnormalized_weights(asset, (*p.json)["attributes"], share.vertex_of);
@@ -447,8 +448,8 @@ void bake_groups(const Asset& asset, const BakeOptions& options, AccessorWriter&
 // The meshes packed into a scene's atlas: one per set of groups defined alike, each at the
 // largest instance of any of them.
 struct ScenePacking {
-    std::vector<size_t> first_group;           // per packed mesh, the group that defines it
-    std::vector<int64_t> packed_of_group;      // per group, its packed mesh
+    std::vector<size_t> first_group;       // per packed mesh, the group that defines it
+    std::vector<int64_t> packed_of_group;  // per group, its packed mesh
     std::vector<GroupGeometry> geometries;
     std::vector<Linear3> transforms;
 };

@@ -27,10 +27,10 @@ namespace raps_gltf {
 enum class Grouping { kMesh, kPrimitive, kScene };
 
 struct BakeOptions {
-    int texcoord = 0;                         // TEXCOORD_<texcoord> is written
-    bool overwrite = false;                   // replace a set the asset already has
+    int texcoord = 0;        // TEXCOORD_<texcoord> is written
+    bool overwrite = false;  // replace a set the asset already has
     Grouping grouping = Grouping::kMesh;
-    bool keep_uv_seams = false;               // the seams of TEXCOORD_0 stay chart boundaries
+    bool keep_uv_seams = false;  // the seams of TEXCOORD_0 stay chart boundaries
     UvFormat uv_format = UvFormat::kFloat;
     const raps_settings* settings = nullptr;  // the library's settings (domain set to atlas here)
     // Called from the library's progress callback: a label ("mesh 2/5 'wheels'"), the phase and
@@ -43,7 +43,7 @@ struct PrimitiveReport {
     int input_mode = 4;
     uint64_t input_vertices = 0, output_vertices = 0, triangles = 0;
     int index_component_type = 0;
-    int texcoord_component_type = 0;  // of the new set: FLOAT or UNSIGNED_SHORT (normalized)
+    int texcoord_component_type = 0;      // of the new set: FLOAT or UNSIGNED_SHORT (normalized)
     std::vector<std::string> attributes;  // as written, in order
     std::vector<int> texcoord_sets;       // sets that now hold the new uvs (continuity copies)
     bool tangents_dropped = false;        // renderers derive them from the new uvs
@@ -62,9 +62,9 @@ struct GroupReport {
     raps_stats stats{};
     double phase_ms[RAPS_PHASE_COUNT] = {};
     double total_ms = 0;
-    int reused_from_mesh = -1;  // >= 0: the same primitives were baked for that mesh
-    uint32_t page = 0;          // the atlas page its charts lie on
-    double uv_error_texels = 0; // unorm16: the largest move of a coordinate, in texels
+    int reused_from_mesh = -1;   // >= 0: the same primitives were baked for that mesh
+    uint32_t page = 0;           // the atlas page its charts lie on
+    double uv_error_texels = 0;  // unorm16: the largest move of a coordinate, in texels
 };
 
 // --group scene: the one atlas of the default scene.

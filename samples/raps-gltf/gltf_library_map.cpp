@@ -110,7 +110,8 @@ GroupMap slice(const raps_result* result, const WholeResult& w, size_t mesh,
     }
     GroupMap map;
     map.first_triangle = g.first_triangle;
-    map.uv.assign(w.uv.begin() + 2 * first_vertex, w.uv.begin() + 2 * (first_vertex + vertex_count));
+    map.uv.assign(w.uv.begin() + 2 * first_vertex,
+                  w.uv.begin() + 2 * (first_vertex + vertex_count));
     map.indices.assign(w.indices.begin() + first_index,
                        w.indices.begin() + first_index + index_count);
     map.charts.assign(w.charts.begin() + first_index / 3,
@@ -174,8 +175,8 @@ GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInpu
             if (local[v] < 0) {
                 WeldKey key{};
                 for (int c = 0; c < 3; ++c) {
-                    key[c] = component_value(&data[v * element], pa.component_type,
-                                             pa.normalized, c);
+                    key[c] =
+                        component_value(&data[v * element], pa.component_type, pa.normalized, c);
                 }
                 if (!uv.empty()) key = {key[0], key[1], key[2], uv[2 * v], uv[2 * v + 1]};
                 const uint32_t next = static_cast<uint32_t>(g.xyz.size() / 3);

@@ -20,8 +20,8 @@
 namespace raps_gltf {
 
 struct GroupGeometry {
-    std::vector<double> xyz;         // per library vertex
-    std::vector<uint32_t> indices;   // three library vertices per triangle, primitives in order
+    std::vector<double> xyz;             // per library vertex
+    std::vector<uint32_t> indices;       // three library vertices per triangle, primitives in order
     std::vector<size_t> first_triangle;  // per primitive, then the total
     uint64_t input_vertices = 0;
 };

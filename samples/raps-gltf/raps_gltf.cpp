@@ -48,8 +48,8 @@ OUT's extension picks the format. Points and lines are left as they are.
 Prints one JSON object on stdout: the settings, per atlas (one per mesh by default) its charts,
 size, utilization, distortion figures and times, per primitive its counts and attributes, what
 was skipped and why, and the files written; with --group scene also "scene": per page its size
-and utilization, per mesh its instances and scale, per chart its mesh, page and texel rectangle. On failure it prints {"error": {...}} and a message
-on stderr and writes nothing. Exit status: 0 baked, 1 refused or failed, 2 usage error,
+and utilization, per mesh its instances and scale, per chart its mesh, page and texel rectangle.
+On failure it prints {"error": {...}} and a message on stderr and writes nothing. Exit status: 0 baked, 1 refused or failed, 2 usage error,
 3 nothing to bake (no triangle primitive; no output written).
 
 options:
@@ -307,15 +307,16 @@ struct SettingsHandle {
 
 // Which flags the command line gave, for the checks of their combinations.
 struct GivenFlags {
-    bool texcoord = false, lightmap = false, resolution = false, max_size = false,
-         margin = false, block_align = false;
+    bool texcoord = false, lightmap = false, resolution = false, max_size = false, margin = false,
+         block_align = false;
 };
 
 // Reads the command line into the options and the library's settings. Returns false for --help
 // and --version (printed).
 bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& options,
                      GivenFlags& given) {
-    for (int i = 1; i < argc; ++i) given.lightmap = given.lightmap || !std::strcmp(argv[i], "--lightmap");
+    for (int i = 1; i < argc; ++i)
+        given.lightmap = given.lightmap || !std::strcmp(argv[i], "--lightmap");
     if (given.lightmap) {
         const std::string error = raps_samples::apply_lightmap_preset(settings);
         if (!error.empty()) throw std::runtime_error(error);
@@ -418,12 +419,14 @@ void check_atlas_flags(const GivenFlags& given, const raps_settings* settings) {
     raps_settings_get_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, &density);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS, &whole_texels);
     if (density > 0 && given.resolution) {
-        throw UsageError("--resolution and --texels-per-unit exclude each other: a density sizes "
-                         "the pages itself (bounded by --max-size)");
+        throw UsageError(
+            "--resolution and --texels-per-unit exclude each other: a density sizes "
+            "the pages itself (bounded by --max-size)");
     }
     if (density == 0 && given.max_size) {
-        throw UsageError("--max-size bounds the pages of a density: give --texels-per-unit too "
-                         "(without one, --resolution sizes the atlas)");
+        throw UsageError(
+            "--max-size bounds the pages of a density: give --texels-per-unit too "
+            "(without one, --resolution sizes the atlas)");
     }
     if (density == 0 && !whole_texels && (given.margin || given.block_align)) {
         throw UsageError(std::string(given.margin ? "--margin" : "--block-align") +

@@ -75,7 +75,8 @@ Json scene_json(const SceneReport& scene) {
     out["utilization"] = json_number(scene.stats.utilization);
     Json times = Json::object();
     for (int p = 0; p < RAPS_PHASE_COUNT; ++p)
-        times[raps_samples::phase_name(static_cast<raps_phase>(p))] = json_number(scene.phase_ms[p]);
+        times[raps_samples::phase_name(static_cast<raps_phase>(p))] =
+            json_number(scene.phase_ms[p]);
     times["total"] = json_number(scene.total_ms);
     out["time_ms"] = times;
     Json meshes = Json::array();
@@ -112,8 +113,8 @@ Json settings_json(const raps_settings* settings, const BakeOptions& options) {
                                                               : "scene";
     out["keep_uv_seams"] = options.keep_uv_seams;
     out["uv_format"] = options.uv_format == UvFormat::kFloat ? "float" : "unorm16";
-    const raps_param choices[] = {RAPS_PARAM_WEIGHTS, RAPS_PARAM_MONITOR,
-                                  RAPS_PARAM_ITERATION_MODE, RAPS_PARAM_ATLAS_ROTATION};
+    const raps_param choices[] = {RAPS_PARAM_WEIGHTS, RAPS_PARAM_MONITOR, RAPS_PARAM_ITERATION_MODE,
+                                  RAPS_PARAM_ATLAS_ROTATION};
     const raps_param numbers[] = {RAPS_PARAM_ALPHA,
                                   RAPS_PARAM_ITERATIONS,
                                   RAPS_PARAM_ATLAS_RESOLUTION,

@@ -35,8 +35,8 @@ std::vector<double> numbers(const Json& node, const char* key, size_t count,
         }
     }
     if (out.size() != count) {
-        throw GltfError("node", what + ": '" + key + "' must be " + std::to_string(count) +
-                                    " finite numbers");
+        throw GltfError(
+            "node", what + ": '" + key + "' must be " + std::to_string(count) + " finite numbers");
     }
     return out;
 }
@@ -60,9 +60,10 @@ Linear3 local_linear(const Json& node, const std::string& what) {
         for (double& v : q) v /= n;
     }
     const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const Linear3 rotation = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                              2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                              2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+    const Linear3 rotation = {
+        1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+        2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+        2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
     return multiply(rotation, {s[0], 0, 0, 0, s[1], 0, 0, 0, s[2]});
 }
 
@@ -154,8 +155,8 @@ std::vector<std::pair<int, Linear3>> drawn_meshes(const Asset& asset, int scene,
         const int m = mesh->get<int>();
         Linear3 linear = world[n];
         if (const Json* skin = member(node, "skin")) {
-            linear = skinned_linear(asset, array_of(asset.doc, "skins")[skin->get<size_t>()],
-                                    world, world[n]);
+            linear = skinned_linear(asset, array_of(asset.doc, "skins")[skin->get<size_t>()], world,
+                                    world[n]);
             (*skinned)[m] = true;
         }
         out.emplace_back(m, linear);

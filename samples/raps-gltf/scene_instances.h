@@ -23,15 +23,15 @@ namespace raps_gltf {
 using Linear3 = std::array<double, 9>;  // row-major 3x3
 
 struct MeshInstances {
-    int instances = 0;             // nodes of the default scene that draw it, singular ones included
-    bool skinned = false;          // at least one instance is skinned
+    int instances = 0;     // nodes of the default scene that draw it, singular ones included
+    bool skinned = false;  // at least one instance is skinned
     std::vector<Linear3> distinct;  // the regular (invertible) linear maps it is drawn under
     bool drawn() const { return !distinct.empty(); }
 };
 
 struct SceneInstances {
-    int scene = -1;               // the scene read; -1 when the document has none
-    bool scene_implied = false;   // no `scene` member: scenes[0] was taken
+    int scene = -1;                     // the scene read; -1 when the document has none
+    bool scene_implied = false;         // no `scene` member: scenes[0] was taken
     std::vector<MeshInstances> meshes;  // per mesh of the document
 };
 

@@ -20,7 +20,7 @@ uint16_t quantize(double x, uint64_t n) {
     if (n == 0) return static_cast<uint16_t>(nearest);
     const int64_t texels = static_cast<int64_t>(n);
     const int64_t c = std::min(texels - 1, static_cast<int64_t>(std::floor(clamped * texels)));
-    const int64_t lo = (c * kSteps + texels - 1) / texels;         // ceil(c * 65535 / n)
+    const int64_t lo = (c * kSteps + texels - 1) / texels;  // ceil(c * 65535 / n)
     // Below (c + 1) / n; the last texel keeps 1 itself (floor(1 * n) is past the last texel,
     // which every reader clamps).
     const int64_t hi = c == texels - 1 ? kSteps : ((c + 1) * kSteps + texels - 1) / texels - 1;
