@@ -2,8 +2,8 @@
 default scene draws, each at its world scale. Measured here from the written files alone (world
 matrices from the nodes, areas from the positions and the new uvs): every mesh gets the density
 asked within 2 %; no page exceeds --max-size and each mesh's page is in its extras; --lightmap
-keeps TEXCOORD_0 and writes TEXCOORD_1; unorm16 texcoords decode into the texel of the float
-uvs; a mesh drawn at several scales is packed at its largest and the report says so; bad flag
+keeps TEXCOORD_0 and writes TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam
+of the new set; unorm16 texcoords decode into the texel of the float uvs; a mesh drawn at several scales is packed at its largest and the report says so; bad flag
 combinations are refused with exit status 2 and nothing written; the Khronos validator finds
 no error in any output.
 
@@ -210,6 +210,27 @@ class SceneAtlas(unittest.TestCase):
         self.assertAlmostEqual(mesh['scale'], 2, places=6)
         self.assertTrue(any('packed at the largest' in note for note in report['notes']))
         self.check_density(g, report, 0, 20)
+
+    def test_keep_uv_seams(self):
+        source = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
+        g, _ = self.bake(source, 'duck_seams.glb', '--lightmap', '--keep-uv-seams',
+                         '--resolution', '512')
+        prim = g.json['meshes'][0]['primitives'][0]
+        xyz = g.accessor(prim['attributes']['POSITION'])
+        old, new = texcoords(g, prim, 0), texcoords(g, prim, 1)
+        sides = {}  # an edge by its end positions: per side, its ends' (old uv, new uv)
+        for tri in g.triangles(prim):
+            for k in range(3):
+                a, b = tri[k], tri[(k + 1) % 3]
+                key = tuple(sorted((tuple(xyz[a]), tuple(xyz[b]))))
+                ends = sorted([(tuple(xyz[v]), tuple(old[v]), tuple(new[v])) for v in (a, b)])
+                sides.setdefault(key, []).append(ends)
+        kept = 0
+        for pair in (s for s in sides.values() if len(s) == 2):
+            if [e[1] for e in pair[0]] != [e[1] for e in pair[1]]:  # a seam of TEXCOORD_0
+                self.assertNotEqual([e[2] for e in pair[0]], [e[2] for e in pair[1]])
+                kept += 1
+        self.assertGreater(kept, 0)
 
     def test_bad_flags_refused_before_writing(self):
         source = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
