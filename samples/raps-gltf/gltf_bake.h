@@ -1,14 +1,14 @@
 // The rewrite: new texture coordinates for every triangle primitive of an asset.
 //
 // Per group of primitives (a mesh, or one primitive with --group primitive): positions and
-// triangles (strips and fans converted, non-indexed ones numbered) go to raps's atlas domain,
-// which returns output vertices (each the copy of one input vertex, split along seams) and the
-// input triangles in input order. Every vertex attribute and every morph target delta is then
-// gathered through that vertex map into new accessors; the new TEXCOORD_n is FLOAT VEC2 with
-// v flipped to glTF's top-left origin. Accessors are never changed in place: the edited
-// primitives point at new accessors, so accessors shared with other meshes keep their data. A
-// mesh is processed once however many nodes use it, and meshes whose primitives are defined
-// alike (same accessors) share one result.
+// triangles (strips and fans converted, non-indexed ones numbered) go to raps's atlas domain
+// (gltf_library_map.h), which returns output vertices (each the copy of one input vertex, split
+// along seams) and the input triangles in input order. With --group scene every mesh the default
+// scene draws goes to one run of raps_parameterize_scene, at its world scale. Every vertex
+// attribute and every morph target delta is then gathered through that vertex map into new
+// accessors (gltf_primitive_write.h); the new TEXCOORD_n is FLOAT VEC2 (or normalized unsigned
+// shorts) with v flipped to glTF's top-left origin. A mesh is processed once however many nodes
+// use it, and meshes whose primitives are defined alike (same accessors) share one result.
 #pragma once
 
 #include <cstdint>
