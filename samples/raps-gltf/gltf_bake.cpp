@@ -42,6 +42,13 @@ void add_scene_notes(BakeResult& result) {
                                    figures(m.scales) + "): packed at the largest, " +
                                    figures({m.scale}) + ", so no instance gets fewer texels");
         }
+        if (m.shares_atlas_of >= 0) {
+            result.notes.push_back("mesh " + std::to_string(m.mesh) +
+                                   " reads the same data as mesh " +
+                                   std::to_string(m.shares_atlas_of) +
+                                   ": both share one place in the atlas, packed at scale " +
+                                   figures({m.scale}) + ", the largest either is drawn at");
+        }
         if (m.skinned) {
             result.notes.push_back("mesh " + std::to_string(m.mesh) +
                                    " is skinned: placed by its bind pose (joint 0's world "
@@ -232,9 +239,14 @@ ScenePacking pack_scene_meshes(const Asset& asset, const BakeOptions& options,
         mesh.mesh = m;
         mesh.instances = instances.meshes[m].instances;
         mesh.skinned = instances.meshes[m].skinned;
+        const GroupGeometry& geometry = packing.geometries[k];
+        mesh.scales = choose_instance(distinct, [&](const Linear3& t) {
+                          return surface_area(geometry, t);
+                      }).scales;
         if (!added.second) mesh.shares_atlas_of = selection.group_mesh[packing.first_group[k]];
         report->meshes.push_back(mesh);
     }
+    // Groups defined alike are packed once: at the largest instance of any of them.
     for (size_t k = 0; k < packing.geometries.size(); ++k) {
         const GroupGeometry& geometry = packing.geometries[k];
         const ChosenInstance chosen = choose_instance(
@@ -242,9 +254,8 @@ ScenePacking pack_scene_meshes(const Asset& asset, const BakeOptions& options,
         packing.transforms.push_back(chosen.transform);
         report->packed_meshes.push_back(selection.group_mesh[packing.first_group[k]]);
         for (size_t g = 0; g < selection.groups.size(); ++g) {
-            if (packing.packed_of_group[g] != static_cast<int64_t>(k)) continue;
-            report->meshes[g].scale = chosen.scale;
-            report->meshes[g].scales = chosen.scales;
+            if (packing.packed_of_group[g] == static_cast<int64_t>(k))
+                report->meshes[g].scale = chosen.scale;
         }
     }
     return packing;

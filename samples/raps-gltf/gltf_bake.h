@@ -73,7 +73,8 @@ struct SceneMeshReport {
     int instances = 0;
     bool skinned = false;
     double scale = 1;            // the instance it was packed at: sqrt(world area / own area)
-    std::vector<double> scales;  // every distinct instance's; more than one: the largest taken
+    std::vector<double> scales;  // each of its distinct instances'; more than one: the largest
+                                 // taken (or a larger one of a mesh it shares its place with)
     int shares_atlas_of = -1;    // >= 0: defined alike to that mesh, packed once with it
 };
 

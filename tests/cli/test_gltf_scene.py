@@ -3,7 +3,8 @@ default scene draws, each at its world scale. Measured here from the written fil
 matrices from the nodes, areas from the positions and the new uvs): every mesh gets the density
 asked within 2 %; no page exceeds --max-size and each mesh's page is in its extras; --lightmap
 keeps TEXCOORD_0 and writes TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam
-of the new set; unorm16 texcoords decode into the texel of the float uvs; a mesh drawn at several scales is packed at its largest and the report says so; bad flag
+of the new set; unorm16 texcoords decode into the texel of the float uvs; a mesh drawn at several scales is packed at its largest and the report says so, and meshes
+defined alike share one place at the largest scale of either; bad flag
 combinations are refused with exit status 2 and nothing written; the Khronos validator finds
 no error in any output.
 
@@ -210,6 +211,26 @@ class SceneAtlas(unittest.TestCase):
         self.assertAlmostEqual(mesh['scale'], 2, places=6)
         self.assertTrue(any('packed at the largest' in note for note in report['notes']))
         self.check_density(g, report, 0, 20)
+
+    def test_meshes_defined_alike_share_one_place(self):
+        with open(os.path.join(DATA, 'gltf', 'BoxTextured.gltf')) as fh:
+            doc = json.load(fh)
+        doc['meshes'].append(dict(doc['meshes'][0], name='copy'))
+        doc['nodes'].append({'mesh': 1, 'scale': [3, 3, 3]})
+        doc['scenes'][0]['nodes'].append(len(doc['nodes']) - 1)
+        source = os.path.join(self.tmp.name, 'alike.gltf')
+        with open(source, 'w') as fh:
+            json.dump(doc, fh)
+        g, report = self.bake(source, 'alike_uv.glb', '--overwrite', '--texels-per-unit', '20')
+        meshes = report['scene']['meshes']
+        self.assertEqual(meshes[1]['shares_atlas_of'], 0)
+        self.assertEqual(report['groups'][1]['reused_from_mesh'], 0)
+        np.testing.assert_allclose([m['scales'] for m in meshes], [[1], [3]], rtol=1e-9)
+        np.testing.assert_allclose([m['scale'] for m in meshes], [3, 3], rtol=1e-9)
+        page = np.array(report['scene']['atlas'], dtype=float)
+        density = np.sqrt(texel_area(g, 0, page, 0) / world_area(g, 0, np.eye(3)))
+        # Packed once at the larger instance: 20 texels per unit there, 3 x 20 at scale 1.
+        self.assertAlmostEqual(density / 60.0, 1.0, delta=0.02)
 
     def test_keep_uv_seams(self):
         source = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
