@@ -141,7 +141,8 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 
 using WeldKey = std::array<double, 5>;  // position, then the TEXCOORD_0 value
 
-// Per vertex of primitive p, its TEXCOORD_0 value (empty when it has none or no data).
+// Per vertex of primitive p, its TEXCOORD_0 value (empty when it has none, no data, or a value
+// that is not finite).
 std::vector<double> texcoord0(const Asset& asset, const PrimitiveInput& p) {
     const Json* set = member((*p.json)["attributes"], "TEXCOORD_0");
     if (!set || !accessor_has_data(asset, set->get<int>())) return {};
@@ -151,8 +152,11 @@ std::vector<double> texcoord0(const Asset& asset, const PrimitiveInput& p) {
     const uint64_t element = element_size(a.type, a.component_type);
     std::vector<double> uv(2 * a.count);
     for (uint64_t v = 0; v < a.count; ++v) {
-        for (int c = 0; c < 2; ++c)
+        for (int c = 0; c < 2; ++c) {
             uv[2 * v + c] = component_value(&data[v * element], a.component_type, a.normalized, c);
+            // A set with a NaN has no seams to keep (and NaN keys would break the weld's map).
+            if (!std::isfinite(uv[2 * v + c])) return {};
+        }
     }
     return uv;
 }

@@ -6,7 +6,8 @@
 // use (an unused vertex would be an isolated vertex to the library). With --keep-uv-seams each
 // primitive's vertices that share a position and a TEXCOORD_0 value become one library vertex,
 // and the library keeps every other vertex split as a chart boundary: the seams of the asset's
-// own uvs, not those of its normals or colours.
+// own uvs, not those of its normals or colours. Primitives never share a chart then (their
+// vertices are never welded), and a primitive without TEXCOORD_0 is welded by position alone.
 #pragma once
 
 #include <cstdint>
