@@ -35,6 +35,16 @@ void add_scene_notes(BakeResult& result) {
     if (scene.scene_implied && scene.scene >= 0) {
         result.notes.push_back("the asset names no default scene: scene 0 was read");
     }
+    std::map<int, size_t> shrunk;  // per glTF mesh, its charts shrunk to fit a page
+    for (const raps_chart& c : scene.charts) {
+        if (c.flags & RAPS_CHART_SCALED_DOWN) ++shrunk[scene.packed_meshes.at(c.mesh)];
+    }
+    for (const auto& entry : shrunk) {
+        result.notes.push_back("mesh " + std::to_string(entry.first) + ": " +
+                               std::to_string(entry.second) +
+                               " chart(s) shrunk to fit a page, below the atlas's density "
+                               "(a larger --max-size or a smaller --texels-per-unit avoids it)");
+    }
     for (const SceneMeshReport& m : scene.meshes) {
         if (m.scales.size() > 1) {
             result.notes.push_back("mesh " + std::to_string(m.mesh) + " is drawn at " +

@@ -1,12 +1,13 @@
 """raps-gltf --group scene end to end on the shared glTF assets: one atlas for every mesh the
 default scene draws, each at its world scale. Measured here from the written files alone (world
 matrices from the nodes, areas from the positions and the new uvs): every mesh gets the density
-asked within 2 %; no page exceeds --max-size and each mesh's page is in its extras; --lightmap
-keeps TEXCOORD_0 and writes TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam
-of the new set; unorm16 texcoords decode into the texel of the float uvs; a mesh drawn at several scales is packed at its largest and the report says so, and meshes
-defined alike share one place at the largest scale of either; bad flag
-combinations are refused with exit status 2 and nothing written; the Khronos validator finds
-no error in any output.
+asked within 2 %; no page exceeds --max-size and each mesh's page is in its extras; charts too
+large for a page are shrunk, flagged and noted; --lightmap keeps TEXCOORD_0 and writes
+TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam of the new set; unorm16
+texcoords decode into the texels of the float uvs; a mesh drawn at several scales is packed at
+its largest and the report says so, and meshes defined alike share one place at the larger
+scale of either; bad flag combinations are refused with exit status 2 and nothing written; the
+Khronos validator finds no error in any output.
 
 usage: test_gltf_scene.py RAPS_GLTF SHARED_DATA_DIR VALIDATOR_PREFIX NODE
 """
@@ -159,6 +160,18 @@ class SceneAtlas(unittest.TestCase):
                               '--max-size', '128')
         self.assertGreater(report['scene']['page_count'], 1)
         self.check_pages(g, report, 128)
+
+    def test_charts_too_large_for_a_page_are_shrunk_and_reported(self):
+        g, report = self.bake(os.path.join(DATA, 'gltf', 'Fox', 'Fox.gltf'), 'fox.glb',
+                              '--overwrite', '--texels-per-unit', '64', '--max-size', '256')
+        scene = report['scene']
+        shrunk = [c for c in scene['chart_list'] if c['scaled_down']]
+        self.assertEqual(len(shrunk), scene['scaled_down_charts'])
+        self.assertGreater(len(shrunk), 0)
+        self.assertTrue(any('shrunk to fit a page' in note for note in report['notes']))
+        for c in shrunk:
+            self.assertLess(c['area_texels'], 0.99 * c['area_3d'] * 64 ** 2)
+        self.check_pages(g, report, 256)
 
     def test_lightmap_keeps_texcoord0(self):
         source = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
