@@ -203,8 +203,8 @@ Selection select_primitives(const Asset& asset, const BakeOptions& options,
         if (drawn && !(*drawn)[m]) {
             for (size_t p = 0; p < primitives.size(); ++p) {
                 skipped->push_back({int(m), int(p),
-                                    "the default scene does not draw this mesh (or only at zero "
-                                    "scale): left as it is"});
+                                    "the default scene does not draw this mesh, or only under "
+                                    "transforms that flatten it (a zero scale): left as it is"});
             }
             continue;
         }

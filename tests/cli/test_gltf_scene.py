@@ -6,7 +6,8 @@ large for a page are shrunk, flagged and noted; --lightmap keeps TEXCOORD_0 and 
 TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam of the new set; unorm16
 texcoords decode into the texels of the float uvs; a mesh drawn at several scales is packed at
 its largest and the report says so, and meshes defined alike share one place at the larger
-scale of either; bad flag combinations are refused with exit status 2 and nothing written; the
+scale of either; bad flag combinations are refused with exit status 2 and nothing written, a
+node's malformed transform with status 1, a scene that draws nothing is nothing to bake; the
 Khronos validator finds no error in any output.
 
 usage: test_gltf_scene.py RAPS_GLTF SHARED_DATA_DIR VALIDATOR_PREFIX NODE
@@ -282,6 +283,28 @@ class SceneAtlas(unittest.TestCase):
             self.assertEqual(status, 2, flags)
             self.assertIn(message, stderr)
             self.assertEqual(json.loads(stdout)['error']['kind'], 'usage')
+            self.assertFalse(os.path.exists(out))
+
+    def test_scene_defects(self):
+        with open(os.path.join(DATA, 'gltf', 'TriangleWithoutIndices.gltf')) as fh:
+            original = json.load(fh)
+        cases = [('no_scene', lambda d: [d.pop('scene'), d.pop('scenes')], 3, 'does not draw'),
+                 ('zero_scale', lambda d: d['nodes'][0].update(scale=[0, 0, 0]), 3,
+                  'does not draw'),
+                 ('bad_scale', lambda d: d['nodes'][0].update(scale=[1, 'x', 1]), 1,
+                  "node 0: 'scale' must be 3 finite numbers"),
+                 ('bad_matrix', lambda d: d['nodes'][0].update(matrix=[1] * 15), 1,
+                  "node 0: 'matrix' must be 16 finite numbers")]
+        for name, edit, status, message in cases:
+            doc = json.loads(json.dumps(original))
+            edit(doc)
+            source = os.path.join(self.tmp.name, name + '.gltf')
+            with open(source, 'w') as fh:
+                json.dump(doc, fh)
+            out = os.path.join(self.tmp.name, name + '_uv.glb')
+            code, _, stderr = run_tool(RAPS_GLTF, source, out, '--group', 'scene')
+            self.assertEqual(code, status, name)
+            self.assertIn(message, stderr)
             self.assertFalse(os.path.exists(out))
 
     def test_zz_validator_finds_no_error(self):
