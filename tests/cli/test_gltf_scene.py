@@ -285,6 +285,14 @@ class SceneAtlas(unittest.TestCase):
             self.assertEqual(json.loads(stdout)['error']['kind'], 'usage')
             self.assertFalse(os.path.exists(out))
 
+    def test_help_documents_the_scene_flags(self):
+        status, stdout, _ = run_tool(RAPS_GLTF, '--help')
+        self.assertEqual(status, 0)
+        for flag in ('--group mesh|primitive|scene', '--texels-per-unit', '--max-size',
+                     '--lightmap', '--keep-uv-seams', '--uv-format float|unorm16',
+                     '--rotate any|quarter|none', '--margin', '--block-align'):
+            self.assertIn(flag, stdout)
+
     def test_scene_defects(self):
         with open(os.path.join(DATA, 'gltf', 'TriangleWithoutIndices.gltf')) as fh:
             original = json.load(fh)
