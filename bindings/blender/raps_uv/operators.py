@@ -135,7 +135,8 @@ class Run:
             return "select at least one mesh object"
         for obj in self.objects:
             mesh = obj.data
-            if self.operator.layer_name(mesh) not in mesh.uv_layers and \
+            name = self.operator.layer_name(mesh)
+            if (name is None or name not in mesh.uv_layers) and \
                     len(mesh.uv_layers) >= _MAX_UV_MAPS:
                 return "%s: already has %d UV maps, Blender's most" % (obj.name, _MAX_UV_MAPS)
             if self.edit_mode and obj.mode == "EDIT":
@@ -189,9 +190,10 @@ class Run:
             for obj_name, outcome in zip(self.names, self.job.outcomes):
                 mesh = bpy.data.objects[obj_name].data
                 name = self.operator.layer_name(mesh)
-                if name is None:
-                    layer = mesh.uv_layers.new(name=self.operator.uv_map or "raps")
-                    mesh.uv_layers.active = layer
+                if name is None or name not in mesh.uv_layers:
+                    layer = mesh.uv_layers.new(name=name or self.operator.uv_map or "raps")
+                    if self.operator.show_new_map:
+                        mesh.uv_layers.active = layer
                     name = layer.name
                 mesh_io.write_uvs(mesh, name, outcome.uv)
         finally:
@@ -213,6 +215,7 @@ def _summary(outcome):
 
 class _UnwrapBase(UnwrapProperties):
     bl_options = {"REGISTER", "UNDO"}
+    show_new_map = True  # a UV map the run adds becomes the active one
 
     @classmethod
     def poll(cls, context):
@@ -288,6 +291,7 @@ class RAPS_OT_lightmap(_UnwrapBase, bpy.types.Operator):
     one page, 2 texels apart, quarter turns only"""
     bl_idname = "raps.lightmap"
     bl_label = "Lightmap with raps"
+    show_new_map = False  # the lightmap is a second map: the textures' map stays active
 
     uv_map: StringProperty(name="UV Map", default="Lightmap",
                            description="UV map to write (added when missing)")
