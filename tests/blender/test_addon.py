@@ -274,14 +274,19 @@ class AddonTest(unittest.TestCase):
     def test_errors_name_the_object_and_change_nothing(self):
         good = load("spot.obj")
         before = uv_array(good).copy()
-        broken = grid("broken")
-        broken.data.vertices[5].co.x = float("nan")
+        # Vertex 0 is loose (raps never sees it): the message must still say Blender's 3.
+        broken_mesh = bpy.data.meshes.new("broken")
+        broken_mesh.from_pydata([(9, 9, 9), (0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [],
+                                [(1, 2, 3, 4)])
+        broken = bpy.data.objects.new("broken", broken_mesh)
+        bpy.context.scene.collection.objects.link(broken)
+        broken.data.vertices[3].co.x = float("nan")
         for one_atlas in (False, True):
             select(good, broken)
             with self.assertRaises(RuntimeError) as caught:
                 bpy.ops.raps.unwrap(one_atlas=one_atlas)
             self.assertIn("broken", str(caught.exception))
-            self.assertIn("non-finite", str(caught.exception).lower())
+            self.assertIn("vertex 3 has a non-finite coordinate", str(caught.exception))
             self.assertTrue(numpy.array_equal(uv_array(good), before))
             self.assertEqual(len(broken.data.uv_layers), 0)
         empty_mesh = bpy.data.meshes.new("no_faces")

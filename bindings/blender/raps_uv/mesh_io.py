@@ -11,12 +11,14 @@ Only vertices used by a face go to raps (loose vertices and edges have no uvs an
 isolated vertices to it); seams are the edges marked use_seam that some face uses.
 """
 
+import re
+
 import numpy
 
 # One raps run's input as read from a Blender mesh, in raps's vertex numbering.
 class MeshInput:
     __slots__ = ("positions", "triangles", "triangle_loops", "triangle_polygons", "groups",
-                 "seams", "transform", "loop_count", "polygon_count")
+                 "seams", "transform", "loop_count", "polygon_count", "blender_vertex")
 
 
 def world_transform(obj):
@@ -48,6 +50,7 @@ def read_mesh(obj, use_seams=True, use_materials=False):
 
     data = MeshInput()
     data.positions = positions[used]
+    data.blender_vertex = numpy.nonzero(used)[0]
     data.triangles = new_index[triangles].astype(numpy.uint32)
     data.triangle_loops = loops
     data.triangle_polygons = polygons
@@ -180,3 +183,14 @@ def write_uvs(mesh, layer_name, uv):
     layer.data.foreach_set("uv", uv.astype(numpy.float32).reshape(-1))
     mesh.update()
     return layer
+
+
+def blender_message(data, message):
+    """raps's message with its vertex numbers turned into Blender's (raps numbers only the
+    vertices that faces use)."""
+    def vertex(match):
+        index = int(match.group(1))
+        if index < len(data.blender_vertex):
+            return "vertex %d" % data.blender_vertex[index]
+        return match.group(0)
+    return re.sub(r"vertex (\d+)", vertex, message)

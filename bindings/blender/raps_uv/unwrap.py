@@ -205,13 +205,15 @@ class Job:
     def _fail(self, members, error):
         message = error.message or error.name
         if len(members) == 1:
-            self.outcomes[members[0]].error = message
+            self.outcomes[members[0]].error = mesh_io.blender_message(
+                self.inputs[members[0]][1], message)
             return
         # raps names a scene's failing mesh as "mesh N: ..."; name the object instead.
         for position, i in enumerate(members):
             prefix = "mesh %d: " % position
             if message.startswith(prefix):
-                self.outcomes[i].error = message[len(prefix):]
+                self.outcomes[i].error = mesh_io.blender_message(self.inputs[i][1],
+                                                                 message[len(prefix):])
                 return
         for i in members:
             self.outcomes[i].error = "one atlas for all failed: " + message
