@@ -3,9 +3,10 @@
 raps takes triangles; Blender's faces are polygons whose uvs live on their loops (face
 corners). The loop triangles (Mesh.loop_triangles, the triangulation Blender itself renders) go
 to raps, and every loop takes the uv of the output vertex at its corner. A polygon's triangles
-normally share a chart, so its loops get one uv each; when raps's charts cut through a polygon
-(across a quad's diagonal, which the artist never sees), the polygon's corners outside its
-largest chart are placed by that chart's affine map, so the polygon stays whole in one chart.
+normally share a chart, so its loops get one uv each. raps's charts may cut through a polygon
+(across a quad's diagonal, which the artist never sees): the job (unwrap.py) then reruns raps
+with the polygons' charts as triangle groups, and the few polygons cut even so become small
+islands of their own here.
 
 Only vertices used by a face go to raps (loose vertices and edges have no uvs and would be
 isolated vertices to it); seams are the edges marked use_seam that some face uses.
@@ -115,50 +116,57 @@ def polygon_chart_groups(data, chart_of_triangle, isolate=None):
     return chart_of_polygon[data.triangle_polygons].astype(numpy.uint32)
 
 
-def loop_uvs(data, corners, out_vertices, chart_of_triangle):
-    """Per loop uvs (loop_count, 2) from per corner uvs, and the number of polygons repaired
-    because raps's charts cut through them."""
+def loop_uvs(data, corners, out_vertices):
+    """Per loop uvs (loop_count, 2) from per corner uvs, and the number of polygons made
+    islands of their own because raps's charts cut through them."""
     loops = data.triangle_loops.reshape(-1)
     uv = numpy.zeros((data.loop_count, 2), dtype=numpy.float64)
     uv[loops] = corners.reshape(-1, 2)
     split = split_polygons(data, out_vertices)
     if len(split):
-        _repair_split_polygons(data, corners, chart_of_triangle, split, uv)
+        _repair_split_polygons(data, corners, split, uv)
     return uv, len(split)
 
 
-def _repair_split_polygons(data, corners, chart_of_triangle, split_polygons, uv):
-    """Gives each polygon whose triangles lie in several charts (or on both sides of a cut) the
-    uvs of one of them: the corners of its largest triangle set in one chart keep theirs, the
-    others are placed by the affine map of a triangle of that set (3D to uv)."""
+def _repair_split_polygons(data, corners, split_polygons, uv):
+    """A polygon raps's charts still cut after the reruns becomes an island of its own inside
+    the uv triangle of its largest part: its triangles unfolded into the plane across their
+    shared diagonals (each keeps its shape and orientation), then shrunk about their centroid
+    into that triangle's incircle. Its uvs then overlap no other face's and stay in the atlas;
+    the face gets fewer texels than its neighbours (the report counts such faces)."""
     world = _world_positions(data)
-    tri_of_polygon = {}
     is_split = numpy.zeros(data.polygon_count, dtype=bool)
     is_split[split_polygons] = True
+    triangles_of = {}
     for t in numpy.nonzero(is_split[data.triangle_polygons])[0]:
-        tri_of_polygon.setdefault(int(data.triangle_polygons[t]), []).append(int(t))
-    for triangles in tri_of_polygon.values():
-        areas = {}
-        for t in triangles:
-            p = world[data.triangles[t]]
-            area = 0.5 * numpy.linalg.norm(numpy.cross(p[1] - p[0], p[2] - p[0]))
-            chart = int(chart_of_triangle[t])
-            areas[chart] = areas.get(chart, 0.0) + area
-        keep = max(areas, key=lambda chart: (areas[chart], -chart))
-        kept = [t for t in triangles if chart_of_triangle[t] == keep]
-        placed = {}
-        for t in kept:
-            for k in range(3):
-                placed.setdefault(int(data.triangle_loops[t][k]), corners[t][k])
-        reference = kept[0]
-        for t in triangles:
-            for k in range(3):
-                loop = int(data.triangle_loops[t][k])
-                if loop not in placed:
-                    placed[loop] = _affine_uv(world, data.triangles[reference],
-                                              corners[reference], world[data.triangles[t][k]])
-        for loop, value in placed.items():
-            uv[loop] = value
+        triangles_of.setdefault(int(data.triangle_polygons[t]), []).append(int(t))
+    for triangles in triangles_of.values():
+        reference = max(triangles, key=lambda t: abs(_area_2d(corners[t])))
+        vertex_of_loop = {int(data.triangle_loops[t][k]): int(data.triangles[t][k])
+                          for t in triangles for k in range(3)}
+        loops = list(vertex_of_loop)
+        flat = _unfold(world, [[int(v) for v in data.triangles[t]] for t in triangles])
+        points = numpy.array([flat[vertex_of_loop[loop]] for loop in loops])
+        centre, inradius = _incircle(corners[reference])
+        middle = points.mean(axis=0)
+        reach = numpy.linalg.norm(points - middle, axis=1).max()
+        scale = 0.95 * inradius / reach if reach > 0 else 0.0
+        uv[loops] = centre + scale * (points - middle)
+
+
+def _area_2d(triangle):
+    (ax, ay), (bx, by), (cx, cy) = triangle
+    return 0.5 * ((bx - ax) * (cy - ay) - (cx - ax) * (by - ay))
+
+
+def _incircle(triangle):
+    """Centre and radius of a 2D triangle's inscribed circle."""
+    a, b, c = (numpy.asarray(p, dtype=numpy.float64) for p in triangle)
+    la, lb, lc = numpy.linalg.norm(b - c), numpy.linalg.norm(c - a), numpy.linalg.norm(a - b)
+    perimeter = la + lb + lc
+    if perimeter == 0:
+        return a, 0.0
+    return (la * a + lb * b + lc * c) / perimeter, 2.0 * abs(_area_2d(triangle)) / perimeter
 
 
 def _world_positions(data):
@@ -166,13 +174,45 @@ def _world_positions(data):
     return data.positions @ m[:, :3].T + m[:, 3]
 
 
-def _affine_uv(world, triangle, triangle_uvs, point):
-    """The uv the triangle's affine map (3D to uv) gives point, projected onto its plane."""
-    p0, p1, p2 = world[triangle]
-    basis = numpy.stack([p1 - p0, p2 - p0], axis=1)
-    coefficients = numpy.linalg.lstsq(basis, point - p0, rcond=None)[0]
-    u0, u1, u2 = triangle_uvs
-    return u0 + coefficients[0] * (u1 - u0) + coefficients[1] * (u2 - u0)
+def _unfold(world, triangles):
+    """2D positions of a polygon's vertices: its first triangle laid out counter-clockwise,
+    each next one across an edge it shares with those placed (a polygon's triangulation is a
+    tree of triangles, so each brings one new vertex), keeping its edge lengths."""
+    a, b, c = triangles[0]
+    place = {a: numpy.zeros(2), b: numpy.array([numpy.linalg.norm(world[b] - world[a]), 0.0])}
+    place[c] = _apex(place[a], place[b], world, a, b, c)
+    pending = list(triangles[1:])
+    while pending:
+        progressed = False
+        for triangle in list(pending):
+            new = [k for k in range(3) if triangle[k] not in place]
+            if len(new) == 1:
+                k = new[0]
+                u, v, w = triangle[(k + 1) % 3], triangle[(k + 2) % 3], triangle[k]
+                place[w] = _apex(place[u], place[v], world, u, v, w)
+            if len(new) <= 1:
+                pending.remove(triangle)
+                progressed = True
+        if not progressed:  # not a tree of shared edges: place the rest as they lie
+            for triangle in pending:
+                for vertex in triangle:
+                    place.setdefault(vertex, place[a] + world[vertex][:2] - world[a][:2])
+            break
+    return place
+
+
+def _apex(p, q, world, u, v, w):
+    """Where w goes, left of p -> q (triangle u, v, w counter-clockwise), at its 3D distances
+    from u and v."""
+    du = numpy.linalg.norm(world[w] - world[u])
+    dv = numpy.linalg.norm(world[w] - world[v])
+    d = numpy.linalg.norm(q - p)
+    if d == 0:
+        return p.copy()
+    along = (du * du - dv * dv + d * d) / (2 * d)
+    height = numpy.sqrt(max(du * du - along * along, 0.0))
+    e = (q - p) / d
+    return p + along * e + height * numpy.array([-e[1], e[0]])
 
 
 def write_uvs(mesh, layer_name, uv):

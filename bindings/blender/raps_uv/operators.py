@@ -209,7 +209,8 @@ def _summary(outcome):
     if outcome.runs > 1:
         text += ", %d runs to keep faces whole" % outcome.runs
     if outcome.repaired_polygons:
-        text += ", %d faces kept whole across a chart cut" % outcome.repaired_polygons
+        text += ", %d faces cut by a chart made islands of their own (fewer texels)" % \
+            outcome.repaired_polygons
     return text
 
 

@@ -27,7 +27,8 @@ for _name in ("VALIDATE", "TOPOLOGY", "SEGMENT", "INITIAL_MAP", "ADAPT", "PACK",
 
 # Runs of one atlas at most: the first; a rerun with each polygon's chart as its group, which
 # leaves a few polygons cut (where raps splits a chart by its stretch); a last rerun with each
-# of those a group of its own. Polygons cut even then are placed by an affine map (mesh_io).
+# of those a group of its own. A polygon cut even then becomes a small island of its own
+# (mesh_io).
 _ATTEMPTS = 3
 _ATTEMPT_SPAN = ((0.0, 0.6), (0.6, 0.9), (0.9, 1.0))
 
@@ -238,8 +239,8 @@ class Job:
             mesh_charts = chart_ids[first_t:first_t + count_t]
             corners = mesh_io.corner_uvs(uvs, out_vertices, chart_page, mesh_charts)
             outcome = self.outcomes[i]
-            outcome.uv, outcome.repaired_polygons = mesh_io.loop_uvs(
-                data, corners, out_vertices, mesh_charts)
+            outcome.uv, outcome.repaired_polygons = mesh_io.loop_uvs(data, corners,
+                                                                     out_vertices)
             own = chart_mesh == position
             outcome.charts = int(own.sum())
             weight = chart_area[own].sum()
