@@ -23,6 +23,9 @@ import unittest
 import bpy
 import numpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import loop_triangle_obj  # noqa: E402
+
 
 def _arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
@@ -88,31 +91,10 @@ def uv_array(obj, layer=None):
     return values.reshape(-1, 2)
 
 
-def write_obj(objects, path):
-    """The objects' faces as Blender draws them (their loop triangles) with the active UV map,
-    world positions, as one OBJ: what uvmetrics measures is what the viewport shows."""
-    with open(path, "w") as stream:
-        v_base = vt_base = 0
-        for obj in objects:
-            mesh = obj.data
-            mesh.calc_loop_triangles()
-            matrix = obj.matrix_world
-            for vertex in mesh.vertices:
-                stream.write("v %.9g %.9g %.9g\n" % tuple(matrix @ vertex.co))
-            uv = uv_array(obj)
-            stream.writelines("vt %.9g %.9g\n" % (u, v) for u, v in uv)
-            for triangle in mesh.loop_triangles:
-                stream.write("f" + "".join(
-                    " %d/%d" % (v_base + vertex + 1, vt_base + loop + 1)
-                    for vertex, loop in zip(triangle.vertices, triangle.loops)) + "\n")
-            v_base += len(mesh.vertices)
-            vt_base += len(uv)
-
-
 def metrics(*objects):
     """uvmetrics's figures of the objects' active UV maps, written together as one OBJ."""
     path = os.path.join(ARGS.work, "_".join(o.name for o in objects) + ".obj")
-    write_obj(objects, path)
+    loop_triangle_obj.write(objects, path)
     out = subprocess.run([ARGS.python3, ARGS.uvmetrics, path], capture_output=True, text=True)
     if out.returncode != 0:
         raise AssertionError("uvmetrics failed: " + out.stdout + out.stderr)
