@@ -17,6 +17,8 @@ from . import mesh_io
 from .unwrap import Job, Options
 
 _MAX_UV_MAPS = 8  # Blender's limit per mesh
+_NAVIGATION = {"MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "MIDDLEMOUSE", "WHEELUPMOUSE",
+               "WHEELDOWNMOUSE", "TRACKPADPAN", "TRACKPADZOOM", "NDOF_MOTION"}
 
 _MONITORS = [
     ("AREA", "Area", "Equidistribute the area distortion (the paper's 6.1)"),
@@ -267,8 +269,9 @@ class _UnwrapBase(UnwrapProperties):
                 self._end(context)
                 return self._run.finish(context)
             self._status(context)
-        # Everything else waits: the objects must stay as read until the uvs are written.
-        return {"RUNNING_MODAL"}
+        # The view may move; every other input waits, so that the objects stay as they were
+        # read until the uvs are written.
+        return {"PASS_THROUGH"} if event.type in _NAVIGATION else {"RUNNING_MODAL"}
 
     def _status(self, context):
         text = "raps: unwrapping %d object%s, %d%% (Esc cancels)" % (
