@@ -18,6 +18,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 import unittest
 
 import bpy
@@ -313,6 +314,7 @@ class AddonTest(unittest.TestCase):
         materials = [m.name if m else None for m in mesh.materials]
         modifier = obj.modifiers.new("Subdivision", "SUBSURF")
         modifier.levels = 2
+        modifier.show_viewport = False  # kept, not evaluated: the test's time is raps's
         positions = numpy.empty(3 * len(mesh.vertices), dtype=numpy.float32)
         mesh.vertices.foreach_get("co", positions)
         self.assertEqual(bpy.ops.raps.unwrap(new_uv_map=True, uv_map="raps"), {"FINISHED"})
@@ -321,8 +323,8 @@ class AddonTest(unittest.TestCase):
         self.assertTrue(numpy.array_equal(uv_array(obj, "Other"), other))
         self.assertTrue(numpy.array_equal(uv_array(obj, first_name), first))
         self.assertEqual([m.name if m else None for m in mesh.materials], materials)
-        self.assertEqual([(m.name, m.type, m.levels) for m in obj.modifiers],
-                         [("Subdivision", "SUBSURF", 2)])
+        self.assertEqual([(m.name, m.type, m.levels, m.show_viewport) for m in obj.modifiers],
+                         [("Subdivision", "SUBSURF", 2, False)])
         after = numpy.empty_like(positions)
         mesh.vertices.foreach_get("co", after)
         self.assertTrue(numpy.array_equal(after, positions))
@@ -348,6 +350,19 @@ class AddonTest(unittest.TestCase):
         self.assertLessEqual(uv[:, 1].max(), 1 + 1e-6)
 
 
+class _TimedResult(unittest.TextTestResult):
+    """Prints each test's seconds, so that a slow one shows in CTest's log."""
+
+    def startTest(self, test):
+        self._started = time.perf_counter()
+        super().startTest(test)
+
+    def stopTest(self, test):
+        super().stopTest(test)
+        self.stream.write("  %.2f s  %s\n" % (time.perf_counter() - self._started,
+                                               test.id().split(".")[-1]))
+
+
 def main():
     if os.path.isdir(ARGS.work):
         shutil.rmtree(ARGS.work)
@@ -359,7 +374,8 @@ def main():
     suite = loader.loadTestsFromNames(["AddonTest." + name for name in ARGS.tests],
                                       sys.modules[__name__]) if ARGS.tests else \
         loader.loadTestsFromTestCase(AddonTest)
-    outcome = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+    outcome = unittest.TextTestRunner(stream=sys.stdout, verbosity=2,
+                                      resultclass=_TimedResult).run(suite)
     if not outcome.wasSuccessful():
         raise SystemExit(1)
 
