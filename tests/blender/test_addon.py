@@ -303,6 +303,14 @@ class AddonTest(unittest.TestCase):
             bpy.ops.raps.unwrap()
         self.assertIn("no_faces: has no faces", str(caught.exception))
         self.assertTrue(numpy.array_equal(uv_array(good), before))
+        # Blender holds at most 8 UV maps: asking for a ninth is refused before raps runs.
+        while len(good.data.uv_layers) < 8:
+            good.data.uv_layers.new()
+        select(good)
+        with self.assertRaises(RuntimeError) as caught:
+            bpy.ops.raps.unwrap(new_uv_map=True)
+        self.assertIn("already has 8 UV maps", str(caught.exception))
+        self.assertEqual(len(good.data.uv_layers), 8)
 
     def test_other_blender_data_is_left_alone(self):
         obj = load("spot.obj")
