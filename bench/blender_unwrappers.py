@@ -24,6 +24,7 @@ import time
 
 import bpy
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
                                 "blender"))
 import loop_triangle_obj  # noqa: E402
