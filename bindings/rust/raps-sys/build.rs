@@ -33,9 +33,11 @@ fn build_bundled() {
     let source = manifest_dir.join("native");
     for part in ["CMakeLists.txt", "cmake", "include", "src"] {
         if !source.join(part).exists() {
-            panic!("raps-sys: {} is missing: the bundled build needs the library's sources \
+            panic!(
+                "raps-sys: {} is missing: the bundled build needs the library's sources \
                     (or build with default-features = false to link an installed libraps)",
-                   source.join(part).display());
+                source.join(part).display()
+            );
         }
         println!("cargo:rerun-if-changed=native/{}", part);
     }
@@ -60,11 +62,16 @@ fn build_bundled() {
     }
     run(&mut configure);
     let jobs = env::var("NUM_JOBS").unwrap_or_else(|_| "1".to_string());
-    run(Command::new(cmake())
-        .arg("--build")
-        .arg(&build)
-        .args(["--target", "raps", "--parallel", &jobs]));
-    println!("cargo:rustc-link-search=native={}", build.join("src").display());
+    run(Command::new(cmake()).arg("--build").arg(&build).args([
+        "--target",
+        "raps",
+        "--parallel",
+        &jobs,
+    ]));
+    println!(
+        "cargo:rustc-link-search=native={}",
+        build.join("src").display()
+    );
     println!("cargo:rustc-link-lib=static=raps");
     // libraps is C++ inside; its other needs (threads, libm) are in every Rust program already.
     println!("cargo:rustc-link-lib=dylib=stdc++");
@@ -79,7 +86,10 @@ fn cmake() -> String {
 
 fn run(command: &mut Command) {
     let status = command.status().unwrap_or_else(|error| {
-        panic!("raps-sys: cannot run {:?} ({}): the bundled build needs cmake", command, error)
+        panic!(
+            "raps-sys: cannot run {:?} ({}): the bundled build needs cmake",
+            command, error
+        )
     });
     if !status.success() {
         panic!("raps-sys: {:?} failed ({})", command, status);

@@ -10,7 +10,11 @@ mod tests {
         let uvs = map.uvs().expect("uvs");
         assert_eq!(uvs.len(), 4);
         for uv in uvs {
-            assert!((0.0..=1.0).contains(&uv[0]) && (0.0..=1.0).contains(&uv[1]), "{:?}", uv);
+            assert!(
+                (0.0..=1.0).contains(&uv[0]) && (0.0..=1.0).contains(&uv[1]),
+                "{:?}",
+                uv
+            );
         }
         assert_eq!(map.stats().expect("stats").flipped_triangles, 0);
     }
