@@ -41,6 +41,7 @@ struct PhaseFigures {
     double longest_gap_ms = 0;  // before one of its calls, since the previous call
     bool monotone = true;       // fractions never fell within one pass through the phase
     bool reached_one = false;
+    double gap_from = 0, gap_to = 0;  // the fractions reported around the longest gap
 };
 
 struct Report {
@@ -64,8 +65,12 @@ void summarise(const std::vector<Call>& calls, Clock::time_point start, Report& 
     for (const Call& c : calls) {
         PhaseFigures& p = report.phase[c.phase];
         ++p.calls;
-        p.longest_gap_ms = std::max(
-            p.longest_gap_ms, std::chrono::duration<double, std::milli>(c.at - previous).count());
+        const double gap = std::chrono::duration<double, std::milli>(c.at - previous).count();
+        if (gap > p.longest_gap_ms) {
+            p.longest_gap_ms = gap;
+            p.gap_from = &c == &calls.front() ? 0.0 : (&c - 1)->fraction;
+            p.gap_to = c.fraction;
+        }
         previous = c.at;
         const bool new_pass = last[c.phase] == 1.0 && c.fraction == 0.0;
         if (!new_pass && c.fraction < last[c.phase]) p.monotone = false;
@@ -162,14 +167,14 @@ void print_case(const Case& c, const Report& r, double peak_mb) {
     double worst = r.after_last_call_ms;
     for (const PhaseFigures& p : r.phase) worst = std::max(worst, p.longest_gap_ms);
     std::printf("| %s | %s/%d | %llu | %.0f | %.0f | **%.1f**", c.name, c.file,
-                1 << (2 * c.subdivisions), static_cast<unsigned long long>(r.triangles),
-                r.total_ms, peak_mb, worst);
+                1 << (2 * c.subdivisions), static_cast<unsigned long long>(r.triangles), r.total_ms,
+                peak_mb, worst);
     for (const PhaseFigures& p : r.phase) {
         if (p.calls == 0) {
             std::printf(" | -");
             continue;
         }
-        std::printf(" | %d / %.1f%s", p.calls, p.longest_gap_ms,
+        std::printf(" | %d / %.1f (%.3f-%.3f)%s", p.calls, p.longest_gap_ms, p.gap_from, p.gap_to,
                     p.monotone && p.reached_one ? "" : " (not monotone to 1)");
     }
     std::printf(" | %.1f |\n", r.after_last_call_ms);
@@ -210,8 +215,10 @@ int main(int argc, char** argv) {
     };
     std::printf("raps %s, threads %d (0 = all), one run per case\n\n", raps_version_string(),
                 threads);
-    std::printf("Per phase: progress calls / longest gap in ms before one of them. Worst: the "
-                "longest gap of the run, the time after the last call included.\n\n");
+    std::printf(
+        "Per phase: progress calls / longest gap in ms before one of them (the fractions "
+        "of the calls before and after it). Worst: the "
+        "longest gap of the run, the time after the last call included.\n\n");
     std::printf("| domain | mesh | triangles | ms | peak MB | worst gap ms");
     for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p)
         std::printf(" | %s", raps_samples::phase_name(p));

@@ -12,7 +12,10 @@
 namespace raps {
 
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 const UserSeams& seams, ThreadPool& pool) {
+                                 const UserSeams& seams, ThreadPool& pool,
+                                 const ProgressSpan& progress) {
+    // Progress: each pass over the triangles, half-edges or corners reports every
+    // kItemsPerReport items within its share.
     AtlasSurface surface;
     const int32_t input_count = input.triangle_count();
 
@@ -20,6 +23,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     std::vector<double> area(input_count);
     double total = 0;
     for (int32_t t = 0; t < input_count; ++t) {
+        progress.part(0.0, 0.05).at(t, input_count);
         const Triangle& v = input.triangles[t];
         area[t] = 0.5 * (input.positions[v[1]] - input.positions[v[0]])
                             .cross(input.positions[v[2]] - input.positions[v[0]])
@@ -38,6 +42,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     const size_t capacity = hash_table_size(static_cast<size_t>(input_count));
     std::vector<int32_t> slot(capacity, -1);
     for (int32_t t = 0; t < input_count; ++t) {
+        progress.part(0.05, 0.2).at(t, input_count);
         const Triangle& v = input.triangles[t];
         std::array<int32_t, 3>& w = rotated[t];
         w = {welded[v[0]], welded[v[1]], welded[v[2]]};
@@ -62,6 +67,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     std::vector<int32_t> kept;  // input triangles that become surface triangles
     std::vector<int32_t> surface_of_input(input_count, -1);
     for (int32_t t = 0; t < input_count; ++t) {
+        progress.part(0.2, 0.25).at(t, input_count);
         const Triangle& v = input.triangles[t];
         if (welded[v[0]] == welded[v[1]] || welded[v[1]] == welded[v[2]] ||
             welded[v[2]] == welded[v[0]] || !(area[t] > zero_area)) {
@@ -85,6 +91,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     welded_mesh.positions = input.positions;
     welded_mesh.triangles.resize(count);
     for (int32_t s = 0; s < count; ++s) {
+        progress.part(0.25, 0.3).at(s, count);
         const Triangle& v = input.triangles[kept[s]];
         welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
     }
@@ -94,6 +101,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     const int32_t halfedge_count = 3 * count;
     std::vector<int32_t> bucket_offset(input.positions.size() + 1, 0);
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.part(0.3, 0.35).at(h, halfedge_count);
         const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
         ++bucket_offset[std::min(a, b) + 1];
     }
@@ -102,12 +110,15 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     {
         std::vector<int32_t> cursor(bucket_offset.begin(), bucket_offset.end() - 1);
         for (int32_t h = 0; h < halfedge_count; ++h) {
+            progress.part(0.35, 0.45).at(h, halfedge_count);
             const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
             by_edge[cursor[std::min(a, b)]++] = {std::max(a, b), h};
         }
     }
     surface.twin.assign(halfedge_count, -1);
-    for (size_t v = 0; v + 1 < bucket_offset.size(); ++v) {
+    const int64_t bucket_count = static_cast<int64_t>(bucket_offset.size()) - 1;
+    for (int64_t v = 0; v < bucket_count; ++v) {
+        progress.part(0.45, 0.65).at(v, bucket_count);
         const auto begin = by_edge.begin() + bucket_offset[v],
                    end = by_edge.begin() + bucket_offset[v + 1];
         std::sort(begin, end);
@@ -127,9 +138,11 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     }
 
     // Surface vertices: corners joined across interior edges, one class per fan.
-    const std::vector<int32_t> classes = corner_vertex_classes(surface.twin);
+    const std::vector<int32_t> classes =
+        corner_vertex_classes(surface.twin, progress.part(0.65, 0.8));
     surface.mesh.triangles.resize(count);
     for (int32_t c = 0; c < 3 * count; ++c) {
+        progress.part(0.8, 0.85).at(c, 3 * static_cast<int64_t>(count));
         if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
             const int32_t w = welded_mesh.triangles[c / 3][c % 3];
             surface.welded_vertex.push_back(w);
@@ -139,6 +152,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     }
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
     parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
+        progress.part(0.85, 1.0).at(begin, 3 * static_cast<int64_t>(count));
         for (int64_t c = begin; c < end; ++c) {
             const Triangle& t = surface.mesh.triangles[c / 3];
             const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];

@@ -140,8 +140,9 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
 }  // namespace
 
 bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                     const std::vector<char>& seam, ChartDisk& disk) {
+                     const std::vector<char>& seam, ChartDisk& disk, const ProgressSpan& progress) {
     if (!build_chart_disk(surface, triangles, seam, disk)) return false;
+    progress.report(0.0);
     disk.vertex_order = vertex_elimination_order(disk.mesh, disk.adjacency);
     return true;
 }

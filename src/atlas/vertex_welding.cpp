@@ -29,8 +29,8 @@ void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
 
 }  // namespace
 
-std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions,
-                                   double tolerance) {
+std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions, double tolerance,
+                                   const ProgressSpan& progress) {
     const int32_t n = static_cast<int32_t>(positions.size());
     if (tolerance <= 0.0) {
         // Exact equality: a hash table of positions, vertices visited in index order, so each
@@ -39,6 +39,7 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
         const size_t capacity = hash_table_size(static_cast<size_t>(n));
         std::vector<int32_t> slot(capacity, -1), representative(n);
         for (int32_t v = 0; v < n; ++v) {
+            progress.at(v, n);
             const Eigen::Vector3d& p = positions[v];
             uint64_t hash = 0;
             for (int k = 0; k < 3; ++k) {
@@ -70,8 +71,10 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
     std::vector<std::pair<Cell, int32_t>> cells(n);
     for (int32_t v = 0; v < n; ++v) cells[v] = {cell_of(positions[v]), v};
     std::sort(cells.begin(), cells.end());
+    progress.report(0.2);
     const double squared = tolerance * tolerance;
     for (int32_t v = 0; v < n; ++v) {
+        progress.part(0.2, 1.0).at(v, n);
         const Cell c = cell_of(positions[v]);
         for (int64_t dx = -1; dx <= 1; ++dx) {
             for (int64_t dy = -1; dy <= 1; ++dy) {

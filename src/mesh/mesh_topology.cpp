@@ -27,15 +27,19 @@ struct OutgoingHalfedges {
     std::vector<int32_t> halfedges;
 };
 
-OutgoingHalfedges group_by_origin(const TriangleMesh& mesh) {
+OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& progress) {
     OutgoingHalfedges out;
     const int32_t halfedge_count = 3 * mesh.triangle_count();
     out.offsets.assign(mesh.positions.size() + 1, 0);
-    for (int32_t h = 0; h < halfedge_count; ++h) ++out.offsets[halfedge_origin(mesh, h) + 1];
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.at(h, 2 * static_cast<int64_t>(halfedge_count));
+        ++out.offsets[halfedge_origin(mesh, h) + 1];
+    }
     std::partial_sum(out.offsets.begin(), out.offsets.end(), out.offsets.begin());
     out.halfedges.resize(halfedge_count);
     std::vector<int32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.at(halfedge_count + h, 2 * static_cast<int64_t>(halfedge_count));
         out.halfedges[fill[halfedge_origin(mesh, h)]++] = h;
     }
     return out;
@@ -43,14 +47,19 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh) {
 
 }  // namespace
 
-Halfedges build_halfedges(const TriangleMesh& mesh) {
-    const OutgoingHalfedges out = group_by_origin(mesh);
+Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress) {
+    const OutgoingHalfedges out = group_by_origin(mesh, progress.part(0.0, 0.15));
     const int32_t halfedge_count = 3 * mesh.triangle_count();
     std::vector<int32_t> target(halfedge_count);
-    for (int32_t h = 0; h < halfedge_count; ++h) target[h] = halfedge_target(mesh, h);
+    for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.part(0.15, 0.2).at(h, halfedge_count);
+        target[h] = halfedge_target(mesh, h);
+    }
     Halfedges result;
     result.twin.assign(halfedge_count, -1);
+    const ProgressSpan pairing = progress.part(0.2, 1.0);
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        pairing.at(h, halfedge_count);
         const int32_t a = halfedge_origin(mesh, h), b = target[h];
         int32_t same_direction = -1, opposite = -1, opposite_count = 0;
         for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
@@ -90,7 +99,8 @@ Halfedges build_halfedges(const TriangleMesh& mesh) {
     return result;
 }
 
-void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges) {
+void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges,
+                             const ProgressSpan& progress) {
     // Rotating around the origin v of an outgoing half-edge h: twin(prev(h)) is the next
     // outgoing half-edge (or -1 at a boundary), next(twin(h)) the previous one. The outgoing
     // half-edges of a manifold vertex form one such orbit (one fan).
@@ -99,6 +109,7 @@ void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedge
     std::vector<char> visited(halfedge_count, 0);
     std::vector<int32_t> fan_start(mesh.positions.size(), -1);
     for (int32_t h0 = 0; h0 < halfedge_count; ++h0) {
+        progress.at(h0, halfedge_count);
         if (visited[h0]) continue;
         const int32_t v = halfedge_origin(mesh, h0);
         if (fan_start[v] >= 0) {
@@ -122,8 +133,10 @@ void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedge
     }
 }
 
-std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges) {
+std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                           const ProgressSpan& progress) {
     std::vector<int32_t> piece(mesh.triangles.size(), -1), representatives, stack;
+    int64_t reached = 0;
     for (int32_t seed = 0; seed < mesh.triangle_count(); ++seed) {
         if (piece[seed] >= 0) continue;
         const int32_t id = static_cast<int32_t>(representatives.size());
@@ -133,6 +146,7 @@ std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfe
         while (!stack.empty()) {
             const int32_t t = stack.back();
             stack.pop_back();
+            progress.at(++reached, mesh.triangle_count());
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = halfedges.twin[3 * t + k];
                 if (o >= 0 && piece[o / 3] < 0) {
@@ -176,8 +190,9 @@ int64_t edge_count(const Halfedges& halfedges) {
 
 namespace {
 
-void check_one_piece(const TriangleMesh& mesh, const Halfedges& halfedges, const char* shape) {
-    const std::vector<int32_t> pieces = piece_representatives(mesh, halfedges);
+void check_one_piece(const TriangleMesh& mesh, const Halfedges& halfedges, const char* shape,
+                     const ProgressSpan& progress) {
+    const std::vector<int32_t> pieces = piece_representatives(mesh, halfedges, progress);
     if (pieces.size() > 1) {
         throw Error(ErrorCode::kMultipleComponents,
                     "the mesh has " + std::to_string(pieces.size()) +
@@ -203,9 +218,11 @@ int64_t euler_characteristic(const TriangleMesh& mesh, const Halfedges& halfedge
 
 }  // namespace
 
-std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges) {
-    check_manifold_vertices(mesh, halfedges);
-    check_one_piece(mesh, halfedges, "a disk");
+std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                        const ProgressSpan& progress) {
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
+    check_one_piece(mesh, halfedges, "a disk", progress.part(0.5, 1.0));
+    progress.report(1.0);
     std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
     if (loops.empty()) {
         throw Error(ErrorCode::kNoBoundary,
@@ -228,9 +245,11 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
     return std::move(loops[0]);
 }
 
-void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges) {
-    check_manifold_vertices(mesh, halfedges);
-    check_one_piece(mesh, halfedges, "a sphere");
+void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges,
+                             const ProgressSpan& progress) {
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
+    check_one_piece(mesh, halfedges, "a sphere", progress.part(0.5, 1.0));
+    progress.report(1.0);
     const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
     if (!loops.empty()) {
         const std::string starts = loop_starts(loops);
@@ -263,7 +282,7 @@ std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& half
     return ring;
 }
 
-VertexTriangles build_vertex_triangles(const TriangleMesh& mesh) {
+VertexTriangles build_vertex_triangles(const TriangleMesh& mesh, const ProgressSpan& progress) {
     VertexTriangles stars;
     stars.offsets.assign(mesh.positions.size() + 1, 0);
     for (const Triangle& t : mesh.triangles) {
@@ -275,6 +294,7 @@ VertexTriangles build_vertex_triangles(const TriangleMesh& mesh) {
     stars.triangle.resize(stars.offsets.back());
     std::vector<int32_t> fill(stars.offsets.begin(), stars.offsets.end() - 1);
     for (int32_t f = 0; f < mesh.triangle_count(); ++f) {
+        progress.at(f, mesh.triangle_count());
         const Triangle& t = mesh.triangles[f];
         for (int k = 0; k < 3; ++k) {
             const int32_t e = fill[t[k]]++;
@@ -286,12 +306,14 @@ VertexTriangles build_vertex_triangles(const TriangleMesh& mesh) {
     return stars;
 }
 
-VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges) {
+VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                       const ProgressSpan& progress) {
     VertexAdjacency adjacency;
     const int32_t halfedge_count = static_cast<int32_t>(halfedges.twin.size());
     adjacency.offsets.assign(mesh.positions.size() + 1, 0);
     // Each undirected edge once: boundary half-edges, and the smaller of each twin pair.
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.part(0.0, 0.2).at(h, halfedge_count);
         if (halfedges.twin[h] > h) continue;
         ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
         ++adjacency.offsets[halfedge_target(mesh, h) + 1];
@@ -303,15 +325,18 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     std::vector<std::pair<int32_t, int32_t>> entries(adjacency.offsets.back());
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.part(0.2, 0.4).at(h, halfedge_count);
         if (halfedges.twin[h] > h) continue;
         const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
         entries[fill[a]++] = {b, 2 * h};
         entries[fill[b]++] = {a, 2 * h + 1};
     }
+    const ProgressSpan sorting = progress.part(0.4, 0.9);
     adjacency.neighbors.resize(entries.size());
     adjacency.forward_slot.resize(halfedge_count);
     adjacency.backward_slot.resize(halfedge_count);
     for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
+        sorting.at(v, mesh.vertex_count());
         // Insertion sort by neighbour: a vertex has about six.
         const int32_t first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
         for (int32_t i = first + 1; i < last; ++i) {
@@ -332,6 +357,7 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
         }
     }
     for (int32_t h = 0; h < halfedge_count; ++h) {  // the larger twin, g, runs the other way
+        progress.part(0.9, 1.0).at(h, halfedge_count);
         const int32_t g = halfedges.twin[h];
         if (g < h) continue;
         adjacency.forward_slot[h] = adjacency.backward_slot[g];
@@ -340,7 +366,8 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     return adjacency;
 }
 
-std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin) {
+std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
+                                           const ProgressSpan& progress) {
     const int32_t corners = static_cast<int32_t>(twin.size());
     std::vector<int32_t> parent(corners);
     std::iota(parent.begin(), parent.end(), 0);
@@ -357,6 +384,7 @@ std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin) {
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
     };
     for (int32_t h = 0; h < corners; ++h) {
+        progress.part(0.0, 0.6).at(h, corners);
         const int32_t g = twin[h];
         if (g < h) continue;
         // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
@@ -367,6 +395,7 @@ std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin) {
     std::vector<int32_t> class_of_root(corners, -1), classes(corners);
     int32_t count = 0;
     for (int32_t c = 0; c < corners; ++c) {
+        progress.part(0.6, 1.0).at(c, corners);
         int32_t& cls = class_of_root[root_of(c)];
         if (cls < 0) cls = count++;
         classes[c] = cls;

@@ -6,8 +6,9 @@
 
 namespace raps {
 
-void check_indices_in_range(const TriangleMesh& mesh) {
+void check_indices_in_range(const TriangleMesh& mesh, const ProgressSpan& progress) {
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        progress.at(t, mesh.triangle_count());
         for (int k = 0; k < 3; ++k) {
             const int32_t v = mesh.triangles[t][k];
             if (v < 0 || v >= mesh.vertex_count()) {
@@ -21,8 +22,9 @@ void check_indices_in_range(const TriangleMesh& mesh) {
     }
 }
 
-void check_no_repeated_vertices(const TriangleMesh& mesh) {
+void check_no_repeated_vertices(const TriangleMesh& mesh, const ProgressSpan& progress) {
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        progress.at(t, mesh.triangle_count());
         const Triangle& v = mesh.triangles[t];
         if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
             throw Error(ErrorCode::kRepeatedVertex,
@@ -39,10 +41,11 @@ double triangle_area(const TriangleMesh& mesh, int32_t triangle) {
     return 0.5 * (mesh.positions[v[1]] - a).cross(mesh.positions[v[2]] - a).norm();
 }
 
-void check_no_zero_area_triangles(const TriangleMesh& mesh) {
+void check_no_zero_area_triangles(const TriangleMesh& mesh, const ProgressSpan& progress) {
     std::vector<double> areas(mesh.triangles.size());
     double total = 0.0;
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        progress.at(t, mesh.triangle_count());
         areas[t] = triangle_area(mesh, t);
         total += areas[t];
     }
@@ -59,9 +62,12 @@ void check_no_zero_area_triangles(const TriangleMesh& mesh) {
     }
 }
 
-void check_no_isolated_vertices(const TriangleMesh& mesh) {
+void check_no_isolated_vertices(const TriangleMesh& mesh, const ProgressSpan& progress) {
     std::vector<char> used(mesh.positions.size(), 0);
-    for (const Triangle& t : mesh.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        progress.at(t, mesh.triangle_count());
+        for (int32_t v : mesh.triangles[t]) used[v] = 1;
+    }
     for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
         if (!used[v]) {
             throw Error(ErrorCode::kIsolatedVertex,

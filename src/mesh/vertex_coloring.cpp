@@ -2,12 +2,14 @@
 
 namespace raps {
 
-std::vector<std::vector<int32_t>> greedy_vertex_coloring(const VertexAdjacency& adjacency) {
+std::vector<std::vector<int32_t>> greedy_vertex_coloring(const VertexAdjacency& adjacency,
+                                                         const ProgressSpan& progress) {
     const int32_t vertex_count = static_cast<int32_t>(adjacency.offsets.size()) - 1;
     std::vector<int32_t> color(vertex_count, -1);
     std::vector<int32_t> taken_by;  // taken_by[c] == v: colour c is used by a neighbour of v
     std::vector<std::vector<int32_t>> classes;
     for (int32_t v = 0; v < vertex_count; ++v) {
+        progress.at(v, vertex_count);
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
             const int32_t c = color[adjacency.neighbors[s]];
             if (c >= 0) taken_by[c] = v;

@@ -41,7 +41,8 @@ struct InteriorPattern {
 };
 InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
                                  const std::vector<char>& on_boundary,
-                                 const std::vector<int32_t>& vertex_order) {
+                                 const std::vector<int32_t>& vertex_order,
+                                 const ProgressSpan& progress) {
     InteriorPattern interior;
     const int32_t vertex_count = static_cast<int32_t>(on_boundary.size());
     std::vector<int32_t> unknown_of_vertex(vertex_count, -1);
@@ -57,6 +58,7 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
     interior.value_of_slot.assign(adjacency.neighbors.size(), -1);
     interior.diagonal_of_unknown.resize(n);
     for (int32_t row = 0; row < n; ++row) {
+        progress.at(row, n);
         const int32_t v = interior.vertex_of_unknown[row];
         bool diagonal_placed = false;
         // Neighbours are sorted by vertex and unknowns are numbered in vertex order, so the
@@ -89,31 +91,35 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
 
 LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                              const std::vector<char>& on_boundary,
-                             const std::vector<int32_t>& vertex_order)
+                             const std::vector<int32_t>& vertex_order, const ProgressSpan& progress)
     : adjacency_(adjacency) {
-    InteriorPattern interior = interior_pattern(adjacency, on_boundary, vertex_order);
+    InteriorPattern interior =
+        interior_pattern(adjacency, on_boundary, vertex_order, progress.part(0.0, 0.1));
     vertex_of_unknown_ = std::move(interior.vertex_of_unknown);
     value_of_slot_ = std::move(interior.value_of_slot);
     diagonal_of_unknown_ = std::move(interior.diagonal_of_unknown);
     if (!vertex_order.empty()) {
-        solver_ =
-            std::make_unique<SparseSolver>(std::move(interior.pattern), std::move(interior.order));
+        solver_ = std::make_unique<SparseSolver>(
+            std::move(interior.pattern), std::move(interior.order), progress.part(0.1, 1.0));
         return;
     }
     const int32_t n = unknown_count();
     std::vector<Eigen::Vector3d> coordinates(n);
     for (int32_t row = 0; row < n; ++row)
         coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
-    solver_ = std::make_unique<SparseSolver>(std::move(interior.pattern), coordinates);
+    solver_ = std::make_unique<SparseSolver>(std::move(interior.pattern), coordinates,
+                                             progress.part(0.1, 1.0));
 }
 
 void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,
-                          const std::function<void(double)>& progress) {
+                          const ProgressSpan& progress) {
     const int32_t n = unknown_count();
     if (n == 0) return;  // every vertex is on the boundary
     std::vector<double> values(solver_->pattern().columns.size(), 0.0);
     std::vector<double> rhs(2 * static_cast<size_t>(n), 0.0);
+    const ProgressSpan assembly = progress.part(0.0, 0.1);
     for (int32_t row = 0; row < n; ++row) {
+        assembly.at(row, n);
         const int32_t v = vertex_of_unknown_[row];
         double diagonal = 0.0;
         for (int32_t s = adjacency_.offsets[v]; s < adjacency_.offsets[v + 1]; ++s) {
@@ -139,7 +145,7 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
             }
         }
     }
-    solver_->solve(values, rhs.data(), 2, progress);
+    solver_->solve(values, rhs.data(), 2, progress.part(0.1, 1.0));
     for (int32_t row = 0; row < n; ++row) {
         if (!std::isfinite(rhs[row]) || !std::isfinite(rhs[n + row])) {
             throw Error(ErrorCode::kSolverFailed,

@@ -25,7 +25,8 @@ bool worth_merging(int64_t columns, double zero_fraction) {
 }  // namespace
 
 void MultifrontalFactorization::analyze(const SparsePattern& pattern,
-                                        const std::vector<int32_t>& order) {
+                                        const std::vector<int32_t>& order,
+                                        const ProgressSpan& progress) {
     const int32_t n = pattern.size;
     size_ = n;
     prepared_ = false;
@@ -34,7 +35,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     std::vector<int32_t> position(n);
     for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
     std::vector<int32_t> parent(n, -1), ancestor(n, -1);
+    const ProgressSpan tree = progress.part(0.0, 0.2);
     for (int32_t i = 0; i < n; ++i) {
+        tree.at(i, n);
         const int32_t row = order[i];
         for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
             int32_t j = position[pattern.columns[p]];
@@ -109,7 +112,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
                 for (int32_t k = j; k >= 0 && first[k] < 0; k = parent[k]) first[k] = j;
             }
         }
+        const ProgressSpan counts = progress.part(0.2, 0.45);
         for (int32_t j = 0; j < n; ++j) {
+            counts.at(j, n);
             if (parent[j] >= 0) --column_count[parent[j]];
             const int32_t row = order_[j];
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
@@ -233,7 +238,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     // from its children's update rows, sorted.
     row_indices_.clear();
     std::vector<int32_t> mark(n, -1);
+    const ProgressSpan fronts = progress.part(0.45, 0.8);
     for (int32_t s = 0; s < supernode_count; ++s) {
+        fronts.at(s, supernode_count);
         Supernode& node = supernodes_[s];
         const int32_t f = node.first_column, l = f + node.columns - 1;
         node.row_offset = static_cast<int64_t>(row_indices_.size());
@@ -272,7 +279,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     for (const Supernode& node : supernodes_) {
         max_front = std::max(max_front, static_cast<int64_t>(node.rows) * node.rows);
     }
+    const ProgressSpan relative = progress.part(0.8, 1.0);
     for (int32_t s = 0; s < supernode_count; ++s) {
+        relative.at(s, supernode_count);
         const Supernode& node = supernodes_[s];
         for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
         for (int32_t c = node.child_begin; c < node.child_end; ++c) {
@@ -305,7 +314,8 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     stack_ = allocate(stack_peak_);
 }
 
-void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorization kind) {
+void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorization kind,
+                                        const ProgressSpan& progress) {
     if (prepared_ && cholesky_ == (kind == Factorization::kCholesky)) return;
     prepared_ = true;
     cholesky_ = kind == Factorization::kCholesky;
@@ -331,6 +341,7 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     if (!cholesky_) {
         std::vector<int64_t> cursor(pattern.row_offsets.begin(), pattern.row_offsets.end() - 1);
         for (int32_t row = 0; row < n; ++row) {
+            progress.at(row, 2 * static_cast<int64_t>(n));
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
                 transposed[p] = cursor[pattern.columns[p]]++;
             }
@@ -343,9 +354,13 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     value_source_.resize(pattern.nonzeros());
     value_target_.resize(pattern.nonzeros());
     diagonal_source_.assign(n, -1);
-    int64_t next_value = 0;
+    int64_t next_value = 0, next_report = kItemsPerReport;
     for (Supernode& node : supernodes_) {
         const int32_t f = node.first_column, l = f + node.columns - 1;
+        if (f >= next_report) {
+            next_report = f + kItemsPerReport;
+            progress.report(0.5 + 0.5 * static_cast<double>(f) / n);
+        }
         for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
         node.value_begin = next_value;
         for (int32_t j = f; j <= l; ++j) {
@@ -391,8 +406,28 @@ double MultifrontalFactorization::front_flops(const Supernode& node) const {
     return k * m * m * (cholesky_ ? 0.5 : 1.0);
 }
 
-bool MultifrontalFactorization::factorize(const double* values,
-                                          const std::function<void(double)>& progress) {
+namespace {
+
+// Progress inside one large front: the kernel's multiply-adds so far, counted toward the front's
+// share of the factorization's work (its estimate, which they may exceed a little).
+struct FrontProgress {
+    const ProgressSpan* span;
+    double before, front, total, inside;
+};
+
+void front_work_done(void* context, double multiply_adds) {
+    FrontProgress& p = *static_cast<FrontProgress*>(context);
+    p.inside += multiply_adds;
+    p.span->report((p.before + std::min(p.inside, p.front)) / p.total);
+}
+
+// Fronts with more work than this report from inside the kernel (a few milliseconds of work).
+constexpr double kFrontReportFlops = 1e7;
+constexpr int32_t kFrontsPerReport = 1024;
+
+}  // namespace
+
+bool MultifrontalFactorization::factorize(const double* values, const ProgressSpan& progress) {
     std::vector<double> pivot_scale(size_);
     for (int32_t j = 0; j < size_; ++j) {
         pivot_scale[j] = diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
@@ -400,7 +435,8 @@ bool MultifrontalFactorization::factorize(const double* values,
     }
     int64_t stack_top = 0;
     std::vector<int64_t> block_starts;
-    double flops_done = 0, next_report = 0.01 * total_flops_;
+    double flops_done = 0, next_report = std::min(0.01 * total_flops_, kFrontReportFlops);
+    int32_t fronts_since_report = 0;
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
         double* front = front_.get();
@@ -432,7 +468,11 @@ bool MultifrontalFactorization::factorize(const double* values,
             stack_top = block_starts[block_starts.size() - child_total];
             block_starts.resize(block_starts.size() - child_total);
         }
-        if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column))
+        FrontProgress inside{&progress, flops_done, front_flops(node), total_flops_, 0.0};
+        const KernelProgress kernel_progress{front_work_done, &inside};
+        const bool report_inside = progress.active() && inside.front > kFrontReportFlops;
+        if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column,
+                                    report_inside ? &kernel_progress : nullptr))
             return false;
         const int32_t skip_upper = cholesky_ ? 1 : 0;  // Cholesky: copy from the diagonal down
         double* lower = factors_.get() + node.factor_offset;
@@ -461,16 +501,30 @@ bool MultifrontalFactorization::factorize(const double* values,
             stack_top += static_cast<int64_t>(update) * update;
         }
         flops_done += front_flops(node);
-        if (progress && flops_done >= next_report) {
-            progress(flops_done / total_flops_);
-            next_report = flops_done + 0.01 * total_flops_;
+        // Every 1% of the work, or every kFrontReportFlops of it (small fronts cost more time
+        // per flop), or every kFrontsPerReport fronts, whichever comes first.
+        if (progress.active() &&
+            (flops_done >= next_report || ++fronts_since_report >= kFrontsPerReport)) {
+            progress.report(flops_done / total_flops_);
+            next_report = flops_done + std::min(0.01 * total_flops_, kFrontReportFlops);
+            fronts_since_report = 0;
         }
     }
     return true;
 }
 
-void MultifrontalFactorization::solve(double* b, int rhs_count) const {
+void MultifrontalFactorization::solve(double* b, int rhs_count,
+                                      const ProgressSpan& progress) const {
     const int32_t n = size_;
+    // Progress: by columns done, forward then backward; a report every kItemsPerReport
+    // columns.
+    int64_t columns_done = 0, next_report = kItemsPerReport;
+    auto count_columns = [&](int32_t columns) {
+        columns_done += columns;
+        if (columns_done < next_report || !progress.active()) return;
+        next_report = columns_done + kItemsPerReport;
+        progress.report(0.5 * static_cast<double>(columns_done) / n);
+    };
     // Permute into elimination order.
     Matrix x(n, rhs_count);
     for (int c = 0; c < rhs_count; ++c) {
@@ -491,6 +545,7 @@ void MultifrontalFactorization::solve(double* b, int rhs_count) const {
     // diagonal.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
+        count_columns(k);
         const double* lower = factors_.get() + node.factor_offset;
         if (m <= kSmallFront) {
             const int32_t* rows = row_indices_.data() + node.row_offset + k;
@@ -529,6 +584,7 @@ void MultifrontalFactorization::solve(double* b, int rhs_count) const {
     for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
+        count_columns(k);
         const double* lower = factors_.get() + node.factor_offset;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         if (m <= kSmallFront && cholesky_) {

@@ -9,10 +9,12 @@ namespace raps {
 
 std::vector<double> adaptive_weights(const VertexAdjacency& adjacency,
                                      const std::vector<double>& weights,
-                                     const std::vector<double>& monitor, double alpha) {
+                                     const std::vector<double>& monitor, double alpha,
+                                     const ProgressSpan& progress) {
     std::vector<double> adapted(weights.size());
     const int32_t vertex_count = static_cast<int32_t>(adjacency.offsets.size()) - 1;
     for (int32_t v = 0; v < vertex_count; ++v) {
+        progress.at(v, vertex_count);
         const int32_t begin = adjacency.offsets[v], end = adjacency.offsets[v + 1];
         double row_sum = 0.0;
         for (int32_t s = begin; s < end; ++s) {

@@ -30,11 +30,12 @@ class EdgeAverage {
 };
 
 std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                 const MapGeometry& map) {
+                                 const MapGeometry& map, const ProgressSpan& progress) {
     const int32_t triangle_count = mesh.triangle_count();
     std::vector<double> ratio(triangle_count);
     double total_map = 0.0, total_3d = 0.0;
     for (int32_t t = 0; t < triangle_count; ++t) {
+        progress.at(t, 2 * static_cast<int64_t>(triangle_count));
         const Triangle& v = mesh.triangles[t];
         const double map_area = map.area(v[0], v[1], v[2]);
         const double area = 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
@@ -47,6 +48,7 @@ std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency
     const double scale = total_3d / total_map;
     EdgeAverage average(adjacency.neighbors.size());
     for (int32_t t = 0; t < triangle_count; ++t) {
+        progress.at(triangle_count + t, 2 * static_cast<int64_t>(triangle_count));
         const double e = std::max(ratio[t] * scale, kMonitorFloor);
         for (int k = 0; k < 3; ++k) {
             average.add(adjacency.forward_slot[3 * t + k], e);
@@ -57,10 +59,11 @@ std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency
 }
 
 std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                   const MapGeometry& map) {
+                                   const MapGeometry& map, const ProgressSpan& progress) {
     std::vector<double> e(adjacency.neighbors.size());
     double total_map = 0.0, total_3d = 0.0;
     for (int32_t i = 0; i < mesh.vertex_count(); ++i) {
+        progress.at(i, mesh.vertex_count());
         for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
             const int32_t j = adjacency.neighbors[s];
             const double map_length = map.length(i, j);
@@ -76,9 +79,10 @@ std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacen
 }
 
 std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const MapGeometry& map) {
+                                  const MapGeometry& map, const ProgressSpan& progress) {
     EdgeAverage average(adjacency.neighbors.size());
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        progress.at(t, mesh.triangle_count());
         const Triangle& v = mesh.triangles[t];
         for (int k = 0; k < 3; ++k) {
             const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
@@ -100,14 +104,15 @@ std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacenc
 }  // namespace
 
 std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const MapGeometry& map, Monitor monitor) {
+                                  const MapGeometry& map, Monitor monitor,
+                                  const ProgressSpan& progress) {
     switch (monitor) {
         case Monitor::kArea:
-            return area_monitor(mesh, adjacency, map);
+            return area_monitor(mesh, adjacency, map, progress);
         case Monitor::kEdgeLength:
-            return length_monitor(mesh, adjacency, map);
+            return length_monitor(mesh, adjacency, map, progress);
         case Monitor::kAngle:
-            return angle_monitor(mesh, adjacency, map);
+            return angle_monitor(mesh, adjacency, map, progress);
         case Monitor::kNone:
             break;
     }

@@ -3,13 +3,14 @@
 namespace raps {
 
 std::vector<double> laplacian_weights(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                      WeightScheme scheme) {
+                                      WeightScheme scheme, const ProgressSpan& progress) {
     std::vector<double> weights(adjacency.neighbors.size(), 0.0);
     if (scheme == WeightScheme::kUniform) {
         weights.assign(weights.size(), 1.0);
         return weights;
     }
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
+        progress.at(t, mesh.triangle_count());
         for (int k = 0; k < 3; ++k) {
             // Corner k at vertex i, with j following and l preceding it in the triangle.
             const Triangle& v = mesh.triangles[t];
