@@ -20,10 +20,11 @@ namespace {
 void identity_output(const TriangleMesh& mesh, Parameterization& out,
                      const ProgressSpan& progress) {
     out.indices.reserve(3 * mesh.triangles.size());
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        progress.at(t, mesh.triangle_count());
-        for (int32_t v : mesh.triangles[t]) out.indices.push_back(static_cast<uint32_t>(v));
-    }
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            for (int32_t v : mesh.triangles[t]) out.indices.push_back(static_cast<uint32_t>(v));
+        }
+    });
     out.vertex_remap.resize(mesh.positions.size());
     for (size_t v = 0; v < out.vertex_remap.size(); ++v) {
         out.vertex_remap[v] = static_cast<uint32_t>(v);
@@ -35,10 +36,11 @@ std::vector<Triangle> output_triangles(const std::vector<uint32_t>& indices,
                                        const ProgressSpan& progress) {
     std::vector<Triangle> triangles(indices.size() / 3);
     const int64_t count = static_cast<int64_t>(triangles.size());
-    for (int64_t t = 0; t < count; ++t) {
-        progress.at(t, count);
-        for (int k = 0; k < 3; ++k) triangles[t][k] = static_cast<int32_t>(indices[3 * t + k]);
-    }
+    progress.in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t t = static_cast<int64_t>(run_begin); t < run_end; ++t) {
+            for (int k = 0; k < 3; ++k) triangles[t][k] = static_cast<int32_t>(indices[3 * t + k]);
+        }
+    });
     return triangles;
 }
 
@@ -47,12 +49,13 @@ double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Tri
                    const ProgressSpan& progress) {
     double area = 0;
     const int64_t count = static_cast<int64_t>(triangles.size());
-    for (int64_t i = 0; i < count; ++i) {
-        progress.at(i, count);
-        const Triangle& t = triangles[i];
-        const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
-        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
+    progress.in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
+            const Triangle& t = triangles[i];
+            const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+            area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+        }
+    });
     return area;
 }
 
@@ -110,11 +113,14 @@ Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
     std::vector<Eigen::Vector3d> positions(atlas.remap.size());
     std::vector<Eigen::Vector2d> texels(atlas.uv.size());
     const int64_t vertex_count = static_cast<int64_t>(atlas.remap.size());
-    for (int64_t v = 0; v < vertex_count; ++v) {
-        timer.span(0.0, 0.1).at(v, vertex_count);
-        positions[v] = mesh.positions[atlas.remap[v]];
-        texels[v] = Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
-    }
+    const ProgressSpan copying = timer.span(0.0, 0.1);
+    copying.in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t v = static_cast<int64_t>(run_begin); v < run_end; ++v) {
+            positions[v] = mesh.positions[atlas.remap[v]];
+            texels[v] =
+                Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
+        }
+    });
     const std::vector<Triangle> triangles = output_triangles(atlas.indices, timer.span(0.1, 0.2));
     out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool,
                                         timer.span(0.2, 0.95));
@@ -173,11 +179,13 @@ Parameterization disk_or_sphere_map(const TriangleMesh& mesh, const Settings& se
         out.sphere_points.resize(out.vertex_remap.size());
         std::vector<Eigen::Vector3d> positions(out.vertex_remap.size());
         const int64_t vertex_count = static_cast<int64_t>(out.vertex_remap.size());
-        for (int64_t o = 0; o < vertex_count; ++o) {
-            timer.span(0.0, 0.1).at(o, vertex_count);
-            out.sphere_points[o] = map.points[out.vertex_remap[o]];
-            positions[o] = mesh.positions[out.vertex_remap[o]];
-        }
+        const ProgressSpan copying = timer.span(0.0, 0.1);
+        copying.in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
+            for (int64_t o = static_cast<int64_t>(run_begin); o < run_end; ++o) {
+                out.sphere_points[o] = map.points[out.vertex_remap[o]];
+                positions[o] = mesh.positions[out.vertex_remap[o]];
+            }
+        });
         const std::vector<Triangle> triangles = output_triangles(out.indices, timer.span(0.1, 0.2));
         out.distortion = measure_alone(settings, positions, PlanarMapGeometry(out.uv), triangles,
                                        &out.threads_used, timer.span(0.2, 0.95));

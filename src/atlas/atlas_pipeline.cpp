@@ -137,35 +137,37 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
     // of their vertices (their uv triangle is then as degenerate as their 3D one).
     std::vector<int32_t> point_chart_of_part(parts.count(), -1);
     const int64_t aside_count = static_cast<int64_t>(surface.aside_triangles.size());
-    for (int64_t i = 0; i < aside_count; ++i) {
-        progress.part(0.8, 1.0).at(i, aside_count);
-        const int32_t t = surface.aside_triangles[i];
-        const Triangle& v = mesh.triangles[t];
-        int32_t chart = -1;
-        if (surface.aside_primary[i] >= 0) {
-            chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
-        } else {
-            for (int k = 0; k < 3 && chart < 0; ++k) chart = first_chart_of_welded[welded[v[k]]];
-        }
-        if (chart < 0) {
-            int32_t& point = point_chart_of_part[parts.part_of_triangle(t)];
-            if (point < 0) {
-                point = static_cast<int32_t>(charts.size() + sources.point_chart_part.size());
-                sources.point_chart_part.push_back(parts.part_of_triangle(t));
+    progress.part(0.8, 1.0).in_runs(aside_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
+            const int32_t t = surface.aside_triangles[i];
+            const Triangle& v = mesh.triangles[t];
+            int32_t chart = -1;
+            if (surface.aside_primary[i] >= 0) {
+                chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
+            } else {
+                for (int k = 0; k < 3 && chart < 0; ++k)
+                    chart = first_chart_of_welded[welded[v[k]]];
             }
-            sources.chart[t] = point;
-            continue;
+            if (chart < 0) {
+                int32_t& point = point_chart_of_part[parts.part_of_triangle(t)];
+                if (point < 0) {
+                    point = static_cast<int32_t>(charts.size() + sources.point_chart_part.size());
+                    sources.point_chart_part.push_back(parts.part_of_triangle(t));
+                }
+                sources.chart[t] = point;
+                continue;
+            }
+            sources.chart[t] = chart;
+            std::array<int32_t, 3>& corner = sources.vertex[t];
+            for (int k = 0; k < 3; ++k) {
+                const auto it = chart_vertex_of.find({welded[v[k]], chart});
+                corner[k] = it != chart_vertex_of.end() ? it->second : -1;
+            }
+            for (int k = 0; k < 3; ++k) {  // a vertex the chart lacks sits on one it has
+                if (corner[k] < 0) corner[k] = std::max({corner[0], corner[1], corner[2], 0});
+            }
         }
-        sources.chart[t] = chart;
-        std::array<int32_t, 3>& corner = sources.vertex[t];
-        for (int k = 0; k < 3; ++k) {
-            const auto it = chart_vertex_of.find({welded[v[k]], chart});
-            corner[k] = it != chart_vertex_of.end() ? it->second : -1;
-        }
-        for (int k = 0; k < 3; ++k) {  // a vertex the chart lacks sits on one it has
-            if (corner[k] < 0) corner[k] = std::max({corner[0], corner[1], corner[2], 0});
-        }
-    }
+    });
     return sources;
 }
 
@@ -196,28 +198,31 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
     out.indices.resize(3 * static_cast<size_t>(triangle_count));
     out.chart_of.resize(triangle_count);
     out.first_output_vertex.assign(1, 0);
-    for (int32_t t = 0; t < triangle_count; ++t) {
-        progress.at(t, triangle_count);
-        while (t == parts.first_triangle[out.first_output_vertex.size()])
-            out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
-        const int32_t c = sources.chart[t];
-        const bool point = c >= static_cast<int32_t>(charts.size());
-        out.chart_of[t] = static_cast<uint32_t>(c);
-        for (int k = 0; k < 3; ++k) {
-            const int32_t input_vertex = mesh.triangles[t][k];
-            const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
-            const int64_t global = chart_offset[c] + chart_vertex;
-            int32_t found = head[global];
-            while (found >= 0 && seen[found].input_vertex != input_vertex) found = seen[found].next;
-            if (found < 0) {
-                seen.push_back({input_vertex, static_cast<uint32_t>(out.uv.size()), head[global]});
-                found = head[global] = static_cast<int32_t>(seen.size() - 1);
-                out.remap.push_back(static_cast<uint32_t>(input_vertex));
-                out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
+    progress.in_runs(triangle_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            while (t == parts.first_triangle[out.first_output_vertex.size()])
+                out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
+            const int32_t c = sources.chart[t];
+            const bool point = c >= static_cast<int32_t>(charts.size());
+            out.chart_of[t] = static_cast<uint32_t>(c);
+            for (int k = 0; k < 3; ++k) {
+                const int32_t input_vertex = mesh.triangles[t][k];
+                const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
+                const int64_t global = chart_offset[c] + chart_vertex;
+                int32_t found = head[global];
+                while (found >= 0 && seen[found].input_vertex != input_vertex)
+                    found = seen[found].next;
+                if (found < 0) {
+                    seen.push_back(
+                        {input_vertex, static_cast<uint32_t>(out.uv.size()), head[global]});
+                    found = head[global] = static_cast<int32_t>(seen.size() - 1);
+                    out.remap.push_back(static_cast<uint32_t>(input_vertex));
+                    out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
+                }
+                out.indices[3 * static_cast<size_t>(t) + k] = seen[found].output_vertex;
             }
-            out.indices[3 * static_cast<size_t>(t) + k] = seen[found].output_vertex;
         }
-    }
+    });
     while (out.first_output_vertex.size() <= static_cast<size_t>(parts.count()))
         out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
 }
@@ -232,24 +237,25 @@ void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
     std::vector<Eigen::Vector2d> low(all_charts, Eigen::Vector2d::Constant(1e300));
     std::vector<Eigen::Vector2d> high(all_charts, Eigen::Vector2d::Constant(-1e300));
     const Eigen::Vector2d size(out.width, out.height);
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        progress.at(t, mesh.triangle_count());
-        AtlasChartRecord& record = out.charts[out.chart_of[t]];
-        record.part = parts.part_of_triangle(t);
-        ++record.triangle_count;
-        const Triangle& v = mesh.triangles[t];
-        record.area_3d += 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
-                                    .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
-                                    .norm();
-        Eigen::Vector2d p[3];
-        for (int k = 0; k < 3; ++k) {
-            p[k] = out.uv[out.indices[3 * static_cast<size_t>(t) + k]].cwiseProduct(size);
-            low[out.chart_of[t]] = low[out.chart_of[t]].cwiseMin(p[k]);
-            high[out.chart_of[t]] = high[out.chart_of[t]].cwiseMax(p[k]);
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            AtlasChartRecord& record = out.charts[out.chart_of[t]];
+            record.part = parts.part_of_triangle(t);
+            ++record.triangle_count;
+            const Triangle& v = mesh.triangles[t];
+            record.area_3d += 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                        .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
+                                        .norm();
+            Eigen::Vector2d p[3];
+            for (int k = 0; k < 3; ++k) {
+                p[k] = out.uv[out.indices[3 * static_cast<size_t>(t) + k]].cwiseProduct(size);
+                low[out.chart_of[t]] = low[out.chart_of[t]].cwiseMin(p[k]);
+                high[out.chart_of[t]] = high[out.chart_of[t]].cwiseMax(p[k]);
+            }
+            const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
+            record.area_texels += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
         }
-        const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
-        record.area_texels += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
+    });
     for (size_t c = 0; c < all_charts; ++c) {
         AtlasChartRecord& record = out.charts[c];
         // Texels touched: a chart placed on whole texels starts exactly on a texel's edge,

@@ -25,25 +25,28 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
     g.normal.resize(count);
     std::vector<Eigen::Vector3d> centroid(count);
     g.area.resize(count);
-    for (int32_t t = 0; t < count; ++t) {
-        progress.part(0.0, 0.5).at(t, count);
-        const Triangle& v = mesh.triangles[t];
-        const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
-                                      .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
-        g.area[t] = 0.5 * n.norm();
-        g.normal[t] = n.normalized();
-        centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
-    }
+    progress.part(0.0, 0.5).in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = mesh.triangles[t];
+            const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                          .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
+            g.area[t] = 0.5 * n.norm();
+            g.normal[t] = n.normalized();
+            centroid[t] =
+                (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
+        }
+    });
     const double hard_cosine = portable::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
     g.barrier.assign(3 * static_cast<size_t>(count), 0);
     g.step.assign(3 * static_cast<size_t>(count), 0.0);  // every grow takes every step
-    for (int32_t h = 0; h < 3 * count; ++h) {
-        progress.part(0.5, 1.0).at(h, 3 * static_cast<int64_t>(count));
-        const int32_t o = surface.twin[h];
-        if (o >= 0) g.step[h] = (centroid[o / 3] - centroid[h / 3]).norm();
-        g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
-                                 g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
-    }
+    progress.part(0.5, 1.0).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t o = surface.twin[h];
+            if (o >= 0) g.step[h] = (centroid[o / 3] - centroid[h / 3]).norm();
+            g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
+                                     g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
+        }
+    });
     return g;
 }
 
@@ -155,7 +158,7 @@ class Grower {
         const int32_t chart_count = *std::max_element(chart.begin(), chart.end()) + 1;
         std::vector<int32_t> depth(count, -1), frontier;
         for (int32_t t = 0; t < count; ++t) {
-            progress.part(0.0, 0.4).at(t, count);
+            progress.at(t, count, 0.0, 0.4);
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = surface_.twin[3 * t + k];
                 if (o < 0 || chart[o / 3] != chart[t] || g_.barrier[3 * t + k]) {
@@ -166,7 +169,7 @@ class Grower {
             }
         }
         for (size_t i = 0; i < frontier.size(); ++i) {
-            progress.part(0.4, 0.9).at(static_cast<int64_t>(i), count);
+            progress.at(static_cast<int64_t>(i), count, 0.4, 0.9);
             const int32_t t = frontier[i];
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = surface_.twin[3 * t + k];
@@ -257,23 +260,26 @@ void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char
     for (int sweep = 0; sweep < 4; ++sweep) {
         bool changed = false;
         const int64_t count = static_cast<int64_t>(triangles.size());
-        for (int64_t i = 0; i < count; ++i) {
-            progress.part(sweep / 4.0, (sweep + 1) / 4.0).at(i, count);
-            const int32_t t = triangles[i];
-            int32_t other[3], found = 0;
-            for (int k = 0; k < 3; ++k) {
-                const int32_t o = surface.twin[3 * t + k];
-                if (o >= 0 && !barrier[3 * t + k] && chart[o / 3] != chart[t])
-                    other[found++] = chart[o / 3];
-            }
-            int32_t winner = -1;
-            if (found >= 2 && other[0] == other[1]) winner = other[0];
-            if (found == 3 && (other[0] == other[2] || other[1] == other[2])) winner = other[2];
-            if (winner >= 0) {
-                chart[t] = winner;
-                changed = true;
-            }
-        }
+        progress.part(sweep / 4.0, (sweep + 1) / 4.0)
+            .in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+                for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
+                    const int32_t t = triangles[i];
+                    int32_t other[3], found = 0;
+                    for (int k = 0; k < 3; ++k) {
+                        const int32_t o = surface.twin[3 * t + k];
+                        if (o >= 0 && !barrier[3 * t + k] && chart[o / 3] != chart[t])
+                            other[found++] = chart[o / 3];
+                    }
+                    int32_t winner = -1;
+                    if (found >= 2 && other[0] == other[1]) winner = other[0];
+                    if (found == 3 && (other[0] == other[2] || other[1] == other[2]))
+                        winner = other[2];
+                    if (winner >= 0) {
+                        chart[t] = winner;
+                        changed = true;
+                    }
+                }
+            });
         if (!changed) break;
     }
 }

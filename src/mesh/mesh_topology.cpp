@@ -31,10 +31,11 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& 
     OutgoingHalfedges out;
     const int32_t halfedge_count = 3 * mesh.triangle_count();
     out.offsets.assign(mesh.positions.size() + 1, 0);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        progress.at(h, 2 * static_cast<int64_t>(halfedge_count));
-        ++out.offsets[halfedge_origin(mesh, h) + 1];
-    }
+    progress.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            ++out.offsets[halfedge_origin(mesh, h) + 1];
+        }
+    });
     std::partial_sum(out.offsets.begin(), out.offsets.end(), out.offsets.begin());
     out.halfedges.resize(halfedge_count);
     std::vector<int32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
@@ -51,51 +52,53 @@ Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress
     const OutgoingHalfedges out = group_by_origin(mesh, progress.part(0.0, 0.15));
     const int32_t halfedge_count = 3 * mesh.triangle_count();
     std::vector<int32_t> target(halfedge_count);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        progress.part(0.15, 0.2).at(h, halfedge_count);
-        target[h] = halfedge_target(mesh, h);
-    }
+    progress.part(0.15, 0.2).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            target[h] = halfedge_target(mesh, h);
+        }
+    });
     Halfedges result;
     result.twin.assign(halfedge_count, -1);
     const ProgressSpan pairing = progress.part(0.2, 1.0);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        pairing.at(h, halfedge_count);
-        const int32_t a = halfedge_origin(mesh, h), b = target[h];
-        int32_t same_direction = -1, opposite = -1, opposite_count = 0;
-        for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
-            const int32_t g = out.halfedges[i];
-            if (g != h && target[g] == b) same_direction = g;
-        }
-        for (int32_t i = out.offsets[b]; i < out.offsets[b + 1]; ++i) {
-            const int32_t g = out.halfedges[i];
-            if (target[g] == a) {
-                opposite = g;
-                ++opposite_count;
+    pairing.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t a = halfedge_origin(mesh, h), b = target[h];
+            int32_t same_direction = -1, opposite = -1, opposite_count = 0;
+            for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
+                const int32_t g = out.halfedges[i];
+                if (g != h && target[g] == b) same_direction = g;
             }
-        }
-        if (same_direction >= 0 || opposite_count > 1) {
-            const int32_t other = same_direction >= 0 ? same_direction : opposite;
-            if (same_vertex_set(mesh.triangles[h / 3], mesh.triangles[other / 3])) {
+            for (int32_t i = out.offsets[b]; i < out.offsets[b + 1]; ++i) {
+                const int32_t g = out.halfedges[i];
+                if (target[g] == a) {
+                    opposite = g;
+                    ++opposite_count;
+                }
+            }
+            if (same_direction >= 0 || opposite_count > 1) {
+                const int32_t other = same_direction >= 0 ? same_direction : opposite;
+                if (same_vertex_set(mesh.triangles[h / 3], mesh.triangles[other / 3])) {
+                    throw Error(ErrorCode::kNonManifoldEdge,
+                                "triangles " + std::to_string(h / 3) + " and " +
+                                    std::to_string(other / 3) +
+                                    " are duplicates (same three vertices), so edge " +
+                                    edge_name(a, b) + " has more than two triangles");
+                }
+                if (same_direction >= 0 && opposite < 0) {
+                    throw Error(ErrorCode::kInconsistentOrientation,
+                                "triangles " + std::to_string(h / 3) + " and " +
+                                    std::to_string(same_direction / 3) + " both traverse edge " +
+                                    edge_name(a, b) +
+                                    " in the same direction (their winding is inconsistent)");
+                }
                 throw Error(ErrorCode::kNonManifoldEdge,
-                            "triangles " + std::to_string(h / 3) + " and " +
-                                std::to_string(other / 3) +
-                                " are duplicates (same three vertices), so edge " +
-                                edge_name(a, b) + " has more than two triangles");
+                            "edge " + edge_name(a, b) + " is shared by more than two triangles (" +
+                                std::to_string(h / 3) + ", " + std::to_string(other / 3) +
+                                " and more)");
             }
-            if (same_direction >= 0 && opposite < 0) {
-                throw Error(ErrorCode::kInconsistentOrientation,
-                            "triangles " + std::to_string(h / 3) + " and " +
-                                std::to_string(same_direction / 3) + " both traverse edge " +
-                                edge_name(a, b) +
-                                " in the same direction (their winding is inconsistent)");
-            }
-            throw Error(ErrorCode::kNonManifoldEdge, "edge " + edge_name(a, b) +
-                                                         " is shared by more than two triangles (" +
-                                                         std::to_string(h / 3) + ", " +
-                                                         std::to_string(other / 3) + " and more)");
+            result.twin[h] = opposite;
         }
-        result.twin[h] = opposite;
-    }
+    });
     return result;
 }
 
@@ -108,29 +111,30 @@ void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedge
     const int32_t halfedge_count = static_cast<int32_t>(twin.size());
     std::vector<char> visited(halfedge_count, 0);
     std::vector<int32_t> fan_start(mesh.positions.size(), -1);
-    for (int32_t h0 = 0; h0 < halfedge_count; ++h0) {
-        progress.at(h0, halfedge_count);
-        if (visited[h0]) continue;
-        const int32_t v = halfedge_origin(mesh, h0);
-        if (fan_start[v] >= 0) {
-            throw Error(ErrorCode::kNonManifoldVertex,
-                        "vertex " + std::to_string(v) +
-                            " joins separate fans of triangles (e.g. triangles " +
-                            std::to_string(fan_start[v] / 3) + " and " + std::to_string(h0 / 3) +
-                            " meet only at this vertex)");
+    progress.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h0 = static_cast<int32_t>(run_begin); h0 < run_end; ++h0) {
+            if (visited[h0]) continue;
+            const int32_t v = halfedge_origin(mesh, h0);
+            if (fan_start[v] >= 0) {
+                throw Error(ErrorCode::kNonManifoldVertex,
+                            "vertex " + std::to_string(v) +
+                                " joins separate fans of triangles (e.g. triangles " +
+                                std::to_string(fan_start[v] / 3) + " and " +
+                                std::to_string(h0 / 3) + " meet only at this vertex)");
+            }
+            fan_start[v] = h0;
+            // Walk backwards to the fan's first half-edge (or all the way round), then forwards.
+            int32_t h = h0;
+            while (twin[h] >= 0 && Halfedges::next(twin[h]) != h0) h = Halfedges::next(twin[h]);
+            if (twin[h] >= 0) h = h0;  // closed fan: start anywhere
+            const int32_t start = h;
+            do {
+                visited[h] = 1;
+                const int32_t p = twin[Halfedges::prev(h)];
+                h = p;
+            } while (h >= 0 && h != start);
         }
-        fan_start[v] = h0;
-        // Walk backwards to the fan's first half-edge (or all the way round), then forwards.
-        int32_t h = h0;
-        while (twin[h] >= 0 && Halfedges::next(twin[h]) != h0) h = Halfedges::next(twin[h]);
-        if (twin[h] >= 0) h = h0;  // closed fan: start anywhere
-        const int32_t start = h;
-        do {
-            visited[h] = 1;
-            const int32_t p = twin[Halfedges::prev(h)];
-            h = p;
-        } while (h >= 0 && h != start);
-    }
+    });
 }
 
 std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges,
@@ -293,16 +297,17 @@ VertexTriangles build_vertex_triangles(const TriangleMesh& mesh, const ProgressS
     stars.second.resize(stars.offsets.back());
     stars.triangle.resize(stars.offsets.back());
     std::vector<int32_t> fill(stars.offsets.begin(), stars.offsets.end() - 1);
-    for (int32_t f = 0; f < mesh.triangle_count(); ++f) {
-        progress.at(f, mesh.triangle_count());
-        const Triangle& t = mesh.triangles[f];
-        for (int k = 0; k < 3; ++k) {
-            const int32_t e = fill[t[k]]++;
-            stars.first[e] = t[(k + 1) % 3];
-            stars.second[e] = t[(k + 2) % 3];
-            stars.triangle[e] = f;
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t f = static_cast<int32_t>(run_begin); f < run_end; ++f) {
+            const Triangle& t = mesh.triangles[f];
+            for (int k = 0; k < 3; ++k) {
+                const int32_t e = fill[t[k]]++;
+                stars.first[e] = t[(k + 1) % 3];
+                stars.second[e] = t[(k + 2) % 3];
+                stars.triangle[e] = f;
+            }
         }
-    }
+    });
     return stars;
 }
 
@@ -312,52 +317,55 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     const int32_t halfedge_count = static_cast<int32_t>(halfedges.twin.size());
     adjacency.offsets.assign(mesh.positions.size() + 1, 0);
     // Each undirected edge once: boundary half-edges, and the smaller of each twin pair.
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        progress.part(0.0, 0.2).at(h, halfedge_count);
-        if (halfedges.twin[h] > h) continue;
-        ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
-        ++adjacency.offsets[halfedge_target(mesh, h) + 1];
-    }
+    progress.part(0.0, 0.2).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            if (halfedges.twin[h] > h) continue;
+            ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
+            ++adjacency.offsets[halfedge_target(mesh, h) + 1];
+        }
+    });
     std::partial_sum(adjacency.offsets.begin(), adjacency.offsets.end(), adjacency.offsets.begin());
     // Each entry carries its edge's half-edge h and direction (2h: in the row of h's origin,
     // 2h + 1: of its target) through the sort, so the slots come out of the sort itself: binary
     // searches for them afterwards were most of this function.
     std::vector<std::pair<int32_t, int32_t>> entries(adjacency.offsets.back());
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        progress.part(0.2, 0.4).at(h, halfedge_count);
-        if (halfedges.twin[h] > h) continue;
-        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
-        entries[fill[a]++] = {b, 2 * h};
-        entries[fill[b]++] = {a, 2 * h + 1};
-    }
+    progress.part(0.2, 0.4).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            if (halfedges.twin[h] > h) continue;
+            const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+            entries[fill[a]++] = {b, 2 * h};
+            entries[fill[b]++] = {a, 2 * h + 1};
+        }
+    });
     const ProgressSpan sorting = progress.part(0.4, 0.9);
     adjacency.neighbors.resize(entries.size());
     adjacency.forward_slot.resize(halfedge_count);
     adjacency.backward_slot.resize(halfedge_count);
-    for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
-        sorting.at(v, mesh.vertex_count());
-        // Insertion sort by neighbour: a vertex has about six.
-        const int32_t first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
-        for (int32_t i = first + 1; i < last; ++i) {
-            const std::pair<int32_t, int32_t> entry = entries[i];
-            int32_t j = i;
-            for (; j > first && entries[j - 1].first > entry.first; --j)
-                entries[j] = entries[j - 1];
-            entries[j] = entry;
+    sorting.in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
+            // Insertion sort by neighbour: a vertex has about six.
+            const int32_t first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
+            for (int32_t i = first + 1; i < last; ++i) {
+                const std::pair<int32_t, int32_t> entry = entries[i];
+                int32_t j = i;
+                for (; j > first && entries[j - 1].first > entry.first; --j)
+                    entries[j] = entries[j - 1];
+                entries[j] = entry;
+            }
+            // A neighbour listed twice (two edges between the same vertices, in degenerate input)
+            // has its first slot, the one a search would find.
+            int32_t run = first;
+            for (int32_t slot = first; slot < last; ++slot) {
+                const auto [neighbor, tag] = entries[slot];
+                if (neighbor != entries[run].first) run = slot;
+                adjacency.neighbors[slot] = neighbor;
+                (tag % 2 ? adjacency.backward_slot : adjacency.forward_slot)[tag / 2] = run;
+            }
         }
-        // A neighbour listed twice (two edges between the same vertices, in degenerate input)
-        // has its first slot, the one a search would find.
-        int32_t run = first;
-        for (int32_t slot = first; slot < last; ++slot) {
-            const auto [neighbor, tag] = entries[slot];
-            if (neighbor != entries[run].first) run = slot;
-            adjacency.neighbors[slot] = neighbor;
-            (tag % 2 ? adjacency.backward_slot : adjacency.forward_slot)[tag / 2] = run;
-        }
-    }
+    });
     for (int32_t h = 0; h < halfedge_count; ++h) {  // the larger twin, g, runs the other way
-        progress.part(0.9, 1.0).at(h, halfedge_count);
+        progress.at(h, halfedge_count, 0.9, 1.0);
         const int32_t g = halfedges.twin[h];
         if (g < h) continue;
         adjacency.forward_slot[h] = adjacency.backward_slot[g];
@@ -383,23 +391,25 @@ std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
         b = root_of(b);
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
     };
-    for (int32_t h = 0; h < corners; ++h) {
-        progress.part(0.0, 0.6).at(h, corners);
-        const int32_t g = twin[h];
-        if (g < h) continue;
-        // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
-        // the corner after g; the corners at b are the corner after h and g's own corner.
-        unite(h, Halfedges::next(g));
-        unite(Halfedges::next(h), g);
-    }
+    progress.part(0.0, 0.6).in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t g = twin[h];
+            if (g < h) continue;
+            // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
+            // the corner after g; the corners at b are the corner after h and g's own corner.
+            unite(h, Halfedges::next(g));
+            unite(Halfedges::next(h), g);
+        }
+    });
     std::vector<int32_t> class_of_root(corners, -1), classes(corners);
     int32_t count = 0;
-    for (int32_t c = 0; c < corners; ++c) {
-        progress.part(0.6, 1.0).at(c, corners);
-        int32_t& cls = class_of_root[root_of(c)];
-        if (cls < 0) cls = count++;
-        classes[c] = cls;
-    }
+    progress.part(0.6, 1.0).in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
+            int32_t& cls = class_of_root[root_of(c)];
+            if (cls < 0) cls = count++;
+            classes[c] = cls;
+        }
+    });
     return classes;
 }
 

@@ -31,15 +31,16 @@ std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& pos
     }
     const double extent = std::max((high - low).maxCoeff(), 1e-300);
     std::vector<uint64_t> code(n);
-    for (int32_t i = 0; i < n; ++i) {
-        progress.part(0.0, 0.2).at(i, n);
-        uint64_t key = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double t = std::clamp((positions[i][c] - low[c]) / extent, 0.0, 1.0);
-            key |= spread_bits(static_cast<uint64_t>(t * 2097151.0)) << c;
+    progress.part(0.0, 0.2).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t i = static_cast<int32_t>(run_begin); i < run_end; ++i) {
+            uint64_t key = 0;
+            for (int c = 0; c < 3; ++c) {
+                const double t = std::clamp((positions[i][c] - low[c]) / extent, 0.0, 1.0);
+                key |= spread_bits(static_cast<uint64_t>(t * 2097151.0)) << c;
+            }
+            code[i] = key;
         }
-        code[i] = key;
-    }
+    });
     // Stable radix sort by code, 16 bits a pass (codes have 63): the order a stable comparison
     // sort gives, in linear passes that report their progress.
     std::vector<int32_t> order(n), sorted(n);
@@ -50,11 +51,12 @@ std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& pos
         std::fill(start.begin(), start.end(), 0);
         for (int32_t i = 0; i < n; ++i) ++start[((code[i] >> shift) & 0xffff) + 1];
         std::partial_sum(start.begin(), start.end(), start.begin());
-        for (int32_t k = 0; k < n; ++k) {
-            pass.at(k, n);
-            const int32_t i = order[k];
-            sorted[start[(code[i] >> shift) & 0xffff]++] = i;
-        }
+        pass.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+            for (int32_t k = static_cast<int32_t>(run_begin); k < run_end; ++k) {
+                const int32_t i = order[k];
+                sorted[start[(code[i] >> shift) & 0xffff]++] = i;
+            }
+        });
         order.swap(sorted);
     }
     return order;
@@ -70,10 +72,11 @@ TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_
         position_of[order[k]] = static_cast<int32_t>(k);
     }
     out.triangles = mesh.triangles;
-    for (int32_t t = 0; t < out.triangle_count(); ++t) {
-        progress.at(t, out.triangle_count());
-        for (int32_t& v : out.triangles[t]) v = position_of[v];
-    }
+    progress.in_runs(out.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            for (int32_t& v : out.triangles[t]) v = position_of[v];
+        }
+    });
     return out;
 }
 

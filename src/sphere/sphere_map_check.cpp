@@ -11,13 +11,14 @@ namespace raps {
 FoldCount count_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& points,
                       const ProgressSpan& progress) {
     FoldCount count;
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        progress.at(t, mesh.triangle_count());
-        const Triangle& v = mesh.triangles[t];
-        if (orientation(points[v[0]], points[v[1]], points[v[2]]) > 0.0) continue;
-        if (count.first < 0) count.first = static_cast<int64_t>(t);
-        ++count.folded;
-    }
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = mesh.triangles[t];
+            if (orientation(points[v[0]], points[v[1]], points[v[2]]) > 0.0) continue;
+            if (count.first < 0) count.first = static_cast<int64_t>(t);
+            ++count.folded;
+        }
+    });
     for (const Eigen::Vector3d& u : points) {
         count.off_sphere += !(std::abs(u.norm() - 1.0) <= kUnitTolerance);
     }

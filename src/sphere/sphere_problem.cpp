@@ -13,13 +13,14 @@ SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges,
         greedy_vertex_coloring(adjacency, progress.part(0.6, 0.8));
     std::vector<double> mass(mesh.positions.size(), 0.0);
     double total = 0.0;
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        progress.part(0.8, 1.0).at(t, mesh.triangle_count());
-        const Triangle& v = mesh.triangles[t];
-        const double area = triangle_area(mesh, t);
-        for (int32_t i : v) mass[i] += area / 3.0;
-        total += area;
-    }
+    progress.part(0.8, 1.0).in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = mesh.triangles[t];
+            const double area = triangle_area(mesh, t);
+            for (int32_t i : v) mass[i] += area / 3.0;
+            total += area;
+        }
+    });
     for (double& m : mass) m /= total;
     return SphereProblem{mesh,
                          std::move(halfedges),
