@@ -99,7 +99,7 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
                AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
                std::pair<const ChartDisk*, const ChartDisk*> parts = {}) {
     bool good = parts.first ? make_union_chart_disk(surface, triangles, seam, *parts.first,
-                                                    *parts.second, chart.disk)
+                                                    *parts.second, chart.disk, beat)
                             : make_chart_disk(surface, triangles, seam, chart.disk, beat);
     if (!good && triangles.size() > 1) return false;
     beat.report(0.0);
@@ -108,10 +108,12 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
         chart.map = free_boundary_chart_map(chart.disk, system, limits.max_stretch_linf, beat);
         good = chart.map.injective && chart.map.stretch_linf <= limits.max_stretch_linf;
     }
+    beat.report(0.0);
     if (!good && triangles.size() > 1) return false;
     if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system, beat);
     unadapted_l2 = chart.map.stretch_l2;
     adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system, beat);
+    beat.report(0.0);
     chart.box =
         smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles, chart.disk.boundary_loop);
     return true;

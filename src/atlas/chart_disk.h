@@ -36,6 +36,6 @@ bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& tr
 // order is made from theirs instead of ordering the union again.
 bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                            const std::vector<char>& seam, const ChartDisk& a, const ChartDisk& b,
-                           ChartDisk& disk);
+                           ChartDisk& disk, const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -49,7 +49,8 @@ bool adapted(const ChartDisk& disk, const Settings& settings,
              const ProgressSpan& progress) {
     const VertexAdjacency& adjacency = disk.adjacency;
     if (system.unknown_count() == 0) return false;
-    const std::vector<double> base = laplacian_weights(disk.mesh, adjacency, settings.weights);
+    const std::vector<double> base =
+        laplacian_weights(disk.mesh, adjacency, settings.weights, progress);
     out.uv = start;
     try {
         adapt_map(disk.mesh, adjacency, system, base, settings, out.uv, progress);
@@ -57,6 +58,7 @@ bool adapted(const ChartDisk& disk, const Settings& settings,
         if (error.code() != ErrorCode::kSolverFailed) throw;
         return false;
     }
+    progress.report(0.0);
     out.injective = injective(disk, out.uv);
     return out.injective;
 }
@@ -95,11 +97,13 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, d
         // The prediction is given 5% of room, four times the largest shortfall measured.
         map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.corner_angle,
                                              disk.boundary_loop, system, 1.05 * max_linf, progress);
+        progress.report(0.0);
         map.injective = !map.uv.empty() && injective(disk, map.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;
         map.injective = false;
     }
+    progress.report(0.0);
     if (map.injective) normalise(disk, map);
     return map;
 }
@@ -114,6 +118,7 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
     Settings chosen = settings;
     if (map.method == ChartMethod::kCircle) chosen.weights = WeightScheme::kMeanValue;
     if (!adapted(disk, chosen, map.uv, candidate, system, progress)) return;
+    progress.report(0.0);
     normalise(disk, candidate);
     // Equalising area can stretch a few triangles more: keep the Linf limit.
     if (candidate.stretch_l2 < map.stretch_l2 &&

@@ -51,14 +51,17 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
     const Halfedges halfedges = build_halfedges(mesh, topology_timer.span(0.0, 0.1));
     const std::vector<int32_t> loop =
         disk_boundary_loop(mesh, halfedges, topology_timer.span(0.1, 0.15));
-    const VertexAdjacency adjacency =
-        build_vertex_adjacency(mesh, halfedges, topology_timer.span(0.15, 0.2));
+    DiskMap map;
+    map.adjacency = std::make_unique<const VertexAdjacency>(
+        build_vertex_adjacency(mesh, halfedges, topology_timer.span(0.15, 0.2)));
+    const VertexAdjacency& adjacency = *map.adjacency;
     std::vector<char> on_boundary(mesh.positions.size(), 0);
     for (int32_t v : loop) on_boundary[v] = 1;
-    LaplaceSystem system(mesh, adjacency, on_boundary, {}, topology_timer.span(0.2, 1.0));
+    map.system = std::make_unique<LaplaceSystem>(
+        mesh, adjacency, on_boundary, std::vector<int32_t>(), topology_timer.span(0.2, 1.0));
+    LaplaceSystem& system = *map.system;
     topology_timer.finish();
 
-    DiskMap map;
     map.uv.assign(mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
     std::vector<double> base_weights;
     {
