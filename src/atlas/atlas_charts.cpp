@@ -16,7 +16,7 @@ namespace {
 // triangle a, from a to find b, then every triangle goes to the nearer of a and b (ties to a).
 std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-    const std::vector<char>& seam) {
+    const std::vector<char>& seam, const ProgressSpan& beat) {
     std::vector<int32_t> local(surface.mesh.triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) local[triangles[i]] = static_cast<int32_t>(i);
     auto distances = [&](int32_t from) {
@@ -39,9 +39,12 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
                                     distance.begin());
     };
     const int32_t a = farthest(distances(0));
+    beat.report(0.0);
     const std::vector<int32_t> from_a = distances(a);
+    beat.report(0.0);
     const int32_t b = farthest(from_a);
     const std::vector<int32_t> from_b = distances(b);
+    beat.report(0.0);
     std::pair<std::vector<int32_t>, std::vector<int32_t>> halves;
     // Side per surface triangle (-1: outside the chart, itself a barrier), smoothed like the
     // segmentation's boundaries so the split does not leave a saw-tooth seam.
@@ -59,7 +62,7 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
             barrier[h] = seam[h] || (o >= 0 && side[o / 3] < 0);
         }
     }
-    smooth_chart_boundaries(surface, barrier, triangles, side);
+    smooth_chart_boundaries(surface, barrier, triangles, side, beat);
     for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
     if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
         const size_t half = halves.first.size() / 2;
@@ -165,7 +168,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                     charts.push_back(std::move(built[i]));
                     unadapted_l2.push_back(built_l2[i]);
                 } else {
-                    auto halves = split_chart(surface, round[i], seam);
+                    auto halves = split_chart(surface, round[i], seam, beat);
                     next.push_back(std::move(halves.first));
                     next.push_back(std::move(halves.second));
                 }
@@ -201,7 +204,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         area.erase(area.begin() + static_cast<std::ptrdiff_t>(worst));
         unadapted_l2.erase(unadapted_l2.begin() + static_cast<std::ptrdiff_t>(worst));
         const size_t before = charts.size();
-        auto halves = split_chart(surface, triangles, seam);
+        auto halves = split_chart(surface, triangles, seam, beat);
         process({std::move(halves.first), std::move(halves.second)});
         for (size_t c = before; c < charts.size(); ++c) {
             area.push_back(chart_area(charts[c].disk));

@@ -75,21 +75,17 @@ constexpr int64_t kItemsPerReport = 8192;
 static_assert((kItemsPerReport & (kItemsPerReport - 1)) == 0, "a power of two: a mask tests it");
 
 // A share [from, to] of one phase's progress, handed to a step of it: the step reports its own
-// fraction in [0, 1], which lands in that share. It reports to the run's Progress, or to a
-// function of the fraction (which must outlive the span: spans are passed down, never kept). A
-// default span reports nothing (for callers outside a run: benchmarks of the internals).
+// fraction in [0, 1], which lands in that share of the run's Progress. Spans are passed down,
+// never kept. A default span reports nothing (for callers outside a run: benchmarks of the
+// internals).
 class ProgressSpan {
   public:
     ProgressSpan() = default;
     ProgressSpan(const Progress& progress, Phase phase, double from = 0.0, double to = 1.0)
         : progress_(progress.active() ? &progress : nullptr), phase_(phase), from_(from), to_(to) {}
-    explicit ProgressSpan(const std::function<void(double)>& function)
-        : function_(function ? &function : nullptr) {}
 
     void report(double fraction) const {
-        const double f = from_ + (to_ - from_) * fraction;
-        if (progress_) progress_->report(phase_, f);
-        if (function_) (*function_)(f);
+        if (progress_) progress_->report(phase_, from_ + (to_ - from_) * fraction);
     }
     // In a loop over `count` items, at item `i`: a report every kItemsPerReport items.
     void at(int64_t i, int64_t count) const {
@@ -120,11 +116,10 @@ class ProgressSpan {
         span.to_ = from_ + (to_ - from_) * to;
         return span;
     }
-    bool active() const { return progress_ != nullptr || function_ != nullptr; }
+    bool active() const { return progress_ != nullptr; }
 
   private:
     const Progress* progress_ = nullptr;
-    const std::function<void(double)>* function_ = nullptr;
     Phase phase_ = Phase::kValidate;
     double from_ = 0.0, to_ = 1.0;
 };

@@ -424,6 +424,7 @@ void front_work_done(void* context, double multiply_adds) {
 // Fronts with more work than this report from inside the kernel (a few milliseconds of work).
 constexpr double kFrontReportFlops = 1e7;
 constexpr int32_t kFrontsPerReport = 1024;
+constexpr int64_t kEntriesPerReport = int64_t(1) << 21;
 
 }  // namespace
 
@@ -437,11 +438,21 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
     std::vector<int64_t> block_starts;
     double flops_done = 0, next_report = std::min(0.01 * total_flops_, kFrontReportFlops);
     int32_t fronts_since_report = 0;
+    // The largest fronts' clearing, assembly and copies move hundreds of megabytes at millions
+    // of unknowns: every kEntriesPerReport entries moved, the fraction reached is reported again.
+    int64_t entries_moved = 0;
+    auto moved = [&](int64_t entries) {
+        entries_moved += entries;
+        if (entries_moved < kEntriesPerReport) return;
+        entries_moved = 0;
+        progress.report(flops_done / total_flops_);
+    };
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
         double* front = front_.get();
         // Cholesky reads and writes only the lower triangle: the rest is never cleared.
         for (int32_t c = 0; c < m; ++c) {
+            moved(m);
             const int64_t begin = static_cast<int64_t>(c) * m;
             std::fill(front + begin + (cholesky_ ? c : 0), front + begin + m, 0.0);
         }
@@ -458,6 +469,7 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
             const double* block = stack_.get() + start;
             // Update rows are sorted, so a lower entry of the block lands in the lower triangle.
             for (int32_t jj = 0; jj < update; ++jj) {
+                moved(update);
                 double* target = front + static_cast<int64_t>(relative[jj]) * m;
                 const double* source = block + static_cast<int64_t>(jj) * update;
                 for (int32_t ii = cholesky_ ? jj : 0; ii < update; ++ii)
@@ -477,12 +489,14 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
         const int32_t skip_upper = cholesky_ ? 1 : 0;  // Cholesky: copy from the diagonal down
         double* lower = factors_.get() + node.factor_offset;
         for (int32_t c = 0; c < k; ++c) {
+            moved(m);
             const int64_t begin = static_cast<int64_t>(c) * m + c * skip_upper;
             std::copy(front + begin, front + static_cast<int64_t>(c + 1) * m, lower + begin);
         }
         if (!cholesky_) {
             double* upper = lower + static_cast<int64_t>(m) * k;  // k x (m - k), column-major
             for (int32_t c = k; c < m; ++c) {
+                moved(k);
                 std::copy(front + static_cast<int64_t>(c) * m,
                           front + static_cast<int64_t>(c) * m + k,
                           upper + static_cast<int64_t>(c - k) * k);
@@ -493,6 +507,7 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
             block_starts.push_back(stack_top);
             double* block = stack_.get() + stack_top;
             for (int32_t c = 0; c < update; ++c) {
+                moved(update);
                 const int32_t from = c * skip_upper;
                 const double* source = front + static_cast<int64_t>(k + c) * m + k;
                 std::copy(source + from, source + update,
