@@ -3,7 +3,7 @@
  * scan-like sphere, and shared meshes with long limbs (cow, horse_quad, decimated-knight)
  * subdivided to 64K-90K triangles. What is pinned down, through the C ABI:
  *  - never a folded map with RAPS_OK: a result that comes back is a bijection of the unit sphere
- *    (every triangle counter-clockwise by the exact orientation test, |r - 1| < 1e-12, spherical
+ *    (every triangle counter-clockwise by the exact sign of det[a, b, c], |r - 1| < 1e-12, spherical
  *    areas adding up to 4 pi), and a refusal is RAPS_ERROR_SOLVER_FAILED with a message that
  *    names the folded triangles;
  *  - every map that comes back is centred: the 3D-area-weighted centre of mass of its points
@@ -23,6 +23,7 @@
 #include <cmocka.h>
 
 #include "raps.h"
+#include "support/exact_orientation.h"
 #include "support/test_meshes.h"
 
 #ifndef M_PI
@@ -284,10 +285,14 @@ static sphere_check check_sphere_map(const test_mesh* mesh, const double* u) {
     for (size_t t = 0; t < mesh->index_count; t += 3) {
         const uint32_t* v = mesh->indices + t;
         const double *a = u + 3 * v[0], *b = u + 3 * v[1], *d = u + 3 * v[2];
-        const double bd[3] = {b[1] * d[2] - b[2] * d[1], b[2] * d[0] - b[0] * d[2],
-                              b[0] * d[1] - b[1] * d[0]};
-        const double det = dot3(a, bd);
-        c.folded += !(det > 0);
+        /* det[a, b, d] as a . ((b - a) x (d - a)), rounded relative to the triangle's size, for
+         * the area; the fold test is the exact sign. */
+        const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double ad[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const double n_abd[3] = {ab[1] * ad[2] - ab[2] * ad[1], ab[2] * ad[0] - ab[0] * ad[2],
+                                 ab[0] * ad[1] - ab[1] * ad[0]};
+        const double det = dot3(a, n_abd);
+        c.folded += exact_orientation_sign(a, b, d) <= 0;
         c.area_sum += 2.0 * atan2(det, 1.0 + dot3(a, b) + dot3(b, d) + dot3(d, a));
         const double *x = mesh->positions + 3 * v[0], *y = mesh->positions + 3 * v[1],
                      *z = mesh->positions + 3 * v[2];
