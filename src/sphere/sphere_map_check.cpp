@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "sphere/spherical_geometry.h"
+#include "sphere/exact_orientation.h"
 
 namespace raps {
 
@@ -12,7 +12,7 @@ FoldCount count_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector3
     FoldCount count;
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         const Triangle& v = mesh.triangles[t];
-        if (orientation(points[v[0]], points[v[1]], points[v[2]]) > 0.0) continue;
+        if (exact_orientation_sign(points[v[0]], points[v[1]], points[v[2]]) > 0) continue;
         if (count.first < 0) count.first = static_cast<int64_t>(t);
         ++count.folded;
     }
@@ -31,7 +31,7 @@ void require_bijective_sphere_map(const TriangleMesh& mesh,
         const Triangle& v = mesh.triangles[count.first];
         message += std::to_string(count.folded) + " of " +
                    std::to_string(mesh.triangles.size()) +
-                   " spherical triangles fold (det <= 0 in double precision), the first " +
+                   " spherical triangles fold (det <= 0, exactly, for the points as stored), the first " +
                    std::to_string(count.first) + " (vertices " + std::to_string(v[0]) + ", " +
                    std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
     }
