@@ -43,11 +43,9 @@ SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges)
 // parked at det = 0 (cow: the centre of mass drifted to 0.24).
 constexpr double kPlaneFloor = 0.3;
 
-// Whether triangle abc keeps the plane floor, decided without a division or a root.
-inline bool above_plane_floor(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              const Eigen::Vector3d& c) {
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    const double det = a.dot(n);
+// Whether a triangle keeps the plane floor, given its det[a, b, c] = a . n and the normal
+// n = (b - a) x (c - a); decided without a division or a root.
+inline bool above_plane_floor(double det, const Eigen::Vector3d& n) {
     return det > 0.0 && det * det >= kPlaneFloor * kPlaneFloor * n.squaredNorm();
 }
 
