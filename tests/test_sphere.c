@@ -55,8 +55,9 @@ static void cross3(const double* a, const double* b, double* out) {
 }
 
 /* What makes a spherical map a bijection that has not collapsed: unit points, every triangle
- * counter-clockwise seen from outside (det > 0, by the exact sign), signed spherical areas (Van Oosterom and
- * Strackee) adding up to 4 pi, and the 3D-area-weighted centre of mass near the origin. */
+ * counter-clockwise seen from outside (det > 0, by the exact sign), signed spherical areas (Van
+ * Oosterom and Strackee) adding up to 4 pi, and the 3D-area-weighted centre of mass near the
+ * origin. */
 typedef struct sphere_check {
     size_t folded;
     double area_sum;

@@ -3,9 +3,9 @@
  * scan-like sphere, and shared meshes with long limbs (cow, horse_quad, decimated-knight)
  * subdivided to 64K-90K triangles. What is pinned down, through the C ABI:
  *  - never a folded map with RAPS_OK: a result that comes back is a bijection of the unit sphere
- *    (every triangle counter-clockwise by the exact sign of det[a, b, c], |r - 1| < 1e-12, spherical
- *    areas adding up to 4 pi), and a refusal is RAPS_ERROR_SOLVER_FAILED with a message that
- *    names the folded triangles;
+ *    (every triangle counter-clockwise by the exact sign of det[a, b, c], |r - 1| < 1e-12,
+ *    spherical areas adding up to 4 pi), and a refusal is RAPS_ERROR_SOLVER_FAILED with a
+ *    message that names the folded triangles;
  *  - every map that comes back is centred: the 3D-area-weighted centre of mass of its points
  *    within 0.05 of the origin;
  *  - the area monitor lowers the area distortion (raps_stats.area_log_mean) by at least 40 %

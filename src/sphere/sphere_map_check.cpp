@@ -29,11 +29,11 @@ void require_bijective_sphere_map(const TriangleMesh& mesh,
     std::string message = "sphere domain: no fold-free map found: ";
     if (count.folded > 0) {
         const Triangle& v = mesh.triangles[count.first];
-        message += std::to_string(count.folded) + " of " +
-                   std::to_string(mesh.triangles.size()) +
-                   " spherical triangles fold (det <= 0, exactly, for the points as stored), the first " +
-                   std::to_string(count.first) + " (vertices " + std::to_string(v[0]) + ", " +
-                   std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
+        message +=
+            std::to_string(count.folded) + " of " + std::to_string(mesh.triangles.size()) +
+            " spherical triangles fold (det <= 0, exactly, for the points as stored), the first " +
+            std::to_string(count.first) + " (vertices " + std::to_string(v[0]) + ", " +
+            std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
     }
     if (count.off_sphere > 0) {
         message += std::string(count.folded > 0 ? "; " : "") + std::to_string(count.off_sphere) +

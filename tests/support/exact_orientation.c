@@ -36,7 +36,8 @@ static int grow_expansion(double* e, int n, double x) {
 
 int exact_orientation_sign(const double* a, const double* b, const double* c) {
     /* det = sum over the permutations (i, j, k) of sign * a_i b_j c_k. */
-    static const int perm[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
+    static const int perm[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                                   {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
     double e[24];
     int n = 0;
     for (int p = 0; p < 6; ++p) {
