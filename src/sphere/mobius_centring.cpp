@@ -120,12 +120,11 @@ Eigen::Vector3d centre_of_mass(const SphereProblem& problem, const std::vector<E
 }
 
 double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
-                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved,
-                     double slack) {
+                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved) {
     if (moved) *moved = false;
     const Eigen::Vector3d centre = centre_of_mass(problem, u, pool);
     const double offset = centre.norm();
-    if (!(offset > slack)) return offset;
+    if (!(offset > 0.0)) return 0.0;
     Eigen::Vector3d a = 0.75 * centre;
     if (a.norm() > 0.9) a *= 0.9 / a.norm();
     scratch.resize(u.size());

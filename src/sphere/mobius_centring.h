@@ -32,12 +32,10 @@ Eigen::Vector3d centre_of_mass(const SphereProblem& problem, const std::vector<E
 // turns over. So the step is tried at 1, 1/4, 1/16 and 1/64 of its length and taken only if it
 // turns no triangle over, else skipped. (Not a floor of its own: the relaxation's plane floor,
 // sphere_problem.h, keeps every circumcircle it moves well inside a hemisphere, which is what
-// lets the smaller steps through.) No step is taken while the centre of mass is at most `slack`
-// from the origin. Returns the length of the centre of mass before the step, and whether the
-// step was taken in `*moved` (if not NULL). `scratch` is a buffer.
+// lets the smaller steps through.) Returns the length of the centre of mass before the step, and
+// whether the step was taken in `*moved` (if not NULL). `scratch` is a buffer.
 double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
-                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved,
-                     double slack = 0.0);
+                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved);
 
 // Centring steps until the centre of mass is shorter than `tolerance`, a step is refused or
 // `max_steps` were taken; returns the steps taken.

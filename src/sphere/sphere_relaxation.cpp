@@ -133,11 +133,6 @@ double squared_move_modulo_rotation(const std::vector<Eigen::Vector3d>& after,
 
 constexpr int64_t kMeasureEvery = 4;
 
-// The relaxation boosts the map back towards the centre only once its centre of mass is this
-// far from the origin: a boost and its fold check cost about a fifth of a sweep
-// (docs/sphere-status.md), and a sweep moves the centre by much less than this.
-constexpr double kCentringSlack = 1e-3;
-
 }  // namespace
 
 RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector<double>& weights,
@@ -160,11 +155,6 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
         // The move is measured over every kMeasureEvery-th sweep (it costs a copy and two passes).
         const bool measure = (report.sweeps + 1) % kMeasureEvery == 0 ||
                              report.sweeps + 1 == options.max_sweeps || report.sweeps == 0;
-        if (measure && !options.literal) {
-            // Measured from a centred map to a centred one, so that undoing the drift of the
-            // sweeps in between (kCentringSlack) does not count as a move.
-            centring_step(problem, u, scratch, pool, nullptr);
-        }
         if (measure) before = u;
         if (options.literal) {
             for (int32_t i = 0; i < n; ++i) relaxer.update(i, false);
@@ -178,7 +168,7 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
                         return refused;
                     });
             }
-            centring_step(problem, u, scratch, pool, nullptr, measure ? 0.0 : kCentringSlack);
+            centring_step(problem, u, scratch, pool, nullptr);
         }
         ++report.sweeps;
         if (!measure) continue;
