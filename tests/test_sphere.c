@@ -16,6 +16,7 @@
 #include <cmocka.h>
 
 #include "raps.h"
+#include "support/exact_orientation.h"
 #include "support/test_meshes.h"
 
 #ifndef M_PI
@@ -54,8 +55,9 @@ static void cross3(const double* a, const double* b, double* out) {
 }
 
 /* What makes a spherical map a bijection that has not collapsed: unit points, every triangle
- * counter-clockwise seen from outside (det > 0), signed spherical areas (Van Oosterom and
- * Strackee) adding up to 4 pi, and the 3D-area-weighted centre of mass near the origin. */
+ * counter-clockwise seen from outside (det > 0, by the exact sign), signed spherical areas (Van
+ * Oosterom and Strackee) adding up to 4 pi, and the 3D-area-weighted centre of mass near the
+ * origin. */
 typedef struct sphere_check {
     size_t folded;
     double area_sum;
@@ -72,10 +74,12 @@ static sphere_check check_sphere_map(const test_mesh* mesh, const double* u) {
     for (size_t t = 0; t < mesh->index_count; t += 3) {
         const uint32_t* v = mesh->indices + t;
         const double *a = u + 3 * v[0], *b = u + 3 * v[1], *d = u + 3 * v[2];
-        double bc[3];
-        cross3(b, d, bc);
-        const double det = dot3(a, bc);
-        c.folded += !(det > 0);
+        double ab[3], ad[3], n_abd[3];
+        sub3(b, a, ab);
+        sub3(d, a, ad);
+        cross3(ab, ad, n_abd);
+        const double det = dot3(a, n_abd); /* det[a, b, d], rounded relative to its size */
+        c.folded += exact_orientation_sign(a, b, d) <= 0;
         c.area_sum += 2.0 * atan2(det, 1.0 + dot3(a, b) + dot3(b, d) + dot3(d, a));
         double e1[3], e2[3], n[3];
         sub3(mesh->positions + 3 * v[1], mesh->positions + 3 * v[0], e1);

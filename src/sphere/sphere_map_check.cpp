@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "sphere/spherical_geometry.h"
+#include "sphere/exact_orientation.h"
 
 namespace raps {
 
@@ -14,7 +14,7 @@ FoldCount count_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector3
     progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             const Triangle& v = mesh.triangles[t];
-            if (orientation(points[v[0]], points[v[1]], points[v[2]]) > 0.0) continue;
+            if (exact_orientation_sign(points[v[0]], points[v[1]], points[v[2]]) > 0) continue;
             if (count.first < 0) count.first = static_cast<int64_t>(t);
             ++count.folded;
         }
@@ -33,10 +33,11 @@ void require_bijective_sphere_map(const TriangleMesh& mesh,
     std::string message = "sphere domain: no fold-free map found: ";
     if (count.folded > 0) {
         const Triangle& v = mesh.triangles[count.first];
-        message += std::to_string(count.folded) + " of " + std::to_string(mesh.triangles.size()) +
-                   " spherical triangles fold (det <= 0 in double precision), the first " +
-                   std::to_string(count.first) + " (vertices " + std::to_string(v[0]) + ", " +
-                   std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
+        message +=
+            std::to_string(count.folded) + " of " + std::to_string(mesh.triangles.size()) +
+            " spherical triangles fold (det <= 0, exactly, for the points as stored), the first " +
+            std::to_string(count.first) + " (vertices " + std::to_string(v[0]) + ", " +
+            std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
     }
     if (count.off_sphere > 0) {
         message += std::string(count.folded > 0 ? "; " : "") + std::to_string(count.off_sphere) +

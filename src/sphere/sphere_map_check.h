@@ -5,7 +5,8 @@
 // e^-(length / radius), and a capsule of aspect 50 has triangles of 1e-22 of the sphere, far
 // below the 1e-16 that doubles resolve on it. Measured on such inputs (docs/sphere-status.md):
 // up to thousands of triangles with det[a, b, c] <= 0, which the old pipeline returned as a
-// success. The check is the exact orientation test of the statistics and of uvmetrics.
+// success. The check is the exact sign of det[a, b, c] for the points as stored
+// (exact_orientation.h), not a rounded determinant.
 #pragma once
 
 #include <cstdint>

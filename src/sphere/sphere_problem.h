@@ -45,11 +45,10 @@ SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges,
 // parked at det = 0 (cow: the centre of mass drifted to 0.24).
 constexpr double kPlaneFloor = 0.3;
 
-// Whether triangle abc keeps the plane floor, decided without a division or a root.
-inline bool above_plane_floor(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              const Eigen::Vector3d& c) {
-    const double det = a.dot(b.cross(c));
-    return det > 0.0 && det * det >= kPlaneFloor * kPlaneFloor * (b - a).cross(c - a).squaredNorm();
+// Whether a triangle keeps the plane floor, given its det[a, b, c] = a . n and the normal
+// n = (b - a) x (c - a); decided without a division or a root.
+inline bool above_plane_floor(double det, const Eigen::Vector3d& n) {
+    return det > 0.0 && det * det >= kPlaneFloor * kPlaneFloor * n.squaredNorm();
 }
 
 // Whether moving one corner of a triangle from `before` to `after` (b and c staying) makes it
@@ -57,9 +56,10 @@ inline bool above_plane_floor(const Eigen::Vector3d& a, const Eigen::Vector3d& b
 // a division).
 inline bool no_worse(const Eigen::Vector3d& before, const Eigen::Vector3d& after,
                      const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const double det_before = before.dot(b.cross(c)), det_after = after.dot(b.cross(c));
-    const double n_before = (b - before).cross(c - before).norm();
-    const double n_after = (b - after).cross(c - after).norm();
+    const Eigen::Vector3d cross_before = (b - before).cross(c - before);
+    const Eigen::Vector3d cross_after = (b - after).cross(c - after);
+    const double det_before = before.dot(cross_before), det_after = after.dot(cross_after);
+    const double n_before = cross_before.norm(), n_after = cross_after.norm();
     return det_after >= det_before && det_after * n_before >= det_before * n_after;
 }
 

@@ -28,8 +28,8 @@ std::vector<double> normalized_rows(const VertexAdjacency& adjacency,
     return normalized;
 }
 
-// det[a, b, c] of unit vectors is rounded by less than this (a few units of 2^-52), so above it
-// every vertex order of the triangle gives the same sign.
+// det[a, b, c] of unit vectors is rounded by less than this (a few units of 2^-52, however it is
+// evaluated), so above it every vertex order of the triangle gives the same sign.
 constexpr double kSignCertain = 1e-13;
 
 class Relaxer {
@@ -71,12 +71,12 @@ class Relaxer {
             const Eigen::Vector3d& b = u_[stars.first[e]];
             const Eigen::Vector3d& c = u_[stars.second[e]];
             const int32_t t = stars.triangle[e];
-            if (candidate.dot(b.cross(c)) < kSignCertain && turns_over(t, i, candidate)) {
-                return false;
-            }
-            if (!above_plane_floor(candidate, b, c) && !no_worse(u_[i], candidate, b, c)) {
-                return false;
-            }
+            // One normal for both tests: det = candidate . n is det[candidate, b, c], rounded
+            // relative to the triangle's size (spherical_geometry.h).
+            const Eigen::Vector3d n = (b - candidate).cross(c - candidate);
+            const double det = candidate.dot(n);
+            if (det < kSignCertain && turns_over(t, i, candidate)) return false;
+            if (!above_plane_floor(det, n) && !no_worse(u_[i], candidate, b, c)) return false;
         }
         return true;
     }
