@@ -176,7 +176,17 @@ enum {
     RAPS_ERROR_GROUP_COUNT = 24,
     /* Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
      * joins by an edge (the message names the pair). */
-    RAPS_ERROR_SEAM_NOT_AN_EDGE = 25
+    RAPS_ERROR_SEAM_NOT_AN_EDGE = 25,
+    /* Atlas domain with RAPS_PARAM_ATLAS_REPACK: the mesh's corner uvs
+     * (raps_mesh_set_corner_uvs_f32/f64) are not three per triangle (never set, the indices
+     * changed since, or the count was wrong). */
+    RAPS_ERROR_UV_COUNT = 26,
+    /* raps_mesh_set_corner_uvs_f32/f64: a uv coordinate is NaN, infinite or beyond +-1e30. */
+    RAPS_ERROR_NON_FINITE_UV = 27,
+    /* Atlas domain with RAPS_PARAM_ATLAS_REPACK: a uv chart of the input has 3D area but
+     * (numerically) no uv area (below 1e-12 times its uv bounding box's squared diagonal): it
+     * has no shape to keep. The message names its first triangle. */
+    RAPS_ERROR_DEGENERATE_UV_CHART = 28
 };
 
 /* A short static description of a status ("invalid argument", ...); "unknown status" for values
@@ -254,6 +264,26 @@ RAPS_API raps_status raps_mesh_set_triangle_groups(raps_mesh* mesh, const uint32
  * the first such pair. */
 RAPS_API raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pairs,
                                               size_t edge_count);
+
+/* The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+ * ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+ * pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+ * pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+ * f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+ * are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+ * Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+ * removes them (the default: none). The data is copied; the pointer need not be aligned. The
+ * count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+ * set in either order.
+ * Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+ * smaller than one pair, or so large that the pairs would span more bytes than an address
+ * reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+ * +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+ * failure. When repacked: UV_COUNT (not three per triangle). */
+RAPS_API raps_status raps_mesh_set_corner_uvs_f32(raps_mesh* mesh, const float* uv,
+                                                  size_t corner_count, size_t stride_bytes);
+RAPS_API raps_status raps_mesh_set_corner_uvs_f64(raps_mesh* mesh, const double* uv,
+                                                  size_t corner_count, size_t stride_bytes);
 
 /* Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers. */
 RAPS_API size_t raps_mesh_vertex_count(const raps_mesh* mesh);
@@ -389,7 +419,24 @@ enum {
      * normals) do not split charts. 1 keeps every edge where the triangles on its two sides use
      * different input vertices as a chart boundary: the seams of the input's existing uvs,
      * when those are expressed, as usual, by split vertices. */
-    RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
+    RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46,
+    /* int, 0 or 1. 1 repacks the mesh's own uvs (raps_mesh_set_corner_uvs_f32/f64) instead of
+     * mapping it again: the charts are the uv islands (triangles sharing an edge, whose two
+     * vertices are welded by position as RAPS_PARAM_WELD_TOLERANCE says, are in one chart when
+     * their corner uvs at both ends are equal, bit for bit), each scaled uniformly to the
+     * atlas's one texel density (its uv area in texels is its 3D area in world units times the
+     * density squared) and packed like mapped charts, by every packing setting (resolution or
+     * density, pages, padding, margin, block alignment, rotation, mesh per page, whole texels).
+     * A chart's uvs are only moved, turned (as RAPS_PARAM_ATLAS_ROTATION allows) and uniformly
+     * scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
+     * triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
+     * raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
+     * area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
+     * stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
+     * used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
+     * chart, uv) and raps_stats.adaptive_solves is 0. Errors: UV_COUNT,
+     * DEGENERATE_UV_CHART. Default 0. */
+    RAPS_PARAM_ATLAS_REPACK = 47
 };
 
 /* RAPS_PARAM_ATLAS_ROTATION values */
@@ -592,7 +639,8 @@ RAPS_API void raps_result_destroy(raps_result* result);
  * INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
  * MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
  * INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
- * seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges). */
+ * seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges); UV_COUNT and
+ * DEGENERATE_UV_CHART when repacking (RAPS_PARAM_ATLAS_REPACK). */
 RAPS_API raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settings,
                                        raps_result* result);
 

@@ -55,6 +55,9 @@ RAPS_CHECK_CODE(kOpenMesh, RAPS_ERROR_OPEN_MESH);
 RAPS_CHECK_CODE(kInvalidTransform, RAPS_ERROR_INVALID_TRANSFORM);
 RAPS_CHECK_CODE(kGroupCount, RAPS_ERROR_GROUP_COUNT);
 RAPS_CHECK_CODE(kSeamNotAnEdge, RAPS_ERROR_SEAM_NOT_AN_EDGE);
+RAPS_CHECK_CODE(kUvCount, RAPS_ERROR_UV_COUNT);
+RAPS_CHECK_CODE(kNonFiniteUv, RAPS_ERROR_NON_FINITE_UV);
+RAPS_CHECK_CODE(kDegenerateUvChart, RAPS_ERROR_DEGENERATE_UV_CHART);
 #undef RAPS_CHECK_CODE
 
 struct raps_mesh {
@@ -188,6 +191,7 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, "atlas_keep_input_seams", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_REPACK, "atlas_repack", false, 0, 1, 0},
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -271,6 +275,8 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.atlas_whole_texels ? 1 : 0;
         case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
             return s.atlas_keep_input_seams ? 1 : 0;
+        case RAPS_PARAM_ATLAS_REPACK:
+            return s.atlas_repack ? 1 : 0;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -346,6 +352,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
             break;
         case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
             s.atlas_keep_input_seams = v != 0;
+            break;
+        case RAPS_PARAM_ATLAS_REPACK:
+            s.atlas_repack = v != 0;
             break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
@@ -427,6 +436,50 @@ void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) 
         }
     }
     mesh->mesh.positions = std::move(positions);
+}
+
+// Reads `count` uv pairs of type T at `stride` bytes into doubles, refusing non-finite and huge
+// values as positions are refused; NULL with 0 removes them.
+template <typename T>
+void read_corner_uvs(raps_mesh* mesh, const T* uv, size_t count, size_t stride) {
+    require(mesh != nullptr, "mesh is NULL");
+    require(uv != nullptr || count == 0, "uv pointer is NULL");
+    if (count > static_cast<size_t>(3 * kMaxTriangles)) {
+        throw Error(ErrorCode::kTooLarge, "corner_count " + std::to_string(count) +
+                                              " is more than the corners of the largest mesh "
+                                              "raps accepts (3 * 2^28)");
+    }
+    if (stride == 0) stride = 2 * sizeof(T);
+    if (stride < 2 * sizeof(T)) {
+        throw Error(ErrorCode::kInvalidArgument, "stride_bytes " + std::to_string(stride) +
+                                                     " is smaller than one uv pair (" +
+                                                     std::to_string(2 * sizeof(T)) + " bytes)");
+    }
+    if (count > 1 && stride > (SIZE_MAX - 2 * sizeof(T)) / (count - 1)) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "corner_count " + std::to_string(count) + " pairs at stride_bytes " +
+                        std::to_string(stride) + " span more bytes than an address can reach");
+    }
+    std::vector<Eigen::Vector2d> corner_uv(count);
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(uv);
+    for (size_t i = 0; i < count; ++i) {
+        T pair[2];
+        std::memcpy(pair, bytes + i * stride, sizeof(pair));
+        for (int c = 0; c < 2; ++c) {
+            const double value = static_cast<double>(pair[c]);
+            if (!(std::abs(value) <= kMaxCoordinate)) {  // also NaN
+                char text[32];
+                std::snprintf(text, sizeof(text), "%g", value);
+                throw Error(ErrorCode::kNonFiniteUv,
+                            "corner " + std::to_string(i) + " (triangle " +
+                                std::to_string(i / 3) + ") has a uv " +
+                                (std::isfinite(value) ? "beyond 1e30 (" : "that is not finite (") +
+                                text + ")");
+            }
+            corner_uv[i][c] = value;
+        }
+    }
+    mesh->mesh.corner_uv = std::move(corner_uv);
 }
 
 template <typename T>
@@ -703,6 +756,12 @@ const char* raps_status_string(raps_status status) {
             return "triangle group count differs from the triangle count";
         case RAPS_ERROR_SEAM_NOT_AN_EDGE:
             return "seam edge is not an edge of the mesh";
+        case RAPS_ERROR_UV_COUNT:
+            return "corner uv count differs from three per triangle";
+        case RAPS_ERROR_NON_FINITE_UV:
+            return "non-finite uv";
+        case RAPS_ERROR_DEGENERATE_UV_CHART:
+            return "uv chart with zero area";
         default:
             return "unknown status";
     }
@@ -777,6 +836,18 @@ raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pai
             edges[i] = {vertex_pairs[2 * i], vertex_pairs[2 * i + 1]};
         mesh->mesh.seam_edges = std::move(edges);
     });
+}
+
+raps_status raps_mesh_set_corner_uvs_f32(raps_mesh* mesh, const float* uv, size_t corner_count,
+                                         size_t stride_bytes) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_corner_uvs(mesh, uv, corner_count, stride_bytes); });
+}
+
+raps_status raps_mesh_set_corner_uvs_f64(raps_mesh* mesh, const double* uv, size_t corner_count,
+                                         size_t stride_bytes) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_corner_uvs(mesh, uv, corner_count, stride_bytes); });
 }
 
 size_t raps_mesh_vertex_count(const raps_mesh* mesh) {

@@ -214,7 +214,7 @@ Parameterization parameterize_scene(const std::vector<ScenePart>& parts, const S
         meshes.push_back(part.mesh);
         transforms.push_back(part.transform);
     }
-    const SceneMesh scene = combine_scene(meshes, transforms);
+    const SceneMesh scene = combine_scene(meshes, transforms, settings.atlas_repack);
     check_limits(scene.mesh, settings);
     Parameterization out = atlas_map(scene.mesh, scene.parts, settings, progress);
     // Each mesh's share reads as its own: remap to its own input vertices, indices to its own

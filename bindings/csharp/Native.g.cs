@@ -369,6 +369,22 @@ namespace Raps
         /// joins by an edge (the message names the pair).
         /// </summary>
         public const int RAPS_ERROR_SEAM_NOT_AN_EDGE = 25;
+        /// <summary>
+        /// Atlas domain with RAPS_PARAM_ATLAS_REPACK: the mesh's corner uvs
+        /// (raps_mesh_set_corner_uvs_f32/f64) are not three per triangle (never set, the indices
+        /// changed since, or the count was wrong).
+        /// </summary>
+        public const int RAPS_ERROR_UV_COUNT = 26;
+        /// <summary>
+        /// raps_mesh_set_corner_uvs_f32/f64: a uv coordinate is NaN, infinite or beyond +-1e30.
+        /// </summary>
+        public const int RAPS_ERROR_NON_FINITE_UV = 27;
+        /// <summary>
+        /// Atlas domain with RAPS_PARAM_ATLAS_REPACK: a uv chart of the input has 3D area but
+        /// (numerically) no uv area (below 1e-12 times its uv bounding box's squared diagonal): it
+        /// has no shape to keep. The message names its first triangle.
+        /// </summary>
+        public const int RAPS_ERROR_DEGENERATE_UV_CHART = 28;
 
         /// <summary>
         /// int. The parameter domain. Default RAPS_DOMAIN_DISK.
@@ -543,6 +559,25 @@ namespace Raps
         /// when those are expressed, as usual, by split vertices.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46;
+        /// <summary>
+        /// int, 0 or 1. 1 repacks the mesh's own uvs (raps_mesh_set_corner_uvs_f32/f64) instead of
+        /// mapping it again: the charts are the uv islands (triangles sharing an edge, whose two
+        /// vertices are welded by position as RAPS_PARAM_WELD_TOLERANCE says, are in one chart when
+        /// their corner uvs at both ends are equal, bit for bit), each scaled uniformly to the
+        /// atlas's one texel density (its uv area in texels is its 3D area in world units times the
+        /// density squared) and packed like mapped charts, by every packing setting (resolution or
+        /// density, pages, padding, margin, block alignment, rotation, mesh per page, whole texels).
+        /// A chart's uvs are only moved, turned (as RAPS_PARAM_ATLAS_ROTATION allows) and uniformly
+        /// scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
+        /// triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
+        /// raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
+        /// area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
+        /// stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
+        /// used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
+        /// chart, uv) and raps_stats.adaptive_solves is 0. Errors: UV_COUNT,
+        /// DEGENERATE_UV_CHART. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_REPACK = 47;
 
         // RAPS_PARAM_ATLAS_ROTATION values
         /// <summary>
@@ -843,6 +878,46 @@ namespace Raps
         public static extern int raps_mesh_set_seam_edges(MeshHandle mesh, uint[] vertex_pairs, UIntPtr edge_count);
 
         /// <summary>
+        /// The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+        /// ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+        /// pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+        /// pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+        /// f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+        /// are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+        /// Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+        /// removes them (the default: none). The data is copied; the pointer need not be aligned. The
+        /// count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+        /// set in either order.
+        /// Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+        /// smaller than one pair, or so large that the pairs would span more bytes than an address
+        /// reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+        /// +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+        /// failure. When repacked: UV_COUNT (not three per triangle).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_corner_uvs_f32(MeshHandle mesh, float[] uv, UIntPtr corner_count, UIntPtr stride_bytes);
+
+        /// <summary>
+        /// The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+        /// ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+        /// pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+        /// pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+        /// f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+        /// are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+        /// Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+        /// removes them (the default: none). The data is copied; the pointer need not be aligned. The
+        /// count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+        /// set in either order.
+        /// Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+        /// smaller than one pair, or so large that the pairs would span more bytes than an address
+        /// reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+        /// +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+        /// failure. When repacked: UV_COUNT (not three per triangle).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_corner_uvs_f64(MeshHandle mesh, double[] uv, UIntPtr corner_count, UIntPtr stride_bytes);
+
+        /// <summary>
         /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -960,7 +1035,8 @@ namespace Raps
         /// INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
         /// MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
         /// INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
-        /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges).
+        /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges); UV_COUNT and
+        /// DEGENERATE_UV_CHART when repacking (RAPS_PARAM_ATLAS_REPACK).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_parameterize(MeshHandle mesh, SettingsHandle settings, ResultHandle result);

@@ -13,6 +13,7 @@
 #include "atlas/chart_segmentation.h"
 #include "atlas/page_packing.h"
 #include "atlas/user_seams.h"
+#include "atlas/uv_repack.h"
 #include "atlas/vertex_welding.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
@@ -305,30 +306,16 @@ void check_page_settings(const Settings& settings) {
     }
 }
 
-}  // namespace
+// The charts and where each input triangle's corners come from, with each chart's part.
+struct ChartSet {
+    std::vector<AtlasChart> charts;
+    CornerSources sources;
+    std::vector<int32_t> part;  // per chart
+};
 
-int32_t AtlasParts::part_of_triangle(int32_t triangle) const {
-    return static_cast<int32_t>(
-        std::upper_bound(first_triangle.begin(), first_triangle.end(), triangle) -
-        first_triangle.begin() - 1);
-}
-
-AtlasParts single_part(const TriangleMesh& mesh) {
-    AtlasParts parts;
-    parts.first_vertex = {0, mesh.vertex_count()};
-    parts.first_triangle = {0, mesh.triangle_count()};
-    return parts;
-}
-
-AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
-                        const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
-    {
-        PhaseTimer timer(Phase::kValidate, progress, times);
-        check_page_settings(settings);
-        check_indices_in_range(mesh);  // everything else an atlas takes as it comes
-        check_user_seams(mesh, "");
-        timer.finish();
-    }
+// Steps 2-4: the surface, grown into charts, each cut to a disk and mapped.
+ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
+                       const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
     const std::vector<int32_t> welded = weld_parts(mesh, parts, settings.weld_tolerance);
     const UserSeams seams(mesh, settings.atlas_keep_input_seams);
@@ -351,21 +338,78 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
     ChartLimits limits;
     limits.target_stretch_l2 = settings.atlas_target_l2;
     limits.max_stretch_linf = settings.atlas_max_linf;
-    const std::vector<AtlasChart> charts =
-        build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
+    ChartSet set;
+    set.charts = build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
     chart_timer.finish();
+    set.sources = corner_sources(mesh, parts, welded, surface, set.charts);
+    for (const AtlasChart& chart : set.charts) {
+        const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
+        set.part.push_back(parts.part_of_triangle(first));
+    }
+    return set;
+}
+
+// Repacking: the input's own uv islands are the charts, as they are (uv_repack.h).
+ChartSet repacked_charts(const TriangleMesh& mesh, const AtlasParts& parts,
+                         const Settings& settings, const Progress& progress, PhaseTimes& times) {
+    PhaseTimer topology_timer(Phase::kTopology, progress, times);
+    const std::vector<int32_t> welded = weld_parts(mesh, parts, settings.weld_tolerance);
+    topology_timer.finish();
+    PhaseTimer segment_timer(Phase::kSegment, progress, times);
+    RepackedCharts repacked = repack_charts(mesh, parts, welded);
+    ChartSet set;
+    set.charts = std::move(repacked.charts);
+    set.sources.chart = std::move(repacked.chart_of);
+    set.sources.vertex = std::move(repacked.corner_vertex);
+    set.sources.point_chart_part = std::move(repacked.point_chart_part);
+    set.part.assign(set.charts.size(), 0);
+    for (int32_t t = mesh.triangle_count() - 1; t >= 0; --t) {
+        const int32_t c = set.sources.chart[t];
+        if (c < static_cast<int32_t>(set.part.size())) set.part[c] = parts.part_of_triangle(t);
+    }
+    segment_timer.finish();
+    return set;
+}
+
+}  // namespace
+
+int32_t AtlasParts::part_of_triangle(int32_t triangle) const {
+    return static_cast<int32_t>(
+        std::upper_bound(first_triangle.begin(), first_triangle.end(), triangle) -
+        first_triangle.begin() - 1);
+}
+
+AtlasParts single_part(const TriangleMesh& mesh) {
+    AtlasParts parts;
+    parts.first_vertex = {0, mesh.vertex_count()};
+    parts.first_triangle = {0, mesh.triangle_count()};
+    return parts;
+}
+
+AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
+                        const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
+    {
+        PhaseTimer timer(Phase::kValidate, progress, times);
+        check_page_settings(settings);
+        check_indices_in_range(mesh);  // everything else an atlas takes as it comes
+        check_user_seams(mesh, "");
+        if (settings.atlas_repack) check_corner_uvs(mesh, "");
+        timer.finish();
+    }
+    const ChartSet set = settings.atlas_repack
+                             ? repacked_charts(mesh, parts, settings, progress, times)
+                             : mapped_charts(mesh, parts, settings, progress, times, pool);
 
     PhaseTimer pack_timer(Phase::kPack, progress, times);
-    const CornerSources sources = corner_sources(mesh, parts, welded, surface, charts);
     std::vector<PackInput> inputs;
-    inputs.reserve(charts.size());
-    for (const AtlasChart& chart : charts) {
-        const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
-        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation,
-                          parts.part_of_triangle(first)});
+    inputs.reserve(set.charts.size());
+    for (size_t c = 0; c < set.charts.size(); ++c) {
+        const AtlasChart& chart = set.charts[c];
+        inputs.push_back(
+            {&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation, set.part[c]});
     }
     const PackResult packed = pack(inputs, settings, pool);
-    refuse_collapsed_atlas(mesh, settings.weld_tolerance, charts, packed);
+    refuse_collapsed_atlas(mesh, settings.weld_tolerance, set.charts, packed);
     pack_timer.finish();
 
     AtlasOutput out;
@@ -373,9 +417,9 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
     out.height = packed.height;
     out.page_count = packed.page_count;
     out.texels_per_unit = packed.texels_per_unit;
-    for (const AtlasChart& chart : charts) out.adaptive_solves += chart.map.adaptive_solves;
-    emit_output(mesh, parts, charts, sources, packed, out);
-    record_charts(mesh, parts, charts, sources, packed, out);
+    for (const AtlasChart& chart : set.charts) out.adaptive_solves += chart.map.adaptive_solves;
+    emit_output(mesh, parts, set.charts, set.sources, packed, out);
+    record_charts(mesh, parts, set.charts, set.sources, packed, out);
     return out;
 }
 

@@ -7,6 +7,8 @@
 // vertices and triangles contiguous and in the scene's order: no chart crosses from one part to
 // another (parts are welded apart), and each part's output vertices and triangles come out
 // contiguous too.
+// With RAPS_PARAM_ATLAS_REPACK the input's own uv islands replace steps 2-4 (uv_repack.h): weld
+// -> islands -> pack -> output.
 #pragma once
 
 #include <cstdint>

@@ -53,6 +53,7 @@ struct Settings {
     bool atlas_mesh_per_page = false;     // a scene's mesh on one page, with a density
     bool atlas_whole_texels = false;      // without a density: whole texels on one page
     bool atlas_keep_input_seams = false;  // input vertex splits stay chart boundaries
+    bool atlas_repack = false;            // pack the input's own uv charts, no new map
 };
 
 }  // namespace raps

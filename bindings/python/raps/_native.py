@@ -73,6 +73,16 @@ RAPS_ERROR_GROUP_COUNT = 24
 #   Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
 #   joins by an edge (the message names the pair).
 RAPS_ERROR_SEAM_NOT_AN_EDGE = 25
+#   Atlas domain with RAPS_PARAM_ATLAS_REPACK: the mesh's corner uvs
+#   (raps_mesh_set_corner_uvs_f32/f64) are not three per triangle (never set, the indices
+#   changed since, or the count was wrong).
+RAPS_ERROR_UV_COUNT = 26
+#   raps_mesh_set_corner_uvs_f32/f64: a uv coordinate is NaN, infinite or beyond +-1e30.
+RAPS_ERROR_NON_FINITE_UV = 27
+#   Atlas domain with RAPS_PARAM_ATLAS_REPACK: a uv chart of the input has 3D area but
+#   (numerically) no uv area (below 1e-12 times its uv bounding box's squared diagonal): it
+#   has no shape to keep. The message names its first triangle.
+RAPS_ERROR_DEGENERATE_UV_CHART = 28
 
 #   int. The parameter domain. Default RAPS_DOMAIN_DISK.
 RAPS_PARAM_DOMAIN = 1
@@ -187,6 +197,23 @@ RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45
 #   different input vertices as a chart boundary: the seams of the input's existing uvs,
 #   when those are expressed, as usual, by split vertices.
 RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
+#   int, 0 or 1. 1 repacks the mesh's own uvs (raps_mesh_set_corner_uvs_f32/f64) instead of
+#   mapping it again: the charts are the uv islands (triangles sharing an edge, whose two
+#   vertices are welded by position as RAPS_PARAM_WELD_TOLERANCE says, are in one chart when
+#   their corner uvs at both ends are equal, bit for bit), each scaled uniformly to the
+#   atlas's one texel density (its uv area in texels is its 3D area in world units times the
+#   density squared) and packed like mapped charts, by every packing setting (resolution or
+#   density, pages, padding, margin, block alignment, rotation, mesh per page, whole texels).
+#   A chart's uvs are only moved, turned (as RAPS_PARAM_ATLAS_ROTATION allows) and uniformly
+#   scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
+#   triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
+#   raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
+#   area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
+#   stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
+#   used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
+#   chart, uv) and raps_stats.adaptive_solves is 0. Errors: UV_COUNT,
+#   DEGENERATE_UV_CHART. Default 0.
+RAPS_PARAM_ATLAS_REPACK = 47
 
 # RAPS_PARAM_ATLAS_ROTATION values
 #   Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
@@ -453,6 +480,8 @@ FUNCTIONS = {
     'raps_mesh_set_transform': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double)]),
     'raps_mesh_set_triangle_groups': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_seam_edges': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_mesh_set_corner_uvs_f32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_float), ctypes.c_size_t, ctypes.c_size_t]),
+    'raps_mesh_set_corner_uvs_f64': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_mesh_vertex_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_triangle_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_last_error': (ctypes.c_char_p, [ctypes.POINTER(raps_mesh)]),
