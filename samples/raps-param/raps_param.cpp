@@ -93,6 +93,11 @@ atlas options:
   --keep-uv-seams            keep the input's uv seams as chart boundaries: an OBJ's corners
                              with different `vt` are different vertices to the atlas, which
                              does not weld across them (every face corner needs a vt)
+  --repack                   keep each input's own uvs: the islands of its `vt` (faces that
+                             share an edge whose two ends name equal uvs) are the charts,
+                             each scaled to the one density and packed, never mapped again;
+                             only moved, turned (--rotate) and scaled; flipped or overlapping
+                             faces stay so (every face corner needs a vt)
   --obj-groups               no chart crosses from one OBJ group to another: faces under
                              different `g` or `usemtl` lines never share a chart
   --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
@@ -210,6 +215,7 @@ struct Options {
     std::string output;
     bool keep_uv_seams = false;  // the library sees a vertex per (v, vt) pair of the OBJ
     bool obj_groups = false;     // OBJ `g` / `usemtl` as triangle groups
+    bool repack = false;         // the OBJ's own vt as the charts
 };
 
 // A flag that sets one int parameter to 1.
@@ -281,6 +287,11 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
         } else if (arg == "--keep-uv-seams") {
             set_switch(settings, RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS);
             options.keep_uv_seams = true;
+        } else if (arg == "--repack") {
+            check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
+                  [&] { return raps_settings_last_error(settings); });
+            set_switch(settings, RAPS_PARAM_ATLAS_REPACK);
+            options.repack = true;
         } else if (arg == "--obj-groups") {
             options.obj_groups = true;
         } else if (const raps_samples::ParameterFlag* flag =
@@ -315,6 +326,22 @@ struct Input {
     ~Input() { raps_mesh_destroy(mesh); }
 };
 
+// --keep-uv-seams and --repack read the file's vt: every face corner must name one.
+void require_texcoords(const std::string& path, const raps_samples::PolygonMesh& polygons,
+                       const char* flag, raps_status status) {
+    const auto missing =
+        std::find(polygons.texcoord_corners.begin(), polygons.texcoord_corners.end(),
+                  raps_samples::PolygonMesh::kNoTexcoord);
+    if (polygons.texcoord_corners.empty() || missing != polygons.texcoord_corners.end()) {
+        const size_t corner = static_cast<size_t>(missing - polygons.texcoord_corners.begin());
+        throw Failure(status,
+                      path + ": " + flag + " needs an OBJ whose every face corner names a vt" +
+                          (polygons.texcoord_corners.empty()
+                               ? std::string(" (this file has no faces with vt)")
+                               : "; face corner " + std::to_string(corner) + " names none"));
+    }
+}
+
 // With --keep-uv-seams the library gets one vertex per (v, vt) pair, so the file's uv seams are
 // vertex splits it keeps; the OBJ is still written with the file's own `v` (the output's faces
 // are matched to the input's corners in order, never through the remap).
@@ -322,17 +349,7 @@ raps_samples::PolygonMesh library_view(const std::string& path,
                                        const raps_samples::PolygonMesh& polygons,
                                        const Options& options) {
     if (!options.keep_uv_seams) return polygons;
-    const auto missing =
-        std::find(polygons.texcoord_corners.begin(), polygons.texcoord_corners.end(),
-                  raps_samples::PolygonMesh::kNoTexcoord);
-    if (polygons.texcoord_corners.empty() || missing != polygons.texcoord_corners.end()) {
-        const size_t corner = static_cast<size_t>(missing - polygons.texcoord_corners.begin());
-        throw Failure(RAPS_ERROR_INVALID_ARGUMENT,
-                      path + ": --keep-uv-seams needs an OBJ whose every face corner names a vt" +
-                          (polygons.texcoord_corners.empty()
-                               ? std::string(" (this file has no faces with vt)")
-                               : "; face corner " + std::to_string(corner) + " names none"));
-    }
+    require_texcoords(path, polygons, "--keep-uv-seams", RAPS_ERROR_INVALID_ARGUMENT);
     return polygons.split_at_texcoord_seams();
 }
 
@@ -348,6 +365,12 @@ void load_input(const std::string& path, const Options& options, Input& input) {
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
     check(raps_mesh_set_indices_u32(input.mesh, triangles.data(), triangles.size()),
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    if (options.repack) {
+        require_texcoords(path, library, "--repack", RAPS_ERROR_UV_COUNT);
+        const std::vector<double> uv = library.triangle_texcoords();
+        check(raps_mesh_set_corner_uvs_f64(input.mesh, uv.data(), uv.size() / 2, 0),
+              [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    }
     if (options.obj_groups) {
         const std::vector<uint32_t> groups = library.triangle_groups();
         check(raps_mesh_set_triangle_groups(input.mesh, groups.data(), groups.size()),

@@ -54,7 +54,7 @@ std::string json_number(double value) {
 std::string settings_json(const raps_settings* settings) {
     int64_t domain, weights, monitor, iterations, mode, boundary, max_triangles, threads,
         resolution, padding, method, sphere_uv, max_sweeps, alpha_steps, max_width, max_height,
-        rotation, margin, block_align, mesh_per_page, whole_texels, keep_uv_seams;
+        rotation, margin, block_align, mesh_per_page, whole_texels, keep_uv_seams, repack;
     double alpha, weld, hard_edge, max_l2, max_linf, damping, tolerance, texels_per_unit;
     raps_settings_get_int(settings, RAPS_PARAM_DOMAIN, &domain);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_RESOLUTION, &resolution);
@@ -72,6 +72,7 @@ std::string settings_json(const raps_settings* settings) {
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, &mesh_per_page);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS, &whole_texels);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, &keep_uv_seams);
+    raps_settings_get_int(settings, RAPS_PARAM_ATLAS_REPACK, &repack);
     raps_settings_get_int(settings, RAPS_PARAM_WEIGHTS, &weights);
     raps_settings_get_int(settings, RAPS_PARAM_MONITOR, &monitor);
     raps_settings_get_int(settings, RAPS_PARAM_ITERATIONS, &iterations);
@@ -117,7 +118,8 @@ std::string settings_json(const raps_settings* settings) {
                 ", \"block_align\": " + (block_align ? "true" : "false") +
                 ", \"mesh_per_page\": " + (mesh_per_page ? "true" : "false") +
                 ", \"whole_texels\": " + (whole_texels ? "true" : "false") +
-                ", \"keep_uv_seams\": " + (keep_uv_seams ? "true" : "false");
+                ", \"keep_uv_seams\": " + (keep_uv_seams ? "true" : "false") +
+                ", \"repack\": " + (repack ? "true" : "false");
     } else {
         json += std::string(", \"boundary\": \"") + choice_name("--boundary", boundary) + "\"";
     }
