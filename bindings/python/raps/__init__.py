@@ -17,6 +17,10 @@ A thin, safe layer over libraps's C ABI (include/raps.h is the reference):
     first = scene.mesh_range(0)                      # its output vertices and indices
     charts = scene.charts()                          # mesh, page, texel rectangle, ... per chart
 
+    # Existing uvs repacked: one (u, v) per triangle corner, the islands kept as they are.
+    mesh.set_corner_uvs(corner_uvs)
+    repacked = raps.parameterize(mesh, raps.Settings(domain="atlas", atlas_repack=1))
+
 Handles (Mesh, Settings, Result) own their native object: close() or a `with` block frees it at
 once, and garbage collection frees it otherwise; either way exactly once. Errors raise
 raps.Error with the status, its name and the library's message.
@@ -352,6 +356,40 @@ class Mesh(_Handle):
             raise ValueError("raps: a vertex index is outside [0, 2^32)")
         status = _lib.raps_mesh_set_seam_edges(
             self._ptr(), (ctypes.c_uint32 * len(flat))(*flat) if flat else None, len(flat) // 2)
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
+    def set_corner_uvs(self, uvs):
+        """Atlas domain with atlas_repack=1: the mesh's own uvs, one per triangle corner (corner
+        3t + k is corner k of triangle t): an (3t, 2) float32 or float64 numpy array (rows may
+        be strided; other dtypes are converted to float64), or 3t (u, v) sequences, or 6t
+        numbers. None removes them. A non-finite uv raises Error(Status.NON_FINITE_UV); a count
+        that is not three per triangle raises Error(Status.UV_COUNT) when the mesh is repacked."""
+        if uvs is None:
+            status = _lib.raps_mesh_set_corner_uvs_f64(self._ptr(), None, 0, 0)
+        elif _is_ndarray(uvs):
+            array = uvs
+            if array.dtype not in (numpy.float32, numpy.float64):
+                array = array.astype(numpy.float64)
+            if array.ndim == 1:
+                if array.size % 2:
+                    raise ValueError("raps: %d uv values are not a multiple of 2" % array.size)
+                array = array.reshape(-1, 2)
+            if array.ndim != 2 or array.shape[1] != 2:
+                raise ValueError("raps: corner uvs must have shape (n, 2), not %s"
+                                 % (array.shape,))
+            # As for positions: rows stride_bytes apart, each two packed values.
+            if array.strides[1] != array.itemsize or array.strides[0] < 2 * array.itemsize:
+                array = numpy.ascontiguousarray(array)
+            if array.dtype == numpy.float32:
+                setter, ctype = _lib.raps_mesh_set_corner_uvs_f32, ctypes.c_float
+            else:
+                setter, ctype = _lib.raps_mesh_set_corner_uvs_f64, ctypes.c_double
+            status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)),
+                            array.shape[0], array.strides[0])
+        else:
+            flat = [float(value) for value in _flatten(uvs, 2, "corner uvs")]
+            buffer = (ctypes.c_double * len(flat))(*flat) if flat else None
+            status = _lib.raps_mesh_set_corner_uvs_f64(self._ptr(), buffer, len(flat) // 2, 0)
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
     @property
