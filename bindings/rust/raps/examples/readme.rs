@@ -11,5 +11,23 @@ fn main() -> Result<(), raps::Error> {
     let map = raps::parameterize(&mesh, Some(&settings))?;
     println!("uv of the top: {:?}", map.uvs()?[0]);
     println!("flipped triangles: {}", map.stats()?.flipped_triangles);
+
+    // Those uvs repacked into an atlas at 64 texels per unit: one (u, v) per triangle corner;
+    // each island is only moved, turned and uniformly scaled, never mapped again.
+    let uv = map.uvs()?;
+    let corners: Vec<f32> = map
+        .indices()?
+        .iter()
+        .flat_map(|&v| uv[v as usize])
+        .collect();
+    let mut mesh = mesh;
+    mesh.set_corner_uvs_f32(&corners)?;
+    let mut repack = raps::Settings::new()?;
+    repack
+        .set_domain(raps::Domain::ATLAS)?
+        .set_atlas_repack(true)?;
+    repack.set_float(raps::Param::ATLAS_TEXELS_PER_UNIT, 64.0)?;
+    let atlas = raps::parameterize(&mesh, Some(&repack))?;
+    println!("repacked charts: {}", atlas.stats()?.chart_count);
     Ok(())
 }
