@@ -16,6 +16,24 @@ static class Example
             float[] uvs = result.GetUvs();
             Console.WriteLine("uv of the top: ({0}, {1})", uvs[0], uvs[1]);
             Console.WriteLine("flipped triangles: {0}", result.GetStats().FlippedTriangles);
+
+            // Those uvs repacked into an atlas at 64 texels per unit: one (u, v) per triangle
+            // corner; each island is only moved, turned and uniformly scaled, never mapped again.
+            uint[] triangles = result.GetIndices();
+            var corners = new float[2 * triangles.Length];
+            for (int c = 0; c < triangles.Length; c++)
+            {
+                corners[2 * c] = uvs[2 * triangles[c]];
+                corners[2 * c + 1] = uvs[2 * triangles[c] + 1];
+            }
+            mesh.SetCornerUvs(corners);
+            using (var repack = new Settings { AtlasRepack = true })
+            {
+                repack.SetInt(Param.Domain, (long)Domain.Atlas);
+                repack.SetFloat(Param.AtlasTexelsPerUnit, 64.0);
+                using (var atlas = Library.Parameterize(mesh, repack))
+                    Console.WriteLine("repacked charts: {0}", atlas.GetStats().ChartCount);
+            }
         }
     }
 }
