@@ -436,7 +436,36 @@ enum {
      * used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
      * chart, uv) and raps_stats.adaptive_solves is 0. Errors: UV_COUNT,
      * DEGENERATE_UV_CHART. Default 0. */
-    RAPS_PARAM_ATLAS_REPACK = 47
+    RAPS_PARAM_ATLAS_REPACK = 47,
+    /* int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
+     * or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
+     * one mesh in one mesh) then costs no extra texels. Two charts stack when they are the same
+     * triangles over the same chart vertices (as copies with the same vertex and triangle order
+     * give) and their 3D vertices agree, vertex for vertex, up to a rigid motion (or a mirror,
+     * with RAPS_STACK_MIRRORED) within RAPS_PARAM_ATLAS_STACK_TOLERANCE; when repacking, their
+     * own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
+     * chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
+     * RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
+     * texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
+     * that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
+     * seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
+     * of its own, each then stacked on its original. A copy drawn mirrored (a transform with
+     * det < 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
+     * counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
+     * stack. A lightmap needs every chart its own texels: leave this off for one. Default
+     * NONE. */
+    RAPS_PARAM_ATLAS_STACK = 48,
+    /* float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
+     * farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
+     * puts the chart it shares. Default 1e-4. */
+    RAPS_PARAM_ATLAS_STACK_TOLERANCE = 49
+};
+
+/* RAPS_PARAM_ATLAS_STACK values */
+enum {
+    RAPS_STACK_NONE = 0,     /* every chart its own texels */
+    RAPS_STACK_RIGID = 1,    /* congruent up to a rigid motion: one place */
+    RAPS_STACK_MIRRORED = 2  /* also congruent up to a mirror (the texture appears mirrored) */
 };
 
 /* RAPS_PARAM_ATLAS_ROTATION values */
@@ -789,13 +818,19 @@ typedef struct raps_chart {
     /* Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
      * that gathers degenerate triangles with no chart beside them. */
     double stretch_l2;
+    /* The chart whose texels it shares (RAPS_PARAM_ATLAS_STACK; RAPS_CHART_STACKED is set);
+     * its own index when it shares none. */
+    uint32_t stacked_on;
+    uint32_t reserved;
 } raps_chart;
 
 /* raps_chart.flags bits */
 enum {
     /* The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
      * texels per world unit are below raps_stats.texels_per_unit). */
-    RAPS_CHART_SCALED_DOWN = 1
+    RAPS_CHART_SCALED_DOWN = 1,
+    /* The chart shares the texels of an earlier, congruent chart (raps_chart.stacked_on). */
+    RAPS_CHART_STACKED = 2
 };
 
 /* Fills `chart` with chart number `index` (a chart id, 0 .. raps_stats.chart_count - 1).

@@ -25,7 +25,8 @@ static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8 + 8 + 3 * 8,
 static_assert(offsetof(raps_stats, relaxation_sweeps) == 104, "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, threads_used) == 144, "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, texels_per_unit) == 168, "raps_stats layout is ABI");
-static_assert(sizeof(raps_chart) == 32 + 8 + 8 + 3 * 8, "raps_chart layout is ABI");
+static_assert(sizeof(raps_chart) == 32 + 8 + 8 + 3 * 8 + 8, "raps_chart layout is ABI");
+static_assert(offsetof(raps_chart, stacked_on) == 72, "raps_chart layout is ABI");
 static_assert(offsetof(raps_chart, rotation_deg) == 32, "raps_chart layout is ABI");
 
 #define RAPS_CHECK_CODE(name, value) \
@@ -192,6 +193,9 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, "atlas_keep_input_seams", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_REPACK, "atlas_repack", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_STACK, "atlas_stack", false, RAPS_STACK_NONE, RAPS_STACK_MIRRORED,
+     RAPS_STACK_NONE},
+    {RAPS_PARAM_ATLAS_STACK_TOLERANCE, "atlas_stack_tolerance", true, 0.0, 0.1, 1e-4},
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -277,6 +281,8 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.atlas_keep_input_seams ? 1 : 0;
         case RAPS_PARAM_ATLAS_REPACK:
             return s.atlas_repack ? 1 : 0;
+        case RAPS_PARAM_ATLAS_STACK:
+            return static_cast<int64_t>(s.atlas_stack);
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -356,6 +362,9 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
         case RAPS_PARAM_ATLAS_REPACK:
             s.atlas_repack = v != 0;
             break;
+        case RAPS_PARAM_ATLAS_STACK:
+            s.atlas_stack = static_cast<raps::ChartStacking>(v);
+            break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -381,6 +390,8 @@ auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
             return &s.atlas_max_linf;
         case RAPS_PARAM_ATLAS_TEXELS_PER_UNIT:
             return &s.atlas_texels_per_unit;
+        case RAPS_PARAM_ATLAS_STACK_TOLERANCE:
+            return &s.atlas_stack_tolerance;
         default:
             throw Error(ErrorCode::kInternal, "float parameter without a field");
     }
@@ -632,13 +643,15 @@ Eigen::Matrix<double, 3, 4> checked_transform(const double* m) {
 }
 
 // Fills the fields of raps_chart that fit the caller's struct_size.
-void copy_chart(const raps::AtlasChartRecord& record, raps_chart* chart) {
+void copy_chart(const raps::AtlasChartRecord& record, size_t index, raps_chart* chart) {
     raps_chart full;
     std::memset(&full, 0, sizeof(full));
     full.struct_size = static_cast<uint32_t>(std::min<size_t>(chart->struct_size, sizeof(full)));
     full.mesh = static_cast<uint32_t>(record.part);
     full.page = static_cast<uint32_t>(record.page);
-    full.flags = record.scaled_down ? static_cast<uint32_t>(RAPS_CHART_SCALED_DOWN) : 0u;
+    full.flags = (record.scaled_down ? static_cast<uint32_t>(RAPS_CHART_SCALED_DOWN) : 0u) |
+                 (record.stacked_on != static_cast<int64_t>(index) ? static_cast<uint32_t>(RAPS_CHART_STACKED) : 0u);
+    full.stacked_on = static_cast<uint32_t>(record.stacked_on);
     full.x = static_cast<uint32_t>(record.x);
     full.y = static_cast<uint32_t>(record.y);
     full.width = static_cast<uint32_t>(record.width);
@@ -1076,7 +1089,7 @@ raps_status raps_result_get_chart(const raps_result* result, size_t index, raps_
                                                          " is out of range: the atlas has " +
                                                          std::to_string(charts.size()) + " charts");
         }
-        copy_chart(charts[index], chart);
+        copy_chart(charts[index], index, chart);
     });
 }
 

@@ -78,6 +78,20 @@ void check_limits(const TriangleMesh& mesh, const Settings& settings) {
     }
 }
 
+// The triangles of the charts that hold their own place in the atlas: a stacked chart's
+// texels are its place's, counted once.
+std::vector<Triangle> placed_triangles(const std::vector<Triangle>& triangles,
+                                       const AtlasOutput& atlas) {
+    std::vector<Triangle> placed;
+    placed.reserve(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        const uint32_t chart = atlas.chart_of[t];
+        if (atlas.charts[chart].stacked_on == static_cast<int64_t>(chart))
+            placed.push_back(triangles[t]);
+    }
+    return placed;
+}
+
 // The atlas of `mesh` made of `parts`; indices and remap global (into the whole mesh).
 Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
                            const Settings& settings, const Progress& progress) {
@@ -100,7 +114,7 @@ Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
             triangles[t][k] = static_cast<int32_t>(atlas.indices[3 * t + k]);
     }
     out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool);
-    out.utilization = uv_area(atlas.uv, triangles, atlas.page_count);
+    out.utilization = uv_area(atlas.uv, placed_triangles(triangles, atlas), atlas.page_count);
     out.uv = std::move(atlas.uv);
     out.indices = std::move(atlas.indices);
     out.vertex_remap = std::move(atlas.remap);

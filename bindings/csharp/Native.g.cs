@@ -223,6 +223,12 @@ namespace Raps
         /// that gathers degenerate triangles with no chart beside them.
         /// </summary>
         public double StretchL2;
+        /// <summary>
+        /// The chart whose texels it shares (RAPS_PARAM_ATLAS_STACK; RAPS_CHART_STACKED is set);
+        /// its own index when it shares none.
+        /// </summary>
+        public uint StackedOn;
+        public uint Reserved;
     }
 
     /// <summary>
@@ -578,6 +584,46 @@ namespace Raps
         /// DEGENERATE_UV_CHART. Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_REPACK = 47;
+        /// <summary>
+        /// int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
+        /// or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
+        /// one mesh in one mesh) then costs no extra texels. Two charts stack when they are the same
+        /// triangles over the same chart vertices (as copies with the same vertex and triangle order
+        /// give) and their 3D vertices agree, vertex for vertex, up to a rigid motion (or a mirror,
+        /// with RAPS_STACK_MIRRORED) within RAPS_PARAM_ATLAS_STACK_TOLERANCE; when repacking, their
+        /// own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
+        /// chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
+        /// RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
+        /// texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
+        /// that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
+        /// seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
+        /// of its own, each then stacked on its original. A copy drawn mirrored (a transform with
+        /// det &lt; 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
+        /// counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
+        /// stack. A lightmap needs every chart its own texels: leave this off for one. Default
+        /// NONE.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_STACK = 48;
+        /// <summary>
+        /// float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
+        /// farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
+        /// puts the chart it shares. Default 1e-4.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_STACK_TOLERANCE = 49;
+
+        // RAPS_PARAM_ATLAS_STACK values
+        /// <summary>
+        /// every chart its own texels
+        /// </summary>
+        public const int RAPS_STACK_NONE = 0;
+        /// <summary>
+        /// congruent up to a rigid motion: one place
+        /// </summary>
+        public const int RAPS_STACK_RIGID = 1;
+        /// <summary>
+        /// also congruent up to a mirror (the texture appears mirrored)
+        /// </summary>
+        public const int RAPS_STACK_MIRRORED = 2;
 
         // RAPS_PARAM_ATLAS_ROTATION values
         /// <summary>
@@ -753,6 +799,10 @@ namespace Raps
         /// texels per world unit are below raps_stats.texels_per_unit).
         /// </summary>
         public const int RAPS_CHART_SCALED_DOWN = 1;
+        /// <summary>
+        /// The chart shares the texels of an earlier, congruent chart (raps_chart.stacked_on).
+        /// </summary>
+        public const int RAPS_CHART_STACKED = 2;
 
         /// <summary>
         /// The version of the library actually loaded, encoded like RAPS_VERSION. Thread-safe.

@@ -11,6 +11,9 @@
 #include "atlas/atlas_surface.h"
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
+#include "atlas/chart_stacking.h"
+#include "atlas/corner_sources.h"
+#include "atlas/instanced_parts.h"
 #include "atlas/page_packing.h"
 #include "atlas/user_seams.h"
 #include "atlas/uv_repack.h"
@@ -91,15 +94,6 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
     }
     return seam;
 }
-
-// Where each input triangle's corners come from: a chart (its index; the point charts of
-// degenerate triangles with no chart beside them follow the real ones, one per part that has
-// such triangles) and, per corner, the chart vertex.
-struct CornerSources {
-    std::vector<int32_t> chart;                  // per input triangle
-    std::vector<std::array<int32_t, 3>> vertex;  // per input triangle, per corner
-    std::vector<int32_t> point_chart_part;       // per point chart: its part
-};
 
 CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
                              const std::vector<int32_t>& welded, const AtlasSurface& surface,
@@ -219,7 +213,8 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
 // output (texel rectangles from the uvs as a texture of the page's size maps them).
 void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
                    const std::vector<AtlasChart>& charts, const CornerSources& sources,
-                   const PackResult& packed, AtlasOutput& out) {
+                   const PackResult& packed, const std::vector<int32_t>& place,
+                   AtlasOutput& out) {
     const size_t all_charts = charts.size() + sources.point_chart_part.size();
     out.charts.assign(all_charts, AtlasChartRecord());
     std::vector<Eigen::Vector2d> low(all_charts, Eigen::Vector2d::Constant(1e300));
@@ -252,6 +247,7 @@ void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
         record.y = lo.y();
         record.width = std::max(1, hi.x() - lo.x());
         record.height = std::max(1, hi.y() - lo.y());
+        record.stacked_on = c < charts.size() ? place[c] : static_cast<int64_t>(c);
         if (c < charts.size()) {
             record.page = packed.page[c];
             record.rotation_deg = packed.rotation_deg[c];
@@ -287,6 +283,51 @@ PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, 
     pack_settings.padding = settings.atlas_padding;
     pack_settings.rotation = settings.atlas_rotation;
     return pack_charts(inputs, pack_settings, pool);
+}
+
+// Per chart, the chart whose place it takes (RAPS_PARAM_ATLAS_STACK), itself when none.
+std::vector<int32_t> chart_places(const std::vector<AtlasChart>& charts,
+                                  const std::vector<int32_t>& part, const Settings& settings) {
+    if (settings.atlas_stack == ChartStacking::kNone) {
+        std::vector<int32_t> place(charts.size());
+        for (size_t c = 0; c < place.size(); ++c) place[c] = static_cast<int32_t>(c);
+        return place;
+    }
+    StackSettings stacking;
+    stacking.allow_mirror = settings.atlas_stack == ChartStacking::kMirrored;
+    stacking.tolerance = settings.atlas_stack_tolerance;
+    stacking.within_part = settings.atlas_mesh_per_page;
+    stacking.compare_uvs = settings.atlas_repack;
+    return stack_charts(charts, part, stacking);
+}
+
+// Packs the charts that hold a place; the stacked ones take their place's uvs, page and turn.
+PackResult pack_places(const std::vector<AtlasChart>& charts, const std::vector<int32_t>& part,
+                       const std::vector<int32_t>& place, const Settings& settings,
+                       ThreadPool& pool) {
+    std::vector<PackInput> inputs;
+    std::vector<int32_t> slot(charts.size(), -1);
+    for (size_t c = 0; c < charts.size(); ++c) {
+        if (place[c] != static_cast<int32_t>(c)) continue;
+        slot[c] = static_cast<int32_t>(inputs.size());
+        const AtlasChart& chart = charts[c];
+        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation, part[c]});
+    }
+    PackResult packed = pack(inputs, settings, pool);
+    if (inputs.size() == charts.size()) return packed;
+    PackResult all = packed;
+    all.uv.resize(charts.size());
+    all.page.resize(charts.size());
+    all.rotation_deg.resize(charts.size());
+    all.scaled_down.resize(charts.size());
+    for (size_t c = 0; c < charts.size(); ++c) {
+        const int32_t s = slot[place[c]];
+        all.uv[c] = packed.uv[s];
+        all.page[c] = packed.page[s];
+        all.rotation_deg[c] = packed.rotation_deg[s];
+        all.scaled_down[c] = packed.scaled_down[s];
+    }
+    return all;
 }
 
 // A page must keep room for a chart inside its margin: refused before any work is done.
@@ -346,6 +387,17 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
         const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
         set.part.push_back(parts.part_of_triangle(first));
     }
+    // Stacking across meshes: an instance must have its source's charts to share its texels.
+    if (settings.atlas_stack != ChartStacking::kNone && !settings.atlas_mesh_per_page &&
+        parts.count() > 1) {
+        const std::vector<int32_t> source =
+            instance_sources(mesh, parts, set.sources, settings.atlas_stack_tolerance,
+                             settings.atlas_stack == ChartStacking::kMirrored);
+        bool any = false;
+        for (int32_t p = 0; p < parts.count(); ++p) any = any || source[p] != p;
+        if (any)
+            copy_instance_charts(mesh, parts, surface, source, set.charts, set.sources, set.part);
+    }
     return set;
 }
 
@@ -401,14 +453,8 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
                              : mapped_charts(mesh, parts, settings, progress, times, pool);
 
     PhaseTimer pack_timer(Phase::kPack, progress, times);
-    std::vector<PackInput> inputs;
-    inputs.reserve(set.charts.size());
-    for (size_t c = 0; c < set.charts.size(); ++c) {
-        const AtlasChart& chart = set.charts[c];
-        inputs.push_back(
-            {&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation, set.part[c]});
-    }
-    const PackResult packed = pack(inputs, settings, pool);
+    const std::vector<int32_t> place = chart_places(set.charts, set.part, settings);
+    const PackResult packed = pack_places(set.charts, set.part, place, settings, pool);
     refuse_collapsed_atlas(mesh, settings.weld_tolerance, set.charts, packed);
     pack_timer.finish();
 
@@ -419,7 +465,7 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
     out.texels_per_unit = packed.texels_per_unit;
     for (const AtlasChart& chart : set.charts) out.adaptive_solves += chart.map.adaptive_solves;
     emit_output(mesh, parts, set.charts, set.sources, packed, out);
-    record_charts(mesh, parts, set.charts, set.sources, packed, out);
+    record_charts(mesh, parts, set.charts, set.sources, packed, place, out);
     return out;
 }
 
