@@ -98,11 +98,19 @@ atlas options:
                              each scaled to the one density and packed, never mapped again;
                              only moved, turned (--rotate) and scaled; flipped or overlapping
                              faces stay so (every face corner needs a vt)
+  --stack                    congruent charts share one place (the same triangles, vertices
+                             that agree up to a rigid motion): an input given twice, or one
+                             repeating an earlier one, costs no extra texels; the JSON's
+                             charts say "stacked_on"
+  --stack-mirrored           --stack, mirrored copies too (their texture appears mirrored)
+  --stack-tolerance F        how far a stacked chart's vertices may lie from its original's,
+                             as a fraction of the chart's extent, [0, 0.1] (default 1e-4)
   --obj-groups               no chart crosses from one OBJ group to another: faces under
                              different `g` or `usemtl` lines never share a chart
   --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
                              --mesh-per-page --whole-texels (--padding and --rotate given
-                             override theirs)
+                             override theirs); refuses --stack, a lightmap needs every chart
+                             its own texels
 sphere options:
   --sphere-method literal|robust
                              literal: the paper's algorithm 7.1 as written (Gauss map,
@@ -292,6 +300,12 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
                   [&] { return raps_settings_last_error(settings); });
             set_switch(settings, RAPS_PARAM_ATLAS_REPACK);
             options.repack = true;
+        } else if (arg == "--stack" || arg == "--stack-mirrored") {
+            if (lightmap) throw UsageError(arg + " and --lightmap exclude each other: a lightmap "
+                                                 "needs every chart its own texels");
+            check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_STACK,
+                                        arg == "--stack" ? RAPS_STACK_RIGID : RAPS_STACK_MIRRORED),
+                  [&] { return raps_settings_last_error(settings); });
         } else if (arg == "--obj-groups") {
             options.obj_groups = true;
         } else if (const raps_samples::ParameterFlag* flag =

@@ -240,7 +240,8 @@ class RapsParamTest(unittest.TestCase):
                      '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
                      '--tolerance', '--max-sweeps', '--alpha-steps', '--texels-per-unit',
                      '--max-size', '--rotate', '--margin', '--block-align', '--mesh-per-page',
-                     '--whole-texels', '--lightmap', '--keep-uv-seams', '--obj-groups', '--repack'):
+                     '--whole-texels', '--lightmap', '--keep-uv-seams', '--obj-groups', '--repack',
+                     '--stack', '--stack-mirrored', '--stack-tolerance'):
             self.assertIn(flag, out)
 
     def test_sphere_writes_the_points_on_the_unit_sphere(self):
@@ -594,12 +595,48 @@ class RapsParamTest(unittest.TestCase):
         self.assertEqual(json.loads(out)['error']['status'], 27)  # RAPS_ERROR_NON_FINITE_UV
         self.assertFalse(os.path.exists(self.out))
 
+    def test_stack_gives_an_input_repeated_its_originals_texels(self):
+        names = ['spot.obj', 'teapot.obj', 'spot.obj']
+        rc, out, err = run('--atlas', *[self.mesh(n) for n in names], '-o', self.out,
+                           '--stack', '--threads', '2')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual((d['settings']['stack'], d['settings']['stack_tolerance']), ('rigid', 1e-4))
+        charts = d['charts']
+        for index, chart in enumerate(charts):
+            place = charts[chart['stacked_on']]
+            if chart['input'] == 2:  # the repeated spot: every chart on one of the first's
+                self.assertLess(chart['stacked_on'], index)
+                self.assertEqual(place['input'], 0)
+                self.assertEqual([place[k] for k in ('page', 'x', 'y', 'width', 'height')],
+                                 [chart[k] for k in ('page', 'x', 'y', 'width', 'height')])
+            else:
+                self.assertEqual(chart['stacked_on'], index)
+        self.assertEqual(d['inputs'][2]['charts'], d['inputs'][0]['charts'])
+        # Corner for corner, the repeated spot's vt are the first's.
+        first, _, third = self.objects(self.out)
+        self.assertEqual([[first[2][t] for _, t in face] for face in first[3]],
+                         [[third[2][t] for _, t in face] for face in third[3]])
+        # Each shared place counted once.
+        st = d['stats']
+        placed = sum(c['area_texels'] for i, c in enumerate(charts) if c['stacked_on'] == i)
+        self.assertAlmostEqual(st['utilization'], placed / (st['atlas_width'] * st['atlas_height']),
+                               places=6)
+        self.assertAlmostEqual(d['pages'][0]['utilization'], st['utilization'], places=6)
+        rc, out, err = run('--atlas', self.mesh('spot.obj'), '-o', self.out, '--stack-mirrored',
+                           '--stack-tolerance', '0.01')
+        self.assertEqual(rc, 0, err)
+        s = json.loads(out)['settings']
+        self.assertEqual((s['stack'], s['stack_tolerance']), ('mirrored', 0.01))
+
     def test_scene_usage_errors_exit_2(self):
         spot, teapot = self.mesh('spot.obj'), self.mesh('teapot.obj')
         for args in ([spot, teapot, '-o', self.out],  # several inputs need --atlas
                      ['--atlas', spot, '-o', self.out, '--rotate', 'sideways'],
                      ['--atlas', spot, '-o', self.out, '--max-size', '8'],
-                     ['--atlas', spot, '-o', self.out, '--texels-per-unit', '-2']):
+                     ['--atlas', spot, '-o', self.out, '--texels-per-unit', '-2'],
+                     ['--atlas', spot, '-o', self.out, '--stack', '--lightmap'],
+                     ['--atlas', spot, '-o', self.out, '--stack-tolerance', '0.5']):
             rc, out, err = run(*args)
             self.assertEqual(rc, 2, args)
             self.assertIn('error', json.loads(out))
