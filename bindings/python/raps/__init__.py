@@ -49,6 +49,7 @@ except ImportError:  # plain sequences in, lists out
 __all__ = [
     "Boundary", "Chart", "Domain", "Error", "IterationMode", "Mesh", "MeshRange", "Monitor",
     "Param", "ParamInfo", "Phase", "Result", "Rotation", "Settings", "SphereMethod", "SphereUv",
+    "Stacking",
     "Stats", "Status", "Weights", "parameterize", "parameterize_scene", "version",
     "version_string", "library_path",
 ]
@@ -125,6 +126,7 @@ SphereUv = _enum("SphereUv", "RAPS_SPHERE_UV_")
 SphereMethod = _enum("SphereMethod", "RAPS_SPHERE_",
                      skip=[name for name in vars(_native) if name.startswith("RAPS_SPHERE_UV_")])
 Rotation = _enum("Rotation", "RAPS_ROTATION_")
+Stacking = _enum("Stacking", "RAPS_STACK_")
 # RAPS_PHASE_COUNT is the number of phases, not a phase.
 Phase = _enum("Phase", "RAPS_PHASE_", skip=("RAPS_PHASE_COUNT",))
 
@@ -138,6 +140,7 @@ _PARAM_VALUES = {
     Param.SPHERE_METHOD: SphereMethod,
     Param.SPHERE_UV: SphereUv,
     Param.ATLAS_ROTATION: Rotation,
+    Param.ATLAS_STACK: Stacking,
 }
 
 
@@ -494,7 +497,7 @@ Stats = collections.namedtuple(
 # One chart of an atlas (raps_chart in raps.h), scaled_down for its RAPS_CHART_SCALED_DOWN flag.
 Chart = collections.namedtuple(
     "Chart", [name for name, _ in _native.raps_chart._fields_
-              if name not in ("struct_size", "flags")] + ["scaled_down"])
+              if name not in ("struct_size", "flags", "reserved")] + ["scaled_down", "stacked"])
 
 # Where one input mesh lies in a result's output.
 MeshRange = collections.namedtuple("MeshRange",
@@ -628,15 +631,17 @@ class Result(_Handle):
 
     def charts(self):
         """Atlas domain: a Chart per chart id (its mesh, page, texel rectangle, rotation,
-        triangles, areas, L2 stretch, whether it was shrunk to fit a page)."""
+        triangles, areas, L2 stretch, the chart whose texels it shares (stacked_on, itself when
+        none), whether it was shrunk to fit a page, whether it is stacked)."""
         charts = []
         for index in range(self.stats().chart_count):
             native = _native.raps_chart()
             native.struct_size = ctypes.sizeof(native)
             _check(_lib.raps_result_get_chart(self._ptr(), index, ctypes.byref(native)),
                    _lib.raps_result_last_error, self._pointer)
-            fields = [getattr(native, name) for name in Chart._fields[:-1]]
-            charts.append(Chart(*fields, bool(native.flags & _native.RAPS_CHART_SCALED_DOWN)))
+            fields = [getattr(native, name) for name in Chart._fields[:-2]]
+            charts.append(Chart(*fields, bool(native.flags & _native.RAPS_CHART_SCALED_DOWN),
+                                bool(native.flags & _native.RAPS_CHART_STACKED)))
         return charts
 
 

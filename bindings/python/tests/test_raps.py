@@ -527,6 +527,32 @@ class Repack(unittest.TestCase):
             self.assertEqual(caught.exception.status, raps.Status.UV_COUNT)
 
 
+class Stack(unittest.TestCase):
+    """Stacking: the cap given twice to a scene (the copy moved) costs no texels: every chart of
+    the copy is stacked on the original's and has its uvs, corner for corner."""
+
+    def test_a_repeated_mesh_shares_its_originals_texels(self):
+        with raps.Mesh(*fan_disk()) as cap, raps.Mesh(*fan_disk()) as copy, \
+                raps.Settings(domain="atlas", atlas_stack="rigid") as settings:
+            self.assertEqual(settings.atlas_stack, raps.Stacking.RIGID)
+            copy.set_transform([[0, -1, 0, 4], [1, 0, 0, 0], [0, 0, 1, 0]])
+            scene = raps.parameterize_scene([cap, copy], settings)
+            charts = scene.charts()
+            self.assertEqual(sum(1 for c in charts if c.stacked), len(charts) // 2)
+            for index, chart in enumerate(charts):
+                self.assertEqual(chart.stacked, chart.mesh == 1)
+                self.assertEqual(chart.stacked_on != index, chart.stacked)
+            uv = [tuple(p) for p in scene.uvs()]
+            first, second = scene.mesh_range(0), scene.mesh_range(1)
+            indices = [v for t in scene.indices() for v in t]
+            own = [uv[first.first_vertex + v] for v in indices[:18]]
+            copied = [uv[second.first_vertex + v] for v in indices[18:]]
+            self.assertEqual(own, copied)
+            settings.atlas_stack = raps.Stacking.MIRRORED
+            settings.atlas_stack_tolerance = 0.01
+            self.assertEqual(settings.atlas_stack_tolerance, 0.01)
+
+
 class Sphere(unittest.TestCase):
     """The sphere domain on a built icosahedron and on bunny.off, closed genus-0 meshes."""
 
