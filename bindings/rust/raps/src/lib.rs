@@ -152,6 +152,8 @@ int_values! {
         ATLAS_WHOLE_TEXELS = sys::RAPS_PARAM_ATLAS_WHOLE_TEXELS,
         ATLAS_KEEP_INPUT_SEAMS = sys::RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
         ATLAS_REPACK = sys::RAPS_PARAM_ATLAS_REPACK,
+        ATLAS_STACK = sys::RAPS_PARAM_ATLAS_STACK,
+        ATLAS_STACK_TOLERANCE = sys::RAPS_PARAM_ATLAS_STACK_TOLERANCE,
     }
 }
 
@@ -165,6 +167,19 @@ int_values! {
         QUARTER = sys::RAPS_ROTATION_QUARTER,
         /// None: each chart keeps its map's orientation.
         NONE = sys::RAPS_ROTATION_NONE,
+    }
+}
+
+int_values! {
+    /// Whether congruent charts share one place in the atlas (`RAPS_STACK_*`), the value of
+    /// [`Param::ATLAS_STACK`].
+    Stacking {
+        /// Every chart its own texels (the default).
+        NONE = sys::RAPS_STACK_NONE,
+        /// Charts congruent up to a rigid motion share one place.
+        RIGID = sys::RAPS_STACK_RIGID,
+        /// Also charts congruent only up to a mirror (their texture appears mirrored).
+        MIRRORED = sys::RAPS_STACK_MIRRORED,
     }
 }
 
@@ -860,6 +875,14 @@ impl Settings {
     }
     pub fn atlas_repack(&self) -> Result<bool> {
         self.int(Param::ATLAS_REPACK).map(|v| v != 0)
+    }
+    /// Atlas: whether congruent charts share one place ([`Stacking::NONE`] by default); a
+    /// stacked chart's [`Chart`] has `stacked_on`, the chart whose texels it takes.
+    pub fn set_atlas_stack(&mut self, stacking: Stacking) -> Result<&mut Self> {
+        self.set_int(Param::ATLAS_STACK, stacking.0.into())
+    }
+    pub fn atlas_stack(&self) -> Result<Stacking> {
+        self.int(Param::ATLAS_STACK).map(|v| Stacking(v as i32))
     }
 
     pub fn domain(&self) -> Result<Domain> {
