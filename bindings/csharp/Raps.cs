@@ -91,7 +91,9 @@ namespace Raps
         AtlasMeshPerPage = Native.RAPS_PARAM_ATLAS_MESH_PER_PAGE,
         AtlasWholeTexels = Native.RAPS_PARAM_ATLAS_WHOLE_TEXELS,
         AtlasKeepInputSeams = Native.RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
-        AtlasRepack = Native.RAPS_PARAM_ATLAS_REPACK
+        AtlasRepack = Native.RAPS_PARAM_ATLAS_REPACK,
+        AtlasStack = Native.RAPS_PARAM_ATLAS_STACK,
+        AtlasStackTolerance = Native.RAPS_PARAM_ATLAS_STACK_TOLERANCE
     }
 
     /// <summary>Which turns the atlas's packing may give a chart (Param.AtlasRotation).</summary>
@@ -104,6 +106,19 @@ namespace Raps
         Quarter = Native.RAPS_ROTATION_QUARTER,
         /// <summary>None: each chart keeps its map's orientation.</summary>
         None = Native.RAPS_ROTATION_NONE
+    }
+
+    /// <summary>Whether congruent charts share one place in the atlas
+    /// (Param.AtlasStack).</summary>
+    public enum Stacking
+    {
+        /// <summary>Every chart its own texels (the default).</summary>
+        None = Native.RAPS_STACK_NONE,
+        /// <summary>Charts congruent up to a rigid motion share one place.</summary>
+        Rigid = Native.RAPS_STACK_RIGID,
+        /// <summary>Also charts congruent only up to a mirror (their texture appears
+        /// mirrored).</summary>
+        Mirrored = Native.RAPS_STACK_MIRRORED
     }
 
     /// <summary>Where one input mesh lies in a result's output (Result.GetMeshRange).</summary>
@@ -713,6 +728,15 @@ namespace Raps
         {
             get { return GetInt(Param.AtlasRepack) != 0; }
             set { SetInt(Param.AtlasRepack, value ? 1 : 0); }
+        }
+
+        /// <summary>Atlas: whether congruent charts share one place (Stacking.None by
+        /// default); a stacked chart's Chart.StackedOn names the chart whose texels it
+        /// takes.</summary>
+        public Stacking AtlasStack
+        {
+            get { return (Stacking)GetInt(Param.AtlasStack); }
+            set { SetInt(Param.AtlasStack, (long)value); }
         }
 
         public void Dispose()

@@ -1039,6 +1039,40 @@ static class RapsTests
         }
     }
 
+    // Stacking: the cap given twice to a scene (the copy moved and turned) costs no texels:
+    // every chart of the copy is stacked on the original's and has its uvs, corner for corner.
+    static void RepeatedMeshSharesTexels()
+    {
+        Off cap = FanDisk();
+        using (var original = new Mesh(cap.Xyz, cap.Indices))
+        using (var copy = new Mesh(cap.Xyz, cap.Indices))
+        using (var settings = new Settings { AtlasStack = Stacking.Rigid })
+        {
+            Expect(settings.AtlasStack == Stacking.Rigid, "stacking set");
+            copy.SetTransform(new double[] { 0, -1, 0, 4, 1, 0, 0, 0, 0, 0, 1, 0 });
+            settings.SetInt(Param.Domain, (long)Domain.Atlas);
+            using (Result result = Library.ParameterizeScene(new[] { original, copy }, settings))
+            {
+                Chart[] charts = result.GetCharts();
+                for (int c = 0; c < charts.Length; c++)
+                {
+                    bool stacked = (charts[c].Flags & Native.RAPS_CHART_STACKED) != 0;
+                    Expect(stacked == (charts[c].Mesh == 1), "the copy's charts are stacked");
+                    Expect((charts[c].StackedOn != c) == stacked, "stacked_on names the place");
+                }
+                double[] uv = result.GetUvsDouble();
+                uint[] indices = result.GetIndices();
+                MeshRange first = result.GetMeshRange(0), second = result.GetMeshRange(1);
+                for (int i = 0; i < 18; i++)
+                {
+                    ulong a = first.FirstVertex + indices[i], b = second.FirstVertex + indices[18 + i];
+                    Expect(uv[2 * a] == uv[2 * b] && uv[2 * a + 1] == uv[2 * b + 1],
+                           "corner " + i + " has its original's uv");
+                }
+            }
+        }
+    }
+
     static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -1089,6 +1123,8 @@ static class RapsTests
             new KeyValuePair<string, Action>("scene of several meshes", SceneOfSeveralMeshes),
             new KeyValuePair<string, Action>("groups and seam edges", GroupsAndSeamEdges),
             new KeyValuePair<string, Action>("repack keeps the uv islands", RepackKeepsIslands),
+            new KeyValuePair<string, Action>("a repeated mesh shares its original's texels",
+                                             RepeatedMeshSharesTexels),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)
