@@ -580,8 +580,8 @@ namespace Raps
         /// area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
         /// stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
         /// used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
-        /// chart, uv) and raps_stats.adaptive_solves is 0. Errors: UV_COUNT,
-        /// DEGENERATE_UV_CHART. Default 0.
+        /// chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
+        /// islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_REPACK = 47;
         /// <summary>

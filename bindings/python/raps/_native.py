@@ -211,8 +211,8 @@ RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
 #   area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
 #   stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
 #   used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
-#   chart, uv) and raps_stats.adaptive_solves is 0. Errors: UV_COUNT,
-#   DEGENERATE_UV_CHART. Default 0.
+#   chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
+#   islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
 RAPS_PARAM_ATLAS_REPACK = 47
 #   int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
 #   or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
