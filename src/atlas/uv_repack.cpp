@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 #include "atlas/chart_packing.h"
 #include "core/error.h"
@@ -22,16 +21,23 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t t) {
 // One side of an edge as a triangle sees it: the welded vertex pair (smaller first) and the
 // corner uvs at those two ends. Two sides with equal fields are one uv edge.
 struct EdgeSide {
-    int32_t lo, hi;
+    int32_t hi;
     double lo_u, lo_v, hi_u, hi_v;
     int32_t triangle;
-    auto key() const { return std::tie(lo, hi, lo_u, lo_v, hi_u, hi_v); }
+    int32_t next;  // the next side whose smaller vertex is the same, or -1
+    bool same_edge(const EdgeSide& o) const {
+        return hi == o.hi && lo_u == o.lo_u && lo_v == o.lo_v && hi_u == o.hi_u && hi_v == o.hi_v;
+    }
 };
 
-// Islands by union-find over the triangles: sides sorted so that equal ones are neighbours.
-// Sorting (not hashing) keeps the result independent of any table's order.
+// Islands by union-find over the triangles. Each side is looked up among the sides seen at its
+// smaller vertex (a short list: the vertex's edges), so the work is linear; unions keep the
+// smallest triangle as root, which makes the result independent of the order of the unions.
 std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<int32_t>& welded) {
     const int32_t triangle_count = mesh.triangle_count();
+    std::vector<int32_t> parent(triangle_count);
+    for (int32_t t = 0; t < triangle_count; ++t) parent[t] = t;
+    std::vector<int32_t> head(mesh.positions.size(), -1);
     std::vector<EdgeSide> sides;
     sides.reserve(3 * static_cast<size_t>(triangle_count));
     for (int32_t t = 0; t < triangle_count; ++t) {
@@ -41,21 +47,18 @@ std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<in
             if (a == b) continue;  // a collapsed edge joins nothing
             const Eigen::Vector2d& ua = mesh.corner_uv[3 * static_cast<size_t>(t) + k];
             const Eigen::Vector2d& ub = mesh.corner_uv[3 * static_cast<size_t>(t) + l];
-            sides.push_back(a < b ? EdgeSide{a, b, ua.x(), ua.y(), ub.x(), ub.y(), t}
-                                  : EdgeSide{b, a, ub.x(), ub.y(), ua.x(), ua.y(), t});
+            const int32_t lo = std::min(a, b);
+            const EdgeSide side = a < b ? EdgeSide{b, ua.x(), ua.y(), ub.x(), ub.y(), t, head[lo]}
+                                        : EdgeSide{a, ub.x(), ub.y(), ua.x(), ua.y(), t, head[lo]};
+            int32_t found = head[lo];
+            while (found >= 0 && !sides[found].same_edge(side)) found = sides[found].next;
+            if (found >= 0) {
+                const int32_t x = find_root(parent, t), y = find_root(parent, sides[found].triangle);
+                parent[std::max(x, y)] = std::min(x, y);
+            }
+            sides.push_back(side);
+            head[lo] = static_cast<int32_t>(sides.size() - 1);
         }
-    }
-    std::sort(sides.begin(), sides.end(), [](const EdgeSide& x, const EdgeSide& y) {
-        return std::tie(x.lo, x.hi, x.lo_u, x.lo_v, x.hi_u, x.hi_v, x.triangle) <
-               std::tie(y.lo, y.hi, y.lo_u, y.lo_v, y.hi_u, y.hi_v, y.triangle);
-    });
-    std::vector<int32_t> parent(triangle_count);
-    for (int32_t t = 0; t < triangle_count; ++t) parent[t] = t;
-    for (size_t i = 1; i < sides.size(); ++i) {
-        if (sides[i].key() != sides[i - 1].key()) continue;
-        const int32_t a = find_root(parent, sides[i].triangle);
-        const int32_t b = find_root(parent, sides[i - 1].triangle);
-        parent[std::max(a, b)] = std::min(a, b);
     }
     for (int32_t t = 0; t < triangle_count; ++t) parent[t] = find_root(parent, t);
     return parent;
@@ -80,39 +83,36 @@ std::string triangle_name(const AtlasParts& parts, int32_t t) {
 }
 
 // The chart vertices: one per distinct (input vertex, uv) pair among the chart's corners,
-// numbered in sorted order of the pairs.
+// numbered in the order the triangles first use them. Each input vertex keeps the short list of
+// (chart, uv) pairs seen at it.
 void number_chart_vertices(const TriangleMesh& mesh, const std::vector<int32_t>& chart_of,
                            std::vector<std::array<int32_t, 3>>& corner_vertex,
                            std::vector<std::vector<int32_t>>& vertex_input,
                            std::vector<std::vector<Eigen::Vector2d>>& vertex_uv) {
-    struct Corner {
-        int32_t chart, vertex;
-        double u, v;
-        int64_t corner;
+    struct Seen {
+        int32_t chart, local, next;
+        Eigen::Vector2d uv;
     };
-    std::vector<Corner> corners;
-    corners.reserve(mesh.corner_uv.size());
+    std::vector<int32_t> head(mesh.positions.size(), -1);
+    std::vector<Seen> seen;
+    const int32_t charts = static_cast<int32_t>(vertex_input.size());
     for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        if (chart_of[t] >= static_cast<int32_t>(vertex_input.size())) continue;  // point chart
+        const int32_t c = chart_of[t];
+        if (c >= charts) continue;  // a point chart
         for (int k = 0; k < 3; ++k) {
-            const int64_t c = 3 * static_cast<int64_t>(t) + k;
-            corners.push_back({chart_of[t], mesh.triangles[t][k], mesh.corner_uv[c].x(),
-                               mesh.corner_uv[c].y(), c});
+            const int32_t v = mesh.triangles[t][k];
+            const Eigen::Vector2d& uv = mesh.corner_uv[3 * static_cast<size_t>(t) + k];
+            int32_t found = head[v];
+            while (found >= 0 && !(seen[found].chart == c && seen[found].uv == uv))
+                found = seen[found].next;
+            if (found < 0) {
+                seen.push_back({c, static_cast<int32_t>(vertex_input[c].size()), head[v], uv});
+                found = head[v] = static_cast<int32_t>(seen.size() - 1);
+                vertex_input[c].push_back(v);
+                vertex_uv[c].push_back(uv);
+            }
+            corner_vertex[t][k] = seen[found].local;
         }
-    }
-    auto key = [](const Corner& c) { return std::tie(c.chart, c.vertex, c.u, c.v); };
-    std::sort(corners.begin(), corners.end(), [&](const Corner& x, const Corner& y) {
-        return std::tie(x.chart, x.vertex, x.u, x.v, x.corner) <
-               std::tie(y.chart, y.vertex, y.u, y.v, y.corner);
-    });
-    for (size_t i = 0; i < corners.size(); ++i) {
-        const Corner& c = corners[i];
-        if (i == 0 || key(c) != key(corners[i - 1])) {
-            vertex_input[c.chart].push_back(c.vertex);
-            vertex_uv[c.chart].push_back(Eigen::Vector2d(c.u, c.v));
-        }
-        corner_vertex[c.corner / 3][c.corner % 3] =
-            static_cast<int32_t>(vertex_input[c.chart].size() - 1);
     }
 }
 
