@@ -1096,7 +1096,8 @@ namespace Raps
         /// RAPS_DOMAIN_ATLAS): each mesh is placed in world units by its transform
         /// (raps_mesh_set_transform), cut into charts of its own (no chart joins two meshes, even where
         /// they touch) and every chart is packed at one texel density. The same mesh handle may appear
-        /// more than once (it is then packed once per appearance). meshes and settings are only read,
+        /// more than once (it is then packed once per appearance, or shares its first appearance's
+        /// texels with RAPS_PARAM_ATLAS_STACK). meshes and settings are only read,
         /// as for raps_parameterize; the result is replaced.
         /// The result holds the meshes' outputs one after another, in the order given:
         /// raps_result_mesh_range gives each mesh's output vertices and indices, and within a mesh's
