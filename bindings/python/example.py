@@ -18,3 +18,10 @@ atlas = raps.parameterize(mesh, raps.Settings(domain="atlas", atlas_repack=1,
                                               atlas_texels_per_unit=64.0))
 print("repacked charts:", atlas.stats().chart_count, "texels per unit:",
       atlas.stats().texels_per_unit)
+
+# The cap twice in one scene, the copy moved: with stacking the copy costs no texels.
+copy = raps.Mesh(positions=[(0.0, 0.0, 0.5)] + ring,
+                 indices=[(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)])
+copy.set_transform([[1, 0, 0, 3], [0, 1, 0, 0], [0, 0, 1, 0]])
+scene = raps.parameterize_scene([mesh, copy], raps.Settings(domain="atlas", atlas_stack="rigid"))
+print("stacked charts:", sum(1 for chart in scene.charts() if chart.stacked))

@@ -34,6 +34,21 @@ static class Example
                 using (var atlas = Library.Parameterize(mesh, repack))
                     Console.WriteLine("repacked charts: {0}", atlas.GetStats().ChartCount);
             }
+
+            // The cap twice in one scene, the copy moved: with stacking the copy costs no texels.
+            using (var copy = new Mesh(xyz, indices))
+            using (var stack = new Settings { AtlasStack = Stacking.Rigid })
+            {
+                copy.SetTransform(new double[] { 1, 0, 0, 3, 0, 1, 0, 0, 0, 0, 1, 0 });
+                stack.SetInt(Param.Domain, (long)Domain.Atlas);
+                using (var scene = Library.ParameterizeScene(new[] { mesh, copy }, stack))
+                {
+                    int stacked = 0;
+                    foreach (Chart chart in scene.GetCharts())
+                        if ((chart.Flags & Native.RAPS_CHART_STACKED) != 0) stacked++;
+                    Console.WriteLine("stacked charts: {0}", stacked);
+                }
+            }
         }
     }
 }

@@ -29,5 +29,23 @@ fn main() -> Result<(), raps::Error> {
     repack.set_float(raps::Param::ATLAS_TEXELS_PER_UNIT, 64.0)?;
     let atlas = raps::parameterize(&mesh, Some(&repack))?;
     println!("repacked charts: {}", atlas.stats()?.chart_count);
+
+    // The cap twice in one scene, the copy moved: with stacking the copy costs no texels.
+    let mut copy = raps::Mesh::from_f32(&xyz, &indices)?;
+    copy.set_transform(Some(&[
+        1.0, 0.0, 0.0, 3.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+    ]))?;
+    let mut stack = raps::Settings::new()?;
+    stack
+        .set_domain(raps::Domain::ATLAS)?
+        .set_atlas_stack(raps::Stacking::RIGID)?;
+    let scene = raps::parameterize_scene(&[&mesh, &copy], &stack)?;
+    let stacked_flag = raps::sys::RAPS_CHART_STACKED as u32;
+    let stacked = scene
+        .charts()?
+        .iter()
+        .filter(|c| c.flags & stacked_flag != 0)
+        .count();
+    println!("stacked charts: {}", stacked);
     Ok(())
 }
