@@ -1,9 +1,10 @@
 /* Repacking existing uvs through the C ABI (raps_mesh_set_corner_uvs_*, RAPS_PARAM_ATLAS_REPACK):
  * the charts are the input's uv islands, each chart's uvs come out only moved, turned (as the
  * rotation policy allows) and uniformly scaled, every chart at one texel density per 3D area,
- * flipped input charts stay flipped, the output does not depend on the thread count, and every
- * bad input is refused with its own status and a message. The real mesh's uvs come from a first
- * raps atlas run, whose charts the repacking must find again. */
+ * flipped input charts stay flipped, islands overlapping in the input are packed apart, the
+ * output does not depend on the thread count, and every bad input is refused with its own
+ * status and a message. The real mesh's uvs come from a first raps atlas run, whose charts the
+ * repacking must find again. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -197,6 +198,41 @@ static void test_islands_keep_their_shape_under_each_rotation_policy(void** stat
         atlas_free(&a);
         raps_settings_destroy(settings);
     }
+    raps_mesh_destroy(mesh);
+    free(uv);
+    test_mesh_free(&grid);
+}
+
+/* Islands laid over one another in the input (each third of the grid on the same uv square)
+ * are separate charts, packed apart: their texel rectangles do not meet. */
+static void test_overlapping_islands_are_packed_apart(void** state) {
+    (void)state;
+    test_mesh grid = make_grid(12, 4, 3.0, 1.0);
+    const size_t triangles = grid.index_count / 3;
+    double* uv = malloc(6 * triangles * sizeof(double));
+    for (size_t t = 0; t < triangles; ++t) {
+        double cx = 0;
+        for (int k = 0; k < 3; ++k) cx += grid.positions[3 * grid.indices[3 * t + k]] / 3.0;
+        for (int k = 0; k < 3; ++k) {
+            uv[6 * t + 2 * k] = grid.positions[3 * grid.indices[3 * t + k]] - floor(cx);
+            uv[6 * t + 2 * k + 1] = grid.positions[3 * grid.indices[3 * t + k] + 1];
+        }
+    }
+    raps_mesh* mesh = mesh_with_uvs(&grid, uv);
+    raps_settings* settings = repack_settings(1, RAPS_ROTATION_ANY);
+    atlas a = repack(mesh, settings);
+    assert_int_equal(a.chart_count, 3);
+    for (uint32_t c = 0; c < 3; ++c) {
+        double turn, scale;
+        check_similarity(&a, uv, c, &turn, &scale);
+        for (uint32_t d = 0; d < c; ++d) {
+            const raps_chart *p = &a.charts[c], *q = &a.charts[d];
+            assert_true(p->x + p->width <= q->x || q->x + q->width <= p->x ||
+                        p->y + p->height <= q->y || q->y + q->height <= p->y);
+        }
+    }
+    atlas_free(&a);
+    raps_settings_destroy(settings);
     raps_mesh_destroy(mesh);
     free(uv);
     test_mesh_free(&grid);
@@ -459,6 +495,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_islands_keep_their_shape_under_each_rotation_policy),
         cmocka_unit_test(test_charts_follow_uv_edges_only),
+        cmocka_unit_test(test_overlapping_islands_are_packed_apart),
         cmocka_unit_test(test_an_island_without_surface_becomes_a_point),
         cmocka_unit_test(test_a_raps_atlas_repacked_keeps_its_charts),
         cmocka_unit_test(test_a_scene_is_repacked_at_one_density),
