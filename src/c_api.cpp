@@ -482,8 +482,8 @@ void read_corner_uvs(raps_mesh* mesh, const T* uv, size_t count, size_t stride) 
                 char text[32];
                 std::snprintf(text, sizeof(text), "%g", value);
                 throw Error(ErrorCode::kNonFiniteUv,
-                            "corner " + std::to_string(i) + " (triangle " +
-                                std::to_string(i / 3) + ") has a uv " +
+                            "corner " + std::to_string(i) + " (triangle " + std::to_string(i / 3) +
+                                ") has a uv " +
                                 (std::isfinite(value) ? "beyond 1e30 (" : "that is not finite (") +
                                 text + ")");
             }
@@ -650,7 +650,9 @@ void copy_chart(const raps::AtlasChartRecord& record, size_t index, raps_chart* 
     full.mesh = static_cast<uint32_t>(record.part);
     full.page = static_cast<uint32_t>(record.page);
     full.flags = (record.scaled_down ? static_cast<uint32_t>(RAPS_CHART_SCALED_DOWN) : 0u) |
-                 (record.stacked_on != static_cast<int64_t>(index) ? static_cast<uint32_t>(RAPS_CHART_STACKED) : 0u);
+                 (record.stacked_on != static_cast<int64_t>(index)
+                      ? static_cast<uint32_t>(RAPS_CHART_STACKED)
+                      : 0u);
     full.stacked_on = static_cast<uint32_t>(record.stacked_on);
     full.x = static_cast<uint32_t>(record.x);
     full.y = static_cast<uint32_t>(record.y);

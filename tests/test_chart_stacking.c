@@ -66,8 +66,7 @@ static atlas run_scene(raps_mesh* const* meshes, size_t count, const raps_settin
     for (size_t m = 0; m < count; ++m) {
         uint64_t first_vertex, first_index, index_count;
         assert_int_equal(
-            raps_result_mesh_range(r, m, &first_vertex, NULL, &first_index, &index_count),
-            RAPS_OK);
+            raps_result_mesh_range(r, m, &first_vertex, NULL, &first_index, &index_count), RAPS_OK);
         for (uint64_t i = first_index; i < first_index + index_count; ++i)
             a.indices[i] += (uint32_t)first_vertex;
     }
@@ -214,8 +213,8 @@ static void test_the_tolerance_and_one_page_per_mesh_keep_charts_apart(void** st
     assert_int_equal(2 * stacked_count(&a), a.chart_count);
     atlas_free(&a);
     /* One page per mesh: a lightmap's pages never share texels across meshes. */
-    assert_int_equal(
-        raps_settings_set_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 64.0), RAPS_OK);
+    assert_int_equal(raps_settings_set_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 64.0),
+                     RAPS_OK);
     assert_int_equal(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, 1), RAPS_OK);
     a = run_scene(meshes, 2, settings);
     assert_int_equal(stacked_count(&a), 0);

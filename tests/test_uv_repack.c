@@ -344,8 +344,8 @@ static void test_a_raps_atlas_repacked_keeps_its_charts(void** state) {
     atlas runs[2];
     for (int run = 0; run < 2; ++run) {
         raps_settings* settings = repack_settings(run ? 3 : 1, RAPS_ROTATION_QUARTER);
-        assert_int_equal(
-            raps_settings_set_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 300.0), RAPS_OK);
+        assert_int_equal(raps_settings_set_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 300.0),
+                         RAPS_OK);
         assert_int_equal(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_PADDING, 2), RAPS_OK);
         runs[run] = repack(mesh, settings);
         raps_settings_destroy(settings);

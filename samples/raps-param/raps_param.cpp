@@ -301,8 +301,10 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
             set_switch(settings, RAPS_PARAM_ATLAS_REPACK);
             options.repack = true;
         } else if (arg == "--stack" || arg == "--stack-mirrored") {
-            if (lightmap) throw UsageError(arg + " and --lightmap exclude each other: a lightmap "
-                                                 "needs every chart its own texels");
+            if (lightmap)
+                throw UsageError(arg +
+                                 " and --lightmap exclude each other: a lightmap "
+                                 "needs every chart its own texels");
             check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_STACK,
                                         arg == "--stack" ? RAPS_STACK_RIGID : RAPS_STACK_MIRRORED),
                   [&] { return raps_settings_last_error(settings); });

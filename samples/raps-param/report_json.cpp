@@ -123,7 +123,9 @@ std::string settings_json(const raps_settings* settings) {
                 ", \"whole_texels\": " + (whole_texels ? "true" : "false") +
                 ", \"keep_uv_seams\": " + (keep_uv_seams ? "true" : "false") +
                 ", \"repack\": " + (repack ? "true" : "false") + ", \"stack\": \"" +
-                (stack == RAPS_STACK_NONE ? "none" : stack == RAPS_STACK_RIGID ? "rigid" : "mirrored") +
+                (stack == RAPS_STACK_NONE    ? "none"
+                 : stack == RAPS_STACK_RIGID ? "rigid"
+                                             : "mirrored") +
                 "\", \"stack_tolerance\": " + json_number(stack_tolerance);
     } else {
         json += std::string(", \"boundary\": \"") + choice_name("--boundary", boundary) + "\"";

@@ -213,8 +213,7 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
 // output (texel rectangles from the uvs as a texture of the page's size maps them).
 void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
                    const std::vector<AtlasChart>& charts, const CornerSources& sources,
-                   const PackResult& packed, const std::vector<int32_t>& place,
-                   AtlasOutput& out) {
+                   const PackResult& packed, const std::vector<int32_t>& place, AtlasOutput& out) {
     const size_t all_charts = charts.size() + sources.point_chart_part.size();
     out.charts.assign(all_charts, AtlasChartRecord());
     std::vector<Eigen::Vector2d> low(all_charts, Eigen::Vector2d::Constant(1e300));

@@ -43,7 +43,7 @@ struct AtlasChartRecord {
     double area_3d = 0, area_texels = 0;
     double stretch_l2 = 0;     // Sander's L2 stretch of the chart's map; 0 for degenerate triangles
     bool scaled_down = false;  // shrunk below the atlas's density to fit a page
-    int64_t stacked_on = 0;    // the chart whose texels it shares (chart_stacking.h); itself if none
+    int64_t stacked_on = 0;  // the chart whose texels it shares (chart_stacking.h); itself if none
 };
 
 struct AtlasOutput {

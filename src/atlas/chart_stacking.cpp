@@ -81,7 +81,7 @@ Frame<2> frame(const std::vector<Eigen::Vector2d>& p, const std::array<int32_t, 
 // Whether b's points are a's moved rigidly, or mirrored, within tolerance times a's extent.
 template <int N>
 PointMatch compare(const std::vector<Eigen::Matrix<double, N, 1>>& a,
-              const std::vector<Eigen::Matrix<double, N, 1>>& b, double tolerance) {
+                   const std::vector<Eigen::Matrix<double, N, 1>>& b, double tolerance) {
     const std::array<int32_t, 3> id = frame_vertices<N>(a);
     const Frame<N> fa = frame(a, id), fb = frame(b, id);
     if (!fa.valid || !fb.valid) return PointMatch::kNone;
@@ -101,8 +101,8 @@ PointMatch compare(const std::vector<Eigen::Matrix<double, N, 1>>& a,
 
 bool congruent(const AtlasChart& a, const AtlasChart& b, const StackSettings& settings) {
     if (a.disk.mesh.triangles != b.disk.mesh.triangles) return false;
-    const PointMatch shape = compare<3>(a.disk.mesh.positions, b.disk.mesh.positions,
-                                   settings.tolerance);
+    const PointMatch shape =
+        compare<3>(a.disk.mesh.positions, b.disk.mesh.positions, settings.tolerance);
     if (shape == PointMatch::kNone) return false;
     bool mirrored = shape == PointMatch::kMirror;
     if (settings.compare_uvs) {

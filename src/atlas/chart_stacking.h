@@ -19,9 +19,9 @@ namespace raps {
 
 struct StackSettings {
     bool allow_mirror = false;
-    double tolerance = 1e-4;     // of the chart's extent (its first vertex to its farthest)
-    bool within_part = false;    // only charts of one mesh of a scene (one page per mesh)
-    bool compare_uvs = false;    // the charts' uvs are the user's (repacking): they must agree
+    double tolerance = 1e-4;   // of the chart's extent (its first vertex to its farthest)
+    bool within_part = false;  // only charts of one mesh of a scene (one page per mesh)
+    bool compare_uvs = false;  // the charts' uvs are the user's (repacking): they must agree
 };
 
 // How `b`'s points lie on `a`'s, vertex for vertex: moved rigidly, only mirrored, or neither,

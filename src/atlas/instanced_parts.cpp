@@ -32,8 +32,8 @@ PartLayout layout_of(const TriangleMesh& mesh, const AtlasParts& parts, int32_t 
     for (const std::array<uint32_t, 2>& pair : mesh.seam_edges) {
         const int64_t a = pair[0];
         if (a >= first && a < last)
-            layout.seams.push_back({pair[0] - static_cast<uint32_t>(first),
-                                    pair[1] - static_cast<uint32_t>(first)});
+            layout.seams.push_back(
+                {pair[0] - static_cast<uint32_t>(first), pair[1] - static_cast<uint32_t>(first)});
     }
     return layout;
 }
@@ -73,7 +73,8 @@ std::vector<int32_t> instance_sources(const TriangleMesh& mesh, const AtlasParts
         const std::vector<Eigen::Vector3d> positions = positions_of(mesh, parts, p);
         for (int32_t q : earlier) {
             if (!(layouts[q] == layouts[p])) continue;
-            const PointMatch match = match_points(positions_of(mesh, parts, q), positions, tolerance);
+            const PointMatch match =
+                match_points(positions_of(mesh, parts, q), positions, tolerance);
             if (match == PointMatch::kRigid || (allow_mirror && match == PointMatch::kMirror)) {
                 source[p] = q;
                 break;
@@ -91,7 +92,7 @@ void copy_instance_charts(const TriangleMesh& mesh, const AtlasParts& parts,
     const int32_t old_count = static_cast<int32_t>(charts.size());
     // Triangle by triangle, in input order: an instance's triangle takes its source triangle's
     // chart (copied once per instance) and chart vertices; charts are numbered on first sight.
-    std::vector<int32_t> kept(old_count, -1);       // old chart -> new, for non-instances
+    std::vector<int32_t> kept(old_count, -1);                // old chart -> new, for non-instances
     std::map<std::pair<int32_t, int32_t>, int32_t> copy_of;  // (instance part, old chart) -> new
     std::vector<AtlasChart> out;
     std::vector<int32_t> out_part;

@@ -53,7 +53,8 @@ std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<in
             int32_t found = head[lo];
             while (found >= 0 && !sides[found].same_edge(side)) found = sides[found].next;
             if (found >= 0) {
-                const int32_t x = find_root(parent, t), y = find_root(parent, sides[found].triangle);
+                const int32_t x = find_root(parent, t),
+                              y = find_root(parent, sides[found].triangle);
                 parent[std::max(x, y)] = std::min(x, y);
             }
             sides.push_back(side);
@@ -149,11 +150,12 @@ void check_corner_uvs(const TriangleMesh& mesh, const std::string& name) {
     const std::string lead = name.empty() ? "the mesh" : name;
     throw Error(ErrorCode::kUvCount,
                 mesh.corner_uv.empty()
-                    ? lead + " has no corner uvs to repack (set them with "
-                             "raps_mesh_set_corner_uvs_f32/f64)"
-                    : lead + " has " + std::to_string(mesh.corner_uv.size()) +
-                          " corner uvs but " + std::to_string(mesh.triangles.size()) +
-                          " triangles (" + std::to_string(corners) +
+                    ? lead +
+                          " has no corner uvs to repack (set them with "
+                          "raps_mesh_set_corner_uvs_f32/f64)"
+                    : lead + " has " + std::to_string(mesh.corner_uv.size()) + " corner uvs but " +
+                          std::to_string(mesh.triangles.size()) + " triangles (" +
+                          std::to_string(corners) +
                           " corners): the indices changed since, or the count was wrong");
 }
 

@@ -339,8 +339,9 @@ static void set_corner_uvs(raps_mesh* mesh, raps_settings* settings, const fuzz_
         uv[2 * i] = p[0];
         uv[2 * i + 1] = p[1];
     }
-    CHECK_STATUS(raps_mesh_set_corner_uvs_f64(mesh, in->index_count ? uv : NULL, in->index_count, 0),
-                 acceptable_uvs ? RAPS_OK : RAPS_ERROR_NON_FINITE_UV);
+    CHECK_STATUS(
+        raps_mesh_set_corner_uvs_f64(mesh, in->index_count ? uv : NULL, in->index_count, 0),
+        acceptable_uvs ? RAPS_OK : RAPS_ERROR_NON_FINITE_UV);
     free(uv);
     CHECK_STATUS(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_REPACK, 1), RAPS_OK);
 }

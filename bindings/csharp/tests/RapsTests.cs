@@ -1013,7 +1013,8 @@ static class RapsTests
                     // z = (output(b) - output(a)) / (input(b) - input(a)), complex numbers
                     double[] o = minus(output(b), output(a)), d = minus(input(b), input(a));
                     double dd = d[0] * d[0] + d[1] * d[1];
-                    double zr = (o[0] * d[0] + o[1] * d[1]) / dd, zi = (o[1] * d[0] - o[0] * d[1]) / dd;
+                    double zr = (o[0] * d[0] + o[1] * d[1]) / dd;
+                    double zi = (o[1] * d[0] - o[0] * d[1]) / dd;
                     foreach (int c in corners)
                     {
                         double[] e = minus(input(c), input(a));
@@ -1065,7 +1066,8 @@ static class RapsTests
                 MeshRange first = result.GetMeshRange(0), second = result.GetMeshRange(1);
                 for (int i = 0; i < 18; i++)
                 {
-                    ulong a = first.FirstVertex + indices[i], b = second.FirstVertex + indices[18 + i];
+                    ulong a = first.FirstVertex + indices[i];
+                    ulong b = second.FirstVertex + indices[18 + i];
                     Expect(uv[2 * a] == uv[2 * b] && uv[2 * a + 1] == uv[2 * b + 1],
                            "corner " + i + " has its original's uv");
                 }
