@@ -50,20 +50,31 @@ const std::vector<ParameterFlag> kParameterFlags = {
     {"--hard-edge-angle", RAPS_PARAM_HARD_EDGE_ANGLE, true, {}},
     {"--max-l2-stretch", RAPS_PARAM_ATLAS_MAX_L2_STRETCH, true, {}},
     {"--max-linf-stretch", RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, true, {}},
-    {"--texels-per-unit", RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, false, {}},
+    {"--texels-per-unit", RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, true, {}},
     {"--rotate",
      RAPS_PARAM_ATLAS_ROTATION,
-     false,
+     true,
      {{"any", RAPS_ROTATION_ANY},
       {"quarter", RAPS_ROTATION_QUARTER},
       {"none", RAPS_ROTATION_NONE}}},
-    {"--margin", RAPS_PARAM_ATLAS_MARGIN, false, {}},
+    {"--margin", RAPS_PARAM_ATLAS_MARGIN, true, {}},
     {"--stack-tolerance", RAPS_PARAM_ATLAS_STACK_TOLERANCE, false, {}},
     {"--damping", RAPS_PARAM_SPHERE_DAMPING, false, {}},
     {"--tolerance", RAPS_PARAM_SPHERE_TOLERANCE, false, {}},
     {"--max-sweeps", RAPS_PARAM_SPHERE_MAX_SWEEPS, false, {}},
     {"--alpha-steps", RAPS_PARAM_SPHERE_ALPHA_STEPS, false, {}},
 };
+
+const SwitchFlag kSwitchFlags[] = {
+    {"--block-align", RAPS_PARAM_ATLAS_BLOCK_ALIGN, true},
+    {"--mesh-per-page", RAPS_PARAM_ATLAS_MESH_PER_PAGE, false},
+    {"--whole-texels", RAPS_PARAM_ATLAS_WHOLE_TEXELS, false},
+    {"--keep-uv-seams", RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, true},
+};
+
+std::string library_error(raps_settings* settings, raps_status status) {
+    return status == RAPS_OK ? std::string() : std::string(raps_settings_last_error(settings));
+}
 
 }  // namespace
 
@@ -103,6 +114,41 @@ std::string set_parameter_from_text(raps_settings* settings, const ParameterFlag
         }
     }
     if (status != RAPS_OK) return name + ": " + raps_settings_last_error(settings);
+    return "";
+}
+
+const SwitchFlag* find_switch_flag(const std::string& flag) {
+    for (const SwitchFlag& entry : kSwitchFlags) {
+        if (flag == entry.flag) return &entry;
+    }
+    return nullptr;
+}
+
+std::string set_switch(raps_settings* settings, const SwitchFlag& flag) {
+    return library_error(settings, raps_settings_set_int(settings, flag.param, 1));
+}
+
+std::string set_max_size(raps_settings* settings, const std::string& text) {
+    for (raps_param side : {RAPS_PARAM_ATLAS_MAX_WIDTH, RAPS_PARAM_ATLAS_MAX_HEIGHT}) {
+        const ParameterFlag entry{"--max-size", side, false, {}};
+        const std::string error = set_parameter_from_text(settings, entry, text);
+        if (!error.empty()) return error;
+    }
+    return "";
+}
+
+std::string apply_lightmap_preset(raps_settings* settings) {
+    const std::pair<raps_param, int64_t> preset[] = {
+        {RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS},
+        {RAPS_PARAM_ATLAS_PADDING, 2},
+        {RAPS_PARAM_ATLAS_ROTATION, RAPS_ROTATION_QUARTER},
+        {RAPS_PARAM_ATLAS_MESH_PER_PAGE, 1},
+        {RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1}};
+    for (const auto& p : preset) {
+        const std::string error =
+            library_error(settings, raps_settings_set_int(settings, p.first, p.second));
+        if (!error.empty()) return error;
+    }
     return "";
 }
 

@@ -195,11 +195,19 @@ std::string read_primitive(const Asset& asset, const BakeOptions& options, const
 }  // namespace
 
 Selection select_primitives(const Asset& asset, const BakeOptions& options,
-                            std::vector<SkipReport>* skipped) {
+                            std::vector<SkipReport>* skipped, const std::vector<bool>* drawn) {
     Selection selection;
     const Json& meshes = array_of(asset.doc, "meshes");
     for (size_t m = 0; m < meshes.size(); ++m) {
         const Json& primitives = meshes[m]["primitives"];
+        if (drawn && !(*drawn)[m]) {
+            for (size_t p = 0; p < primitives.size(); ++p) {
+                skipped->push_back({int(m), int(p),
+                                    "the default scene does not draw this mesh, or only under "
+                                    "transforms that flatten it (a zero scale): left as it is"});
+            }
+            continue;
+        }
         std::vector<PrimitiveInput> mesh_group;
         for (size_t p = 0; p < primitives.size(); ++p) {
             const std::string where =
@@ -210,7 +218,7 @@ Selection select_primitives(const Asset& asset, const BakeOptions& options,
             const std::string reason = read_primitive(asset, options, primitives[p], where, &input);
             if (!reason.empty()) {
                 skipped->push_back({int(m), int(p), reason});
-            } else if (options.group_by_mesh) {
+            } else if (options.grouping != Grouping::kPrimitive) {
                 mesh_group.push_back(std::move(input));
             } else {
                 selection.groups.push_back({std::move(input)});

@@ -38,7 +38,10 @@ struct Selection {
 };
 
 // Throws GltfError for a defect (see above); appends every primitive left as it is to `skipped`.
+// `drawn` (--group scene): per mesh, whether the default scene draws it; the primitives of a mesh
+// it does not draw are left as they are, unread.
 Selection select_primitives(const Asset& asset, const BakeOptions& options,
-                            std::vector<SkipReport>* skipped);
+                            std::vector<SkipReport>* skipped,
+                            const std::vector<bool>* drawn = nullptr);
 
 }  // namespace raps_gltf

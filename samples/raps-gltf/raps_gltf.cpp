@@ -23,103 +23,25 @@
 #include <thread>
 #include <vector>
 
+#include "command_line.h"
 #include "gltf_bake.h"
 #include "gltf_error.h"
 #include "gltf_load.h"
 #include "gltf_output.h"
-#include "parameter_text.h"
 #include "preview.h"
 #include "raps.h"
 #include "report.h"
 
 namespace {
 
+using raps_gltf::has_suffix;
 using raps_gltf::Json;
-
-const char* kUsage = R"(usage: raps-gltf IN OUT [options]
-       raps-gltf IN... -o OUTDIR [--jobs N] [options]
-
-Writes new texture coordinates (TEXCOORD_0 by default) into every triangle primitive of a glTF
-2.0 asset and keeps everything else: other attributes and morph targets are carried to the
-vertices split at seams, materials, images (byte for byte), animations, skins, cameras, nodes,
-extensions and extras are kept. IN and OUT are .gltf (external buffers or data uris) or .glb;
-OUT's extension picks the format. Points and lines are left as they are.
-
-Prints one JSON object on stdout: the settings, per atlas (one per mesh by default) its charts,
-size, utilization, distortion figures and times, per primitive its counts and attributes, what
-was skipped and why, and the files written. On failure it prints {"error": {...}} and a message
-on stderr and writes nothing. Exit status: 0 baked, 1 refused or failed, 2 usage error,
-3 nothing to bake (no triangle primitive; no output written).
-
-options:
-  --texcoord N               the set to write, TEXCOORD_N (default 0; 1 for lightmaps). Lower
-                             sets the asset lacks get the same uvs (glTF's continuity rule)
-  --overwrite                replace the set when a primitive already has it (without this flag
-                             such an asset is refused)
-  --group mesh|primitive     one atlas per mesh (default; primitives sharing a texture must
-                             share an atlas) or one per primitive
-  --embed                    .gltf output: the buffer as a data uri instead of OUT.<hash>.bin
-  --report FILE              also write the JSON to FILE
-  --preview FILE.png         write a picture: the uv layout with chart outlines beside the model
-                             rendered with a checker texture through the new uvs
-  --progress, --no-progress  progress on stderr (default: when stderr is a terminal)
-batch:
-  -o, --output-dir DIR       write each input's result into DIR (folders given as inputs are
-                             searched for .gltf and .glb, their sub-folders kept)
-  --format glb|gltf          output format in batch mode (default: the input's)
-  --previews                 write OUT.png beside each output
-  --jobs N                   assets baked at once (default 1)
-atlas (the library's settings; see include/raps.h):
-  --monitor none|area|length|angle
-                             distortion monitor of the adaptive step (default area)
-  --alpha A                  exponent of W = w * e^alpha (default 1)
-  --iterations K             adaptive solves, 1..100 (default 1)
-  --iteration-mode accumulate|reapply
-  --weights mvc|cotan|uniform
-  --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
-  --padding N                texels between charts, 0..64 (default 1)
-  --weld-tolerance D         weld vertices closer than D (default 0: identical positions)
-  --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)
-  --max-l2-stretch S         split charts until the L2 stretch is <= S (default 1.008)
-  --max-linf-stretch S       split charts stretching a triangle more than S (default 2.9)
-  --max-triangles N          refuse larger atlases
-  --max-memory-mb N          refuse atlases estimated to need more memory (default 0: no cap)
-  --threads N                threads per atlas, 0 = all cores (default 0; 1 with --jobs > 1);
-                             the output is identical for any N
-  -h, --help                 this text
-  --version                  the raps library version
-)";
-
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-struct Options {
-    std::vector<std::string> inputs;
-    std::string output;      // single mode
-    std::string output_dir;  // batch mode
-    std::string format;      // batch: "", "glb" or "gltf"
-    std::string report, preview;
-    bool previews = false, embed = false;
-    int jobs = 1;
-    int progress = -1;  // -1: when stderr is a terminal
-    bool threads_set = false;
-    raps_gltf::BakeOptions bake;
-};
+using raps_gltf::Options;
+using raps_gltf::UsageError;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
-}
-
-bool has_suffix(const std::string& s, const char* suffix) {
-    const size_t n = std::strlen(suffix);
-    if (s.size() < n) return false;
-    for (size_t i = 0; i < n; ++i) {
-        if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != suffix[i])
-            return false;
-    }
-    return true;
 }
 
 // One line on stderr, rewritten in place, at most ten times a second.
@@ -283,123 +205,29 @@ struct SettingsHandle {
     ~SettingsHandle() { raps_settings_destroy(settings); }
 };
 
-int run(int argc, char** argv) {
-    Options options;
-    SettingsHandle h;
-    if (raps_settings_create(&h.settings) != RAPS_OK)
-        throw std::runtime_error("cannot create settings");
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-            return argv[++i];
-        };
-        auto whole = [&](const std::string& text, long lo, long hi) {
-            char* end = nullptr;
-            errno = 0;
-            const long v = std::strtol(text.c_str(), &end, 10);
-            if (end == text.c_str() || *end || errno || v < lo || v > hi) {
-                throw UsageError(arg + " needs a whole number in [" + std::to_string(lo) + ", " +
-                                 std::to_string(hi) + "], not '" + text + "'");
-            }
-            return static_cast<int>(v);
-        };
-        if (arg == "-h" || arg == "--help") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (arg == "--version") {
-            std::printf("raps-gltf (raps %s)\n", raps_version_string());
-            return 0;
-        } else if (arg == "--texcoord") {
-            options.bake.texcoord = whole(value(), 0, 31);
-        } else if (arg == "--overwrite") {
-            options.bake.overwrite = true;
-        } else if (arg == "--group") {
-            const std::string g = value();
-            if (g != "mesh" && g != "primitive") throw UsageError("--group is mesh or primitive");
-            options.bake.group_by_mesh = g == "mesh";
-        } else if (arg == "--embed") {
-            options.embed = true;
-        } else if (arg == "--report") {
-            options.report = value();
-        } else if (arg == "--preview") {
-            options.preview = value();
-        } else if (arg == "--previews") {
-            options.previews = true;
-        } else if (arg == "--progress") {
-            options.progress = 1;
-        } else if (arg == "--no-progress") {
-            options.progress = 0;
-        } else if (arg == "-o" || arg == "--output-dir") {
-            options.output_dir = value();
-        } else if (arg == "--format") {
-            options.format = value();
-            if (options.format != "glb" && options.format != "gltf") {
-                throw UsageError("--format is glb or gltf");
-            }
-        } else if (arg == "--jobs") {
-            options.jobs = whole(value(), 1, 256);
-        } else if (const raps_samples::ParameterFlag* flag = raps_samples::find_parameter_flag(arg);
-                   flag && flag->atlas) {
-            const std::string error =
-                raps_samples::set_parameter_from_text(h.settings, *flag, value());
-            if (!error.empty()) throw UsageError(error);
-            if (arg == "--threads") options.threads_set = true;
-        } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
-            throw UsageError("unknown option " + arg);
-        } else {
-            options.inputs.push_back(arg);
+// One input, one output: the JSON on stdout, the reason on stderr when nothing was written.
+int run_single(const Options& options, const raps_settings* settings, ProgressLine* line) {
+    const FileResult r =
+        process(options.inputs[0], options.output, options.preview, options, settings, line);
+    std::puts(r.json.dump().c_str());
+    if (r.status == 1) {
+        std::fprintf(stderr, "raps-gltf: %s: %s\n", options.inputs[0].c_str(),
+                     r.json["error"]["message"].get<std::string>().c_str());
+    } else if (r.status == 3) {
+        std::string why;
+        for (const Json& skip : r.json["skipped"]) {
+            why += "; mesh " + skip["mesh"].dump() + " primitive " + skip["primitive"].dump() +
+                   ": " + skip["reason"].get<std::string>();
         }
+        std::fprintf(stderr, "raps-gltf: %s: nothing to bake, no output written%s\n",
+                     options.inputs[0].c_str(), why.c_str());
     }
-    const bool batch = !options.output_dir.empty();
-    if (!batch) {
-        if (options.inputs.size() != 2) {
-            throw UsageError(options.inputs.empty() ? "no input file"
-                             : options.inputs.size() == 1
-                                 ? "no output file (raps-gltf IN OUT, or -o DIR for batch mode)"
-                                 : "one input and one output, or -o DIR for batch mode");
-        }
-        options.output = options.inputs[1];
-        options.inputs.pop_back();
-        if (!has_suffix(options.output, ".glb") && !has_suffix(options.output, ".gltf")) {
-            throw UsageError("the output must end in .glb or .gltf: " + options.output);
-        }
-        if (options.previews || options.jobs != 1 || !options.format.empty()) {
-            throw UsageError("--previews, --jobs and --format are batch options (-o DIR)");
-        }
-        if (options.embed && !has_suffix(options.output, ".gltf")) {
-            throw UsageError("--embed is for .gltf output");
-        }
-    } else {
-        if (options.inputs.empty()) throw UsageError("no input file or folder");
-        if (!options.preview.empty())
-            throw UsageError("batch mode writes previews with --previews");
-    }
-    if (options.jobs > 1 && !options.threads_set) {
-        raps_settings_set_int(h.settings, RAPS_PARAM_THREADS, 1);  // files in parallel instead
-    }
-    ProgressLine line(options.progress < 0 ? isatty(STDERR_FILENO) != 0 : options.progress == 1);
+    if (!options.report.empty()) write_json_file(options.report, r.json);
+    return r.status;
+}
 
-    if (!batch) {
-        const FileResult r =
-            process(options.inputs[0], options.output, options.preview, options, h.settings, &line);
-        std::puts(r.json.dump().c_str());
-        if (r.status == 1) {
-            std::fprintf(stderr, "raps-gltf: %s: %s\n", options.inputs[0].c_str(),
-                         r.json["error"]["message"].get<std::string>().c_str());
-        } else if (r.status == 3) {
-            std::string why;
-            for (const Json& skip : r.json["skipped"]) {
-                why += "; mesh " + skip["mesh"].dump() + " primitive " + skip["primitive"].dump() +
-                       ": " + skip["reason"].get<std::string>();
-            }
-            std::fprintf(stderr, "raps-gltf: %s: nothing to bake, no output written%s\n",
-                         options.inputs[0].c_str(), why.c_str());
-        }
-        if (!options.report.empty()) write_json_file(options.report, r.json);
-        return r.status;
-    }
-
+// Batch mode's inputs, each with its path relative to the output folder.
+std::vector<std::pair<std::string, std::string>> batch_files(const Options& options) {
     std::vector<std::pair<std::string, std::string>> files;
     for (const std::string& input : options.inputs) {
         const size_t slash = input.find_last_of('/');
@@ -408,47 +236,34 @@ int run(int argc, char** argv) {
         collect(input, is_dir ? "" : input.substr(slash == std::string::npos ? 0 : slash + 1),
                 &files, 0);
     }
-    if (mkdir(options.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-        throw UsageError("cannot create the output folder " + options.output_dir);
-    }
-    std::vector<FileResult> results(files.size());
-    std::atomic<size_t> next{0}, finished{0};
-    auto worker = [&]() {
-        for (size_t i; (i = next++) < files.size();) {
-            std::string relative = files[i].second;
-            const std::string format = !options.format.empty()
-                                           ? options.format
-                                           : (has_suffix(relative, ".glb") ? "glb" : "gltf");
-            relative = relative.substr(0, relative.find_last_of('.')) + "." + format;
-            const std::string output = options.output_dir + "/" + relative;
-            for (size_t slash = options.output_dir.size() + 1;
-                 (slash = output.find('/', slash)) != std::string::npos; ++slash) {
-                mkdir(output.substr(0, slash).c_str(), 0755);
-            }
-            const std::string preview =
-                options.previews ? output.substr(0, output.find_last_of('.')) + ".png" : "";
-            results[i] = process(files[i].first, output, preview, options, h.settings,
-                                 options.jobs == 1 ? &line : nullptr);
-            const FileResult& r = results[i];
-            const char* what = r.status == 0   ? "baked"
-                               : r.status == 3 ? "nothing to bake"
-                                               : "FAILED";
-            char text[64];
-            std::snprintf(text, sizeof(text), " (%.0f ms)", r.ms);
-            line.line("[" + std::to_string(++finished) + "/" + std::to_string(files.size()) + "] " +
-                      files[i].first + ": " + what +
-                      (r.status == 1 ? ": " + r.json["error"]["message"].get<std::string>() : "") +
-                      text);
-        }
-    };
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<std::thread> threads;
-    for (int j = 1; j < std::min<int>(options.jobs, static_cast<int>(files.size())); ++j)
-        threads.emplace_back(worker);
-    worker();
-    for (std::thread& t : threads) t.join();
+    return files;
+}
 
-    Json out = Json::object();
+// Where a batch input's result goes (its folders created), in the format asked or its own.
+std::string batch_output(const Options& options, std::string relative) {
+    const std::string format =
+        !options.format.empty() ? options.format : (has_suffix(relative, ".glb") ? "glb" : "gltf");
+    relative = relative.substr(0, relative.find_last_of('.')) + "." + format;
+    const std::string output = options.output_dir + "/" + relative;
+    for (size_t slash = options.output_dir.size() + 1;
+         (slash = output.find('/', slash)) != std::string::npos; ++slash) {
+        mkdir(output.substr(0, slash).c_str(), 0755);
+    }
+    return output;
+}
+
+void show_finished(ProgressLine& line, const std::string& input, const FileResult& r,
+                   size_t finished, size_t total) {
+    const char* what = r.status == 0 ? "baked" : r.status == 3 ? "nothing to bake" : "FAILED";
+    char text[64];
+    std::snprintf(text, sizeof(text), " (%.0f ms)", r.ms);
+    line.line("[" + std::to_string(finished) + "/" + std::to_string(total) + "] " + input + ": " +
+              what + (r.status == 1 ? ": " + r.json["error"]["message"].get<std::string>() : "") +
+              text);
+}
+
+// The batch's JSON: every file's, then the summary; failures also on stderr.
+Json batch_json(const std::vector<FileResult>& results, int jobs, double ms) {
     Json list = Json::array();
     size_t baked = 0, nothing = 0, failed = 0;
     uint64_t triangles = 0;
@@ -463,14 +278,60 @@ int run(int argc, char** argv) {
                          r.json["error"]["message"].get<std::string>().c_str());
         }
     }
+    Json out = Json::object();
     out["files"] = list;
-    out["summary"] = {{"files", results.size()},    {"baked", baked},
-                      {"nothing_to_bake", nothing}, {"failed", failed},
-                      {"triangles", triangles},     {"jobs", options.jobs},
-                      {"time_ms", ms_since(start)}};
+    out["summary"] = {{"files", results.size()},
+                      {"baked", baked},
+                      {"nothing_to_bake", nothing},
+                      {"failed", failed},
+                      {"triangles", triangles},
+                      {"jobs", jobs},
+                      {"time_ms", ms}};
+    return out;
+}
+
+// Files and folders into the output folder, --jobs files at once.
+int run_batch(const Options& options, const raps_settings* settings, ProgressLine& line) {
+    const std::vector<std::pair<std::string, std::string>> files = batch_files(options);
+    if (mkdir(options.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+        throw UsageError("cannot create the output folder " + options.output_dir);
+    }
+    std::vector<FileResult> results(files.size());
+    std::atomic<size_t> next{0}, finished{0};
+    auto worker = [&]() {
+        for (size_t i; (i = next++) < files.size();) {
+            const std::string output = batch_output(options, files[i].second);
+            const std::string preview =
+                options.previews ? output.substr(0, output.find_last_of('.')) + ".png" : "";
+            results[i] = process(files[i].first, output, preview, options, settings,
+                                 options.jobs == 1 ? &line : nullptr);
+            show_finished(line, files[i].first, results[i], ++finished, files.size());
+        }
+    };
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::thread> threads;
+    for (int j = 1; j < std::min<int>(options.jobs, static_cast<int>(files.size())); ++j)
+        threads.emplace_back(worker);
+    worker();
+    for (std::thread& t : threads) t.join();
+    const Json out = batch_json(results, options.jobs, ms_since(start));
     std::puts(out.dump().c_str());
     if (!options.report.empty()) write_json_file(options.report, out);
-    return failed ? 1 : 0;
+    return out["summary"]["failed"].get<size_t>() ? 1 : 0;
+}
+
+int run(int argc, char** argv) {
+    Options options;
+    SettingsHandle h;
+    if (raps_settings_create(&h.settings) != RAPS_OK)
+        throw std::runtime_error("cannot create settings");
+    if (!parse_command_line(argc, argv, h.settings, options)) return 0;
+    if (options.jobs > 1 && !options.threads_set) {
+        raps_settings_set_int(h.settings, RAPS_PARAM_THREADS, 1);  // files in parallel instead
+    }
+    ProgressLine line(options.progress < 0 ? isatty(STDERR_FILENO) != 0 : options.progress == 1);
+    return options.output_dir.empty() ? run_single(options, h.settings, &line)
+                                      : run_batch(options, h.settings, line);
 }
 
 }  // namespace

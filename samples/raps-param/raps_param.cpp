@@ -226,40 +226,15 @@ struct Options {
     bool repack = false;         // the OBJ's own vt as the charts
 };
 
-// A flag that sets one int parameter to 1.
-void set_switch(raps_settings* settings, raps_param param) {
-    check(raps_settings_set_int(settings, param, 1),
-          [&] { return raps_settings_last_error(settings); });
-}
-
-void set_number(raps_settings* settings, const char* flag, raps_param param,
-                const std::string& text) {
-    const raps_samples::ParameterFlag entry{flag, param, false, {}};
-    const std::string error = raps_samples::set_parameter_from_text(settings, entry, text);
-    if (!error.empty()) throw UsageError(error);
-}
-
-// --lightmap: a lightmap's settings (Unity asks for at least 2 texels of padding; a mesh's
-// charts on one page; quarter turns only, so texel rows stay texel rows; charts on whole texels,
-// which a density gives, and which at a resolution whole texels ask for). Set before the other
-// flags are read, so that --padding and --rotate given too override these.
-void apply_lightmap_preset(raps_settings* settings) {
-    check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
-          [&] { return raps_settings_last_error(settings); });
-    check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_PADDING, 2),
-          [&] { return raps_settings_last_error(settings); });
-    check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_ROTATION, RAPS_ROTATION_QUARTER),
-          [&] { return raps_settings_last_error(settings); });
-    set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
-    set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
-}
-
 // Reads the command line into the settings; returns the files. Exits early (returning false)
 // for --help and --version.
 bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& options) {
     bool lightmap = false;
     for (int i = 1; i < argc; ++i) lightmap = lightmap || std::strcmp(argv[i], "--lightmap") == 0;
-    if (lightmap) apply_lightmap_preset(settings);
+    if (lightmap) {
+        const std::string error = raps_samples::apply_lightmap_preset(settings);
+        if (!error.empty()) throw Failure(RAPS_ERROR_INTERNAL, error);
+    }
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&]() -> std::string {
@@ -283,22 +258,17 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
         } else if (arg == "--lightmap") {
             continue;  // applied above
         } else if (arg == "--max-size") {
-            const std::string text = value();
-            set_number(settings, "--max-size", RAPS_PARAM_ATLAS_MAX_WIDTH, text);
-            set_number(settings, "--max-size", RAPS_PARAM_ATLAS_MAX_HEIGHT, text);
-        } else if (arg == "--block-align") {
-            set_switch(settings, RAPS_PARAM_ATLAS_BLOCK_ALIGN);
-        } else if (arg == "--mesh-per-page") {
-            set_switch(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE);
-        } else if (arg == "--whole-texels") {
-            set_switch(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS);
-        } else if (arg == "--keep-uv-seams") {
-            set_switch(settings, RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS);
-            options.keep_uv_seams = true;
+            const std::string error = raps_samples::set_max_size(settings, value());
+            if (!error.empty()) throw UsageError(error);
+        } else if (const raps_samples::SwitchFlag* on = raps_samples::find_switch_flag(arg)) {
+            check(raps_settings_set_int(settings, on->param, 1),
+                  [&] { return raps_settings_last_error(settings); });
+            options.keep_uv_seams = options.keep_uv_seams || arg == "--keep-uv-seams";
         } else if (arg == "--repack") {
             check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
                   [&] { return raps_settings_last_error(settings); });
-            set_switch(settings, RAPS_PARAM_ATLAS_REPACK);
+            check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_REPACK, 1),
+                  [&] { return raps_settings_last_error(settings); });
             options.repack = true;
         } else if (arg == "--stack" || arg == "--stack-mirrored") {
             if (lightmap)

@@ -10,6 +10,9 @@
 // read past what was given, a leak, or any other exception (raps-gltf reports those as
 // "internal": a bug). Anything else aborts, which libFuzzer and the replay driver report.
 // Runs stay short: at most kMaxTriangles triangles reach the library, on a 64-texel atlas.
+// The input's last byte picks the mode, so that the seeds reach every one: bit 0 bakes with
+// --group scene (the node graph's transforms, one atlas), unorm16 texcoords and TEXCOORD_0's
+// seams kept; bit 1 packs at a density on pages of at most 64 x 64 texels.
 // RAPS_FUZZ_VERBOSE=1 prints each input's outcome.
 #include <cstdint>
 #include <cstdio>
@@ -63,17 +66,33 @@ raps_settings* small_atlas_settings() {
     return settings;
 }
 
+raps_settings* density_settings() {
+    raps_settings* settings = small_atlas_settings();
+    if (raps_settings_set_float(settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 8.0) != RAPS_OK ||
+        raps_settings_set_int(settings, RAPS_PARAM_ATLAS_MAX_WIDTH, 64) != RAPS_OK ||
+        raps_settings_set_int(settings, RAPS_PARAM_ATLAS_MAX_HEIGHT, 64) != RAPS_OK) {
+        broken_promise("setup", "cannot create the settings");
+    }
+    return settings;
+}
+
 void report(const char* outcome, const std::string& detail) {
     static const bool verbose = std::getenv("RAPS_FUZZ_VERBOSE") != nullptr;
     if (verbose) std::fprintf(stderr, "fuzz_gltf_load: %s %s\n", outcome, detail.c_str());
 }
 
 // Load, bake, write, load the output again. GltfError is the documented way to refuse.
-void bake_file(const std::string& input, const std::string& output, const raps_settings* settings) {
+void bake_file(const std::string& input, const std::string& output, const raps_settings* settings,
+               bool scene) {
     const raps_gltf::Asset asset = raps_gltf::load_asset(input);
     raps_gltf::BakeOptions options;
     options.settings = settings;
     options.overwrite = true;  // also rewrite sets the input already has
+    if (scene) {
+        options.grouping = raps_gltf::Grouping::kScene;
+        options.uv_format = raps_gltf::UvFormat::kUnorm16;
+        options.keep_uv_seams = true;
+    }
     raps_gltf::BakeResult baked = raps_gltf::bake(asset, options);
     if (baked.groups.empty()) {  // nothing to bake: raps-gltf writes nothing either
         report("nothing to bake", "");
@@ -92,13 +111,15 @@ void bake_file(const std::string& input, const std::string& output, const raps_s
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static raps_settings* const settings = small_atlas_settings();
+    static raps_settings* const paged = density_settings();
+    const uint8_t mode = size ? data[size - 1] : 0;
     const bool glb =
         size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
     const std::string input = work_folder() + (glb ? "/fuzz.glb" : "/fuzz.gltf");
     const std::string output = work_folder() + "/out.glb";
     write_input(input, data, size);
     try {
-        bake_file(input, output, settings);
+        bake_file(input, output, mode & 2 ? paged : settings, (mode & 1) != 0);
     } catch (const raps_gltf::GltfError& e) {
         report("refused", e.kind + ": " + e.what());  // what a malformed file must get
     } catch (const std::exception& e) {

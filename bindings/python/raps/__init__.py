@@ -26,7 +26,8 @@ once, and garbage collection frees it otherwise; either way exactly once. Errors
 raps.Error with the status, its name and the library's message.
 
 The library is found through the environment variable RAPS_LIBRARY (a path to libraps.so),
-else by name through the dynamic loader (LD_LIBRARY_PATH, the system's library folders).
+else inside the package (raps/libraps.so, which an installed package carries: setup.py), else by
+name through the dynamic loader (LD_LIBRARY_PATH, the system's library folders).
 numpy is optional: without it, inputs are sequences and outputs are lists.
 """
 
@@ -65,8 +66,11 @@ def _load():
 
     An explicit RAPS_LIBRARY that fails is an error (no silent fallback to another copy)."""
     explicit = os.environ.get("RAPS_LIBRARY")
+    bundled = os.path.join(os.path.dirname(os.path.abspath(__file__)), "libraps.so")
     if explicit:
         candidates = [explicit]
+    elif os.path.exists(bundled):
+        candidates = [bundled]  # the package's own copy, made for these declarations
     else:
         major = _native.RAPS_VERSION_MAJOR
         candidates = ["libraps.so.%d" % major, "libraps.so", "libraps.%d.dylib" % major,

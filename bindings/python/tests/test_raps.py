@@ -2,7 +2,9 @@
 
 Environment (CTest sets it): RAPS_LIBRARY, the library to test; RAPS_SHARED_DATA_DIR, the
 shared meshes (missing data fails the tests, it never skips them); RAPS_TEST_WITHOUT_NUMPY=1
-runs the whole suite as on a machine without numpy (plain sequences in, lists out).
+runs the whole suite as on a machine without numpy (plain sequences in, lists out);
+RAPS_TEST_INSTALLED=1 tests the raps installed in this Python (with the library inside the
+package, no RAPS_LIBRARY) instead of the source tree's.
 """
 
 import gc
@@ -17,7 +19,9 @@ import unittest
 if os.environ.get("RAPS_TEST_WITHOUT_NUMPY") == "1":
     sys.modules["numpy"] = None  # makes `import numpy` raise ImportError, as if absent
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+INSTALLED = os.environ.get("RAPS_TEST_INSTALLED") == "1"
+if not INSTALLED:
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import raps  # noqa: E402
 
 try:
@@ -919,6 +923,16 @@ class Handles(unittest.TestCase):
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE)
         self.assertNotEqual(failed.returncode, 0)
         self.assertIn(b"no-such-libraps.so", failed.stderr)
+
+    def test_installed_package_carries_its_library(self):
+        package = os.path.dirname(os.path.abspath(raps.__file__))
+        source_tree = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "raps")
+        if INSTALLED:
+            self.assertNotIn("RAPS_LIBRARY", os.environ)
+            self.assertNotEqual(package, os.path.realpath(source_tree))
+            self.assertEqual(raps.library_path, os.path.join(package, "libraps.so"))
+        else:
+            self.assertEqual(package, os.path.realpath(source_tree))
 
     def test_numpy_is_used_when_present(self):
         with raps.Mesh(*icosahedron()[:1], [(0, 11, 5), (0, 5, 1), (0, 1, 7)]) as mesh:

@@ -2,7 +2,8 @@
 //! Raw declarations of libraps's C ABI (include/raps.h): functions, constants, types.
 //!
 //! Everything here is `unsafe` to call and follows the header's rules; the `raps` crate
-//! is the safe API. The link search path comes from `RAPS_LIB_DIR` (see build.rs).
+//! is the safe API. build.rs links libraps: compiled from the crate's sources and static
+//! with the default `bundled` feature, else the installed one (`RAPS_LIB_DIR`).
 #![allow(non_camel_case_types)]
 
 // std::os::raw rather than core::ffi: core::ffi::c_char is only stable from Rust 1.64.

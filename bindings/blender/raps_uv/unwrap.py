@@ -1,0 +1,263 @@
+"""The unwrap job: raps runs on meshes read from Blender, without touching Blender.
+
+A job holds only arrays (mesh_io.MeshInput), so it may run on a worker thread while Blender's
+interface keeps drawing: the library runs without the GIL and reports progress through its
+callback, which also cancels it. Nothing is written back here; the operator writes every
+object's uvs only once all of them have succeeded.
+"""
+
+import threading
+import time
+
+import numpy
+
+from . import mesh_io
+from .native import raps
+
+# How much of one run each phase stands for in the progress bar (measured shares of an atlas
+# run: mapping the charts dominates).
+_PHASE_SHARE = {"VALIDATE": 0.02, "TOPOLOGY": 0.05, "SEGMENT": 0.15, "INITIAL_MAP": 0.6,
+                "ADAPT": 0.0, "PACK": 0.13, "METRICS": 0.05}
+_PHASE_START = {}
+_start = 0.0
+for _name in ("VALIDATE", "TOPOLOGY", "SEGMENT", "INITIAL_MAP", "ADAPT", "PACK", "METRICS"):
+    _PHASE_START[_name] = _start
+    _start += _PHASE_SHARE[_name]
+
+
+# Runs of one atlas at most: the first; a rerun with each polygon's chart as its group, which
+# leaves a few polygons cut (where raps splits a chart by its stretch); a last rerun with each
+# of those a group of its own. A polygon cut even then becomes a small island of its own
+# (mesh_io).
+_ATTEMPTS = 3
+_ATTEMPT_SPAN = ((0.0, 0.6), (0.6, 0.9), (0.9, 1.0))
+
+
+class Options:
+    """What the operator's properties ask of raps."""
+
+    def __init__(self, monitor="AREA", alpha=1.0, iterations=1, size_mode="RESOLUTION",
+                 resolution=1024, texels_per_unit=256.0, padding=1, rotation="ANY",
+                 lightmap=False, use_seams=True, use_materials=False, one_atlas=False):
+        self.monitor = monitor
+        self.alpha = alpha
+        self.iterations = iterations
+        self.size_mode = size_mode
+        self.resolution = resolution
+        self.texels_per_unit = texels_per_unit
+        self.padding = padding
+        self.rotation = rotation
+        self.lightmap = lightmap
+        self.use_seams = use_seams
+        self.use_materials = use_materials
+        self.one_atlas = one_atlas
+
+    def settings(self):
+        """raps Settings for these options (raises raps.Error for a value raps refuses)."""
+        settings = raps.Settings(domain="atlas", monitor=self.monitor, alpha=self.alpha,
+                                 iterations=self.iterations, atlas_padding=self.padding,
+                                 atlas_rotation=self.rotation)
+        if self.size_mode == "DENSITY":
+            settings.atlas_texels_per_unit = self.texels_per_unit
+            settings.atlas_max_width = self.resolution
+            settings.atlas_max_height = self.resolution
+        else:
+            settings.atlas_resolution = self.resolution
+        if self.lightmap:
+            # A lightmap keeps each mesh on one page and its charts on whole texels.
+            settings.atlas_mesh_per_page = 1
+            if self.size_mode != "DENSITY":
+                settings.atlas_whole_texels = 1
+        return settings
+
+
+class Outcome:
+    """One object's share of a job: its per loop uvs and figures, or the error that stopped it."""
+
+    def __init__(self, name):
+        self.name = name
+        self.uv = None
+        self.error = None
+        self.charts = 0
+        self.utilization = 0.0
+        self.stretch_l2 = 0.0
+        self.flipped = 0
+        self.pages = 0
+        self.repaired_polygons = 0
+        self.time_ms = 0.0
+        self.runs = 0
+
+
+class Cancelled(Exception):
+    """The user cancelled the job."""
+
+
+class Job:
+    """Runs raps over named meshes: one atlas each, or one for all (options.one_atlas).
+
+    inputs: [(object name, MeshInput)]. run() fills self.outcomes; progress is read from
+    self.fraction (0..1) and cancel() stops the run at the library's next progress call."""
+
+    def __init__(self, inputs, options):
+        self.inputs = inputs
+        self.options = options
+        self.outcomes = [Outcome(name) for name, _ in inputs]
+        self.fraction = 0.0
+        self.cancelled = False
+        self.done = False
+        self.failure = None  # an unexpected exception, raised again by the operator
+        self._cancel = threading.Event()
+
+    def cancel(self):
+        self._cancel.set()
+
+    def run(self):
+        try:
+            groups = [list(range(len(self.inputs)))] if self.options.one_atlas else \
+                [[i] for i in range(len(self.inputs))]
+            for number, members in enumerate(groups):
+                self._run_atlas(members, number, len(groups))
+                if self.cancelled:
+                    break
+        except BaseException as error:  # handed to the main thread, never lost in a thread
+            self.failure = error
+        finally:
+            self.fraction = 1.0
+            self.done = True
+
+    def start_thread(self):
+        thread = threading.Thread(target=self.run, name="raps-unwrap", daemon=True)
+        thread.start()
+        return thread
+
+    def _progress(self, number, count, attempt):
+        # The first run takes most of the object's share of the bar, the reruns the rest.
+        low, high = _ATTEMPT_SPAN[attempt]
+
+        def report(phase, fraction):
+            if self._cancel.is_set():
+                return False
+            name = phase.name if hasattr(phase, "name") else ""
+            within = _PHASE_START.get(name, 0.0) + _PHASE_SHARE.get(name, 0.0) * fraction
+            self.fraction = (number + low + (high - low) * min(within, 1.0)) / count
+            return True
+        return report
+
+    def _run_atlas(self, members, number, count):
+        """One atlas: reruns with the charts of the run before as triangle groups while raps's
+        charts cut through polygons (their loops could not get one uv each)."""
+        started = time.perf_counter()
+        groups = {i: self.inputs[i][1].groups for i in members}
+        for attempt in range(_ATTEMPTS):
+            result = self._solve(members, groups, self._progress(number, count, attempt))
+            if result is None:
+                return
+            with result:
+                regrouped = None if attempt + 1 == _ATTEMPTS else \
+                    self._polygon_groups(result, members, isolate=attempt > 0)
+                if not regrouped:
+                    self._collect(result, members, 1000.0 * (time.perf_counter() - started),
+                                  attempt + 1)
+                    return
+            groups.update(regrouped)
+
+    def _solve(self, members, groups, progress):
+        """The result of one raps run over members, or None after recording why not."""
+        meshes = []
+        try:
+            with self.options.settings() as settings:
+                for i in members:
+                    try:
+                        meshes.append(_raps_mesh(self.inputs[i][1], groups[i]))
+                    except raps.Error as error:  # this object's own data: name it alone
+                        self._fail([i], error)
+                        self._fail([j for j in members if j != i],
+                                   raps.Error(error.status, "not unwrapped: %s failed"
+                                              % self.inputs[i][0]))
+                        return None
+                return raps.parameterize_scene(meshes, settings, progress=progress)
+        except raps.Error as error:
+            if error.status == raps.Status.CANCELLED:
+                self.cancelled = True
+            else:
+                self._fail(members, error)
+            return None
+        finally:
+            for mesh in meshes:
+                mesh.close()
+
+    def _polygon_groups(self, result, members, isolate):
+        """{member: triangle groups} for the meshes whose polygons raps's charts cut; with
+        isolate, each polygon still cut becomes a group of its own."""
+        indices = result.indices()
+        chart_ids = numpy.asarray(result.chart_ids(), dtype=numpy.int64)
+        regrouped = {}
+        for position, i in enumerate(members):
+            data = self.inputs[i][1]
+            span = result.mesh_range(position)
+            first_t, count_t = span.first_index // 3, span.index_count // 3
+            out_vertices = indices[first_t:first_t + count_t].astype(numpy.int64)
+            split = mesh_io.split_polygons(data, out_vertices)
+            if len(split):
+                regrouped[i] = mesh_io.polygon_chart_groups(
+                    data, chart_ids[first_t:first_t + count_t], split if isolate else None)
+        return regrouped
+
+    def _fail(self, members, error):
+        message = error.message or error.name
+        if len(members) == 1:
+            self.outcomes[members[0]].error = mesh_io.blender_message(
+                self.inputs[members[0]][1], message)
+            return
+        # raps names a scene's failing mesh as "mesh N: ..."; name the object instead.
+        for position, i in enumerate(members):
+            prefix = "mesh %d: " % position
+            if message.startswith(prefix):
+                self.outcomes[i].error = mesh_io.blender_message(self.inputs[i][1],
+                                                                 message[len(prefix):])
+                return
+        for i in members:
+            self.outcomes[i].error = "one atlas for all failed: " + message
+
+    def _collect(self, result, members, elapsed, runs):
+        stats = result.stats()
+        uvs = result.uvs()
+        indices = result.indices()
+        chart_ids = numpy.asarray(result.chart_ids(), dtype=numpy.int64)
+        charts = result.charts()
+        chart_page = numpy.array([c.page for c in charts], dtype=numpy.float64)
+        chart_mesh = numpy.array([c.mesh for c in charts], dtype=numpy.int64)
+        chart_area = numpy.array([c.area_3d for c in charts], dtype=numpy.float64)
+        chart_l2 = numpy.array([c.stretch_l2 for c in charts], dtype=numpy.float64)
+        for position, i in enumerate(members):
+            data = self.inputs[i][1]
+            span = result.mesh_range(position)
+            first_t = span.first_index // 3
+            count_t = span.index_count // 3
+            out_vertices = indices[first_t:first_t + count_t].astype(numpy.int64) + \
+                span.first_vertex
+            mesh_charts = chart_ids[first_t:first_t + count_t]
+            corners = mesh_io.corner_uvs(uvs, out_vertices, chart_page, mesh_charts)
+            outcome = self.outcomes[i]
+            outcome.uv, outcome.repaired_polygons = mesh_io.loop_uvs(data, corners,
+                                                                     out_vertices)
+            own = chart_mesh == position
+            outcome.charts = int(own.sum())
+            weight = chart_area[own].sum()
+            outcome.stretch_l2 = float(numpy.sqrt((chart_area[own] * chart_l2[own] ** 2).sum() /
+                                                  weight)) if weight > 0 else 0.0
+            outcome.utilization = stats.utilization
+            outcome.flipped = stats.flipped_triangles
+            outcome.pages = max(1, stats.page_count)
+            outcome.time_ms = elapsed
+            outcome.runs = runs
+
+
+def _raps_mesh(data, groups):
+    mesh = raps.Mesh(data.positions, data.triangles)
+    mesh.set_transform(data.transform)
+    if groups is not None:
+        mesh.set_triangle_groups(groups)
+    if data.seams is not None:
+        mesh.set_seam_edges(data.seams)
+    return mesh
