@@ -613,22 +613,21 @@ enum {
 };
 
 /* Progress callback: called with the phase and the fraction of it done, in [0, 1]. Every phase
- * a run enters reports its start (0) and its end (1); in between, only the work that counts its
- * progress calls:
- *   - the sparse factorizations (the disk's INITIAL_MAP and ADAPT, the sphere's initial map and
- *     octahedral unfold), each time a front takes the factorization past another 1% of its
- *     floating-point work;
- *   - the sphere relaxation (INITIAL_MAP, ADAPT), at least every 16 sweeps and every 1% of its
- *     sweeps or of its residual's way down to the tolerance;
- *   - the atlas (INITIAL_MAP), after each chart it maps.
- * VALIDATE, TOPOLOGY (which also orders the sparse system), METRICS, SEGMENT and PACK call only
- * at their start and end, and the triangular solves after a factorization not at all, so a
- * cancel waits for them to end (measured on face.obj, 51,712 triangles: 88 ms in the disk's
- * TOPOLOGY, 104 ms in the atlas's PACK; more on larger meshes). Return nonzero to go on, 0 to
- * cancel: the run then stops at that call and returns RAPS_ERROR_CANCELLED. It is called on the
- * thread that called raps_parameterize or, with RAPS_PARAM_THREADS != 1, on the run's worker
- * threads; calls for one run never overlap. When one settings handle is shared by concurrent
- * runs, the callback receives calls from each of them. */
+ * a run enters reports its start (0), then as it works, and its end (1); its calls are
+ * contiguous and its fractions never fall. Every pass over the mesh reports every 8,192 items
+ * (triangles, vertices, half-edges); the sparse factorizations every 1% of their floating-point
+ * work, every 1e7 flops, and within a large front every few million multiply-adds; the
+ * orderings (nested dissection) per level, separator and leaf; the sphere relaxation every 1% of
+ * its sweeps and, at the same fraction, every 32,768 vertices moved; the atlas after each
+ * chart, and inside a chart's map (at the fraction reached) as the steps above do. So a cancel
+ * waits for a few milliseconds of work, not for a phase: raps-bench-progress prints the longest
+ * wait of each phase (docs/bench-progress.md). Not split: the minimum-degree ordering of a system
+ * of up to 150,000 unknowns (a chart, or a mesh of up to about 300,000 triangles: tens of
+ * milliseconds at that size) and the release of a run's memory between two phases. Return
+ * nonzero to go on, 0 to cancel: the run then stops at that call and returns
+ * RAPS_ERROR_CANCELLED. It is called on the thread that called raps_parameterize or, with
+ * RAPS_PARAM_THREADS != 1, on the run's worker threads; calls for one run never overlap. When one
+ * settings handle is shared by concurrent runs, the callback receives calls from each of them. */
 typedef int32_t (*raps_progress_fn)(void* user, raps_phase phase, double fraction);
 
 /* Sets the progress callback (NULL: none) and the pointer passed to it. Errors: INVALID_ARGUMENT

@@ -17,24 +17,45 @@ namespace raps {
 namespace {
 
 // One output vertex per input vertex, the input triangles.
-void identity_output(const TriangleMesh& mesh, Parameterization& out) {
+void identity_output(const TriangleMesh& mesh, Parameterization& out,
+                     const ProgressSpan& progress) {
     out.indices.reserve(3 * mesh.triangles.size());
-    for (const Triangle& t : mesh.triangles) {
-        for (int32_t v : t) out.indices.push_back(static_cast<uint32_t>(v));
-    }
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            for (int32_t v : mesh.triangles[t]) out.indices.push_back(static_cast<uint32_t>(v));
+        }
+    });
     out.vertex_remap.resize(mesh.positions.size());
     for (size_t v = 0; v < out.vertex_remap.size(); ++v) {
         out.vertex_remap[v] = static_cast<uint32_t>(v);
     }
 }
 
+// The output triangles, from their indices.
+std::vector<Triangle> output_triangles(const std::vector<uint32_t>& indices,
+                                       const ProgressSpan& progress) {
+    std::vector<Triangle> triangles(indices.size() / 3);
+    const int64_t count = static_cast<int64_t>(triangles.size());
+    progress.in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t t = static_cast<int64_t>(run_begin); t < run_end; ++t) {
+            for (int k = 0; k < 3; ++k) triangles[t][k] = static_cast<int32_t>(indices[3 * t + k]);
+        }
+    });
+    return triangles;
+}
+
 // Total uv area of `triangles`.
-double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles) {
+double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles,
+                   const ProgressSpan& progress) {
     double area = 0;
-    for (const Triangle& t : triangles) {
-        const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
-        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
+    const int64_t count = static_cast<int64_t>(triangles.size());
+    progress.in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
+            const Triangle& t = triangles[i];
+            const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+            area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+        }
+    });
     return area;
 }
 
@@ -42,8 +63,8 @@ double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Tri
 // the whole square (the octahedral unfold) sums to 1 give or take rounding; the fraction covered
 // cannot exceed 1, so neither does the figure.
 double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles,
-               int32_t pages = 1) {
-    return std::min(uv_area_sum(uv, triangles) / pages, 1.0);
+               const ProgressSpan& progress, int32_t pages = 1) {
+    return std::min(uv_area_sum(uv, triangles, progress) / pages, 1.0);
 }
 
 // The statistics of a map measured alone (the disk and sphere domains, which keep no pool):
@@ -51,10 +72,11 @@ double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangl
 // Raises *threads_used to the threads the measuring ran on.
 DistortionStats measure_alone(const Settings& settings,
                               const std::vector<Eigen::Vector3d>& positions, const MapGeometry& map,
-                              const std::vector<Triangle>& triangles, int* threads_used) {
+                              const std::vector<Triangle>& triangles, int* threads_used,
+                              const ProgressSpan& progress) {
     ThreadPool pool(
         choose_thread_count(settings.threads, static_cast<int64_t>(triangles.size()), 16384));
-    DistortionStats stats = measure_distortion(positions, map, triangles, pool);
+    DistortionStats stats = measure_distortion(positions, map, triangles, pool, progress);
     *threads_used = std::max(*threads_used, pool.threads_used());
     return stats;
 }
@@ -104,17 +126,20 @@ Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
     // Statistics in texel space, where the map is isotropic: uv scaled back per axis.
     std::vector<Eigen::Vector3d> positions(atlas.remap.size());
     std::vector<Eigen::Vector2d> texels(atlas.uv.size());
-    for (size_t v = 0; v < atlas.remap.size(); ++v) {
-        positions[v] = mesh.positions[atlas.remap[v]];
-        texels[v] = Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
-    }
-    std::vector<Triangle> triangles(mesh.triangles.size());
-    for (size_t t = 0; t < triangles.size(); ++t) {
-        for (int k = 0; k < 3; ++k)
-            triangles[t][k] = static_cast<int32_t>(atlas.indices[3 * t + k]);
-    }
-    out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool);
-    out.utilization = uv_area(atlas.uv, placed_triangles(triangles, atlas), atlas.page_count);
+    const int64_t vertex_count = static_cast<int64_t>(atlas.remap.size());
+    const ProgressSpan copying = timer.span(0.0, 0.1);
+    copying.in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t v = static_cast<int64_t>(run_begin); v < run_end; ++v) {
+            positions[v] = mesh.positions[atlas.remap[v]];
+            texels[v] =
+                Eigen::Vector2d(atlas.uv[v].x() * atlas.width, atlas.uv[v].y() * atlas.height);
+        }
+    });
+    const std::vector<Triangle> triangles = output_triangles(atlas.indices, timer.span(0.1, 0.2));
+    out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool,
+                                        timer.span(0.2, 0.95));
+    out.utilization = uv_area(atlas.uv, placed_triangles(triangles, atlas), timer.span(0.95, 1.0),
+                              atlas.page_count);
     out.uv = std::move(atlas.uv);
     out.indices = std::move(atlas.indices);
     out.vertex_remap = std::move(atlas.remap);
@@ -151,35 +176,35 @@ Parameterization disk_or_sphere_map(const TriangleMesh& mesh, const Settings& se
         out.relaxation_sweeps = map.relaxation_sweeps;
         out.threads_used = map.threads_used;
         if (map.unfold.uv.empty()) {
-            identity_output(mesh, out);
-            out.sphere_points = std::move(map.points);
             PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+            identity_output(mesh, out, timer.span(0.0, 0.1));
+            out.sphere_points = std::move(map.points);
             out.distortion =
                 measure_alone(settings, mesh.positions, SphericalMapGeometry(out.sphere_points),
-                              mesh.triangles, &out.threads_used);
+                              mesh.triangles, &out.threads_used, timer.span());
             timer.finish();
             return out;
         }
         // The octahedral unfold: more output vertices than input (the cut's), statistics of
         // the uvs over the output triangles.
+        PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
         out.uv = std::move(map.unfold.uv);
         out.vertex_remap = std::move(map.unfold.vertex_remap);
         out.indices = std::move(map.unfold.indices);
         out.sphere_points.resize(out.vertex_remap.size());
         std::vector<Eigen::Vector3d> positions(out.vertex_remap.size());
-        for (size_t o = 0; o < out.vertex_remap.size(); ++o) {
-            out.sphere_points[o] = map.points[out.vertex_remap[o]];
-            positions[o] = mesh.positions[out.vertex_remap[o]];
-        }
-        std::vector<Triangle> triangles(mesh.triangles.size());
-        for (size_t t = 0; t < triangles.size(); ++t) {
-            for (int k = 0; k < 3; ++k)
-                triangles[t][k] = static_cast<int32_t>(out.indices[3 * t + k]);
-        }
-        PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+        const int64_t vertex_count = static_cast<int64_t>(out.vertex_remap.size());
+        const ProgressSpan copying = timer.span(0.0, 0.1);
+        copying.in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
+            for (int64_t o = static_cast<int64_t>(run_begin); o < run_end; ++o) {
+                out.sphere_points[o] = map.points[out.vertex_remap[o]];
+                positions[o] = mesh.positions[out.vertex_remap[o]];
+            }
+        });
+        const std::vector<Triangle> triangles = output_triangles(out.indices, timer.span(0.1, 0.2));
         out.distortion = measure_alone(settings, positions, PlanarMapGeometry(out.uv), triangles,
-                                       &out.threads_used);
-        out.utilization = uv_area(out.uv, triangles);
+                                       &out.threads_used, timer.span(0.2, 0.95));
+        out.utilization = uv_area(out.uv, triangles, timer.span(0.95, 1.0));
         timer.finish();
         return out;
     }
@@ -187,11 +212,11 @@ Parameterization disk_or_sphere_map(const TriangleMesh& mesh, const Settings& se
     out.uv = std::move(map.uv);
     out.negative_weights = map.negative_weights;
     out.adaptive_solves = map.adaptive_solves;
-    identity_output(mesh, out);
     PhaseTimer timer(Phase::kMetrics, progress, out.phase_ms);
+    identity_output(mesh, out, timer.span(0.0, 0.1));
     out.distortion = measure_alone(settings, mesh.positions, PlanarMapGeometry(out.uv),
-                                   mesh.triangles, &out.threads_used);
-    out.utilization = uv_area(out.uv, mesh.triangles);
+                                   mesh.triangles, &out.threads_used, timer.span(0.1, 0.95));
+    out.utilization = uv_area(out.uv, mesh.triangles, timer.span(0.95, 1.0));
     timer.finish();
     return out;
 }

@@ -242,79 +242,12 @@ static void a_cancellation_from_a_worker_thread_stops_the_run(void** state) {
     test_mesh_free(&mesh);
 }
 
-/* Calls per phase of one run. */
-typedef struct phase_calls {
-    int count[RAPS_PHASE_COUNT];
-} phase_calls;
-
-static int32_t count_phase_calls(void* user, raps_phase phase, double fraction) {
-    (void)fraction;
-    ((phase_calls*)user)->count[phase]++;
-    return 1;
-}
-
-/* Fails unless the phases in `inside` report between their start and end (more than 2 calls)
- * and every other phase the run enters reports its start and end only (2 calls), as the
- * header's progress callback says. */
-static void assert_reports_inside(const char* name, const test_mesh* mesh, raps_settings* s,
-                                  unsigned entered, unsigned inside) {
-    phase_calls calls;
-    memset(&calls, 0, sizeof(calls));
-    assert_status(raps_settings_set_progress(s, count_phase_calls, &calls), RAPS_OK);
-    raps_mesh* m = to_raps_mesh(mesh);
-    raps_result_destroy(parameterize_ok(m, s));
-    raps_mesh_destroy(m);
-    for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {
-        print_message("%s: phase %d, %d calls\n", name, p, calls.count[p]);
-        if (!(entered & PHASE_BIT(p))) {
-            assert_int_equal(calls.count[p], 0);
-        } else if (inside & PHASE_BIT(p)) {
-            assert_true(calls.count[p] > 2);
-        } else {
-            assert_int_equal(calls.count[p], 2);
-        }
-    }
-}
-
-/* Which phases report inside: the disk's factorizations (INITIAL_MAP, ADAPT), the sphere's
- * factorizations and relaxations (INITIAL_MAP, ADAPT), the atlas's charts (INITIAL_MAP); the
- * other phases only at their start and end. */
-static void progress_reports_inside_exactly_the_phases_the_header_names(void** state) {
-    (void)state;
-    const unsigned common = PHASE_BIT(RAPS_PHASE_VALIDATE) | PHASE_BIT(RAPS_PHASE_TOPOLOGY) |
-                            PHASE_BIT(RAPS_PHASE_INITIAL_MAP) | PHASE_BIT(RAPS_PHASE_METRICS);
-    const unsigned maps = PHASE_BIT(RAPS_PHASE_INITIAL_MAP) | PHASE_BIT(RAPS_PHASE_ADAPT);
-    test_mesh disk = make_flat_disk(20, 6, 0.2);
-    raps_settings* s = domain_settings(RAPS_DOMAIN_DISK, 1);
-    assert_reports_inside("disk", &disk, s, common | PHASE_BIT(RAPS_PHASE_ADAPT), maps);
-    raps_settings_destroy(s);
-    test_mesh_free(&disk);
-
-    test_mesh sphere = make_icosphere(3);
-    s = domain_settings(RAPS_DOMAIN_SPHERE, 1);
-    assert_status(raps_settings_set_int(s, RAPS_PARAM_SPHERE_UV, RAPS_SPHERE_UV_OCTAHEDRAL),
-                  RAPS_OK);
-    assert_reports_inside("sphere", &sphere, s, common | PHASE_BIT(RAPS_PHASE_ADAPT), maps);
-    raps_settings_destroy(s);
-    test_mesh_free(&sphere);
-
-    test_mesh torus = make_closed_torus(24, 12);
-    s = domain_settings(RAPS_DOMAIN_ATLAS, 1);
-    assert_status(raps_settings_set_int(s, RAPS_PARAM_ATLAS_RESOLUTION, 128), RAPS_OK);
-    assert_reports_inside("atlas", &torus, s,
-                          common | PHASE_BIT(RAPS_PHASE_SEGMENT) | PHASE_BIT(RAPS_PHASE_PACK),
-                          PHASE_BIT(RAPS_PHASE_INITIAL_MAP));
-    raps_settings_destroy(s);
-    test_mesh_free(&torus);
-}
-
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(disk_cancels_at_every_call),
         cmocka_unit_test(sphere_cancels_at_every_call),
         cmocka_unit_test(atlas_cancels_at_every_call),
         cmocka_unit_test(a_cancellation_from_a_worker_thread_stops_the_run),
-        cmocka_unit_test(progress_reports_inside_exactly_the_phases_the_header_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "gltf_accessors.h"
 #include "gltf_error.h"
@@ -11,6 +12,10 @@ namespace raps_gltf {
 namespace {
 
 constexpr Linear3 kIdentity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+// Distinct transforms of one mesh whose areas are compared, at most: a forest of instances
+// with their own scales would otherwise cost an area per instance.
+constexpr size_t kMaxCandidates = 64;
 
 Linear3 multiply(const Linear3& a, const Linear3& b) {
     Linear3 out{};
@@ -41,6 +46,19 @@ std::vector<double> numbers(const Json& node, const char* key, size_t count,
     return out;
 }
 
+Linear3 rotation_scale(std::vector<double> q, const std::vector<double>& s) {
+    const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (n > 0) {
+        for (double& v : q) v /= n;
+    }
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const Linear3 rotation = {
+        1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+        2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+        2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+    return multiply(rotation, {s[0], 0, 0, 0, s[1], 0, 0, 0, s[2]});
+}
+
 // The linear part of a node's local transform: its matrix (column-major), or rotation * scale.
 Linear3 local_linear(const Json& node, const std::string& what) {
     const std::vector<double> m = numbers(node, "matrix", 16, what);
@@ -55,16 +73,55 @@ Linear3 local_linear(const Json& node, const std::string& what) {
     std::vector<double> s = numbers(node, "scale", 3, what);
     if (q.empty()) q = {0, 0, 0, 1};
     if (s.empty()) s = {1, 1, 1};
-    const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (n > 0) {
-        for (double& v : q) v /= n;
+    return rotation_scale(q, s);
+}
+
+// An EXT_mesh_gpu_instancing attribute's values (`components` per instance), or none when the
+// node lacks it or it is not of the type the extension defines.
+std::vector<double> instance_values(const Asset& asset, const Json* attributes, const char* name,
+                                    const char* type) {
+    const Json* index = attributes ? member(*attributes, name) : nullptr;
+    if (!index) return {};
+    const int accessor = index->get<int>();
+    const AccessorLayout a = accessor_layout(asset.doc, accessor);
+    if (a.type != type || !accessor_has_data(asset, accessor)) return {};
+    const std::vector<uint8_t> data = read_accessor(asset, accessor);
+    const int n = component_count(a.type);
+    const uint64_t element = element_size(a.type, a.component_type);
+    std::vector<double> out(a.count * n);
+    for (uint64_t i = 0; i < a.count; ++i) {
+        for (int c = 0; c < n; ++c)
+            out[i * n + c] = component_value(&data[i * element], a.component_type, a.normalized, c);
     }
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const Linear3 rotation = {
-        1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-        2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-        2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-    return multiply(rotation, {s[0], 0, 0, 0, s[1], 0, 0, 0, s[2]});
+    return out;
+}
+
+// The linear maps a node draws its mesh under: `linear`, or with EXT_mesh_gpu_instancing one
+// per instance, linear * rotation_i * scale_i (its translations do not change areas).
+std::vector<Linear3> node_instances(const Asset& asset, const Json& node, const Linear3& linear) {
+    const Json* extensions = member(node, "extensions");
+    const Json* instancing = extensions && extensions->is_object()
+                                 ? member(*extensions, "EXT_mesh_gpu_instancing")
+                                 : nullptr;
+    const Json* attributes =
+        instancing && instancing->is_object() ? member(*instancing, "attributes") : nullptr;
+    const std::vector<double> rotations = instance_values(asset, attributes, "ROTATION", "VEC4");
+    const std::vector<double> scales = instance_values(asset, attributes, "SCALE", "VEC3");
+    if (rotations.empty() && scales.empty()) return {linear};
+    const size_t count = rotations.empty() ? scales.size() / 3
+                         : scales.empty()  ? rotations.size() / 4
+                                           : std::min(scales.size() / 3, rotations.size() / 4);
+    std::vector<Linear3> out;
+    for (size_t i = 0; i < count; ++i) {
+        const std::vector<double> q =
+            rotations.empty() ? std::vector<double>{0, 0, 0, 1}
+                              : std::vector<double>(&rotations[4 * i], &rotations[4 * i + 4]);
+        const std::vector<double> s = scales.empty()
+                                          ? std::vector<double>{1, 1, 1}
+                                          : std::vector<double>(&scales[3 * i], &scales[3 * i + 3]);
+        out.push_back(multiply(linear, rotation_scale(q, s)));
+    }
+    return out;
 }
 
 // World linear parts of every node (the document's nodes form a forest, checked on loading).
@@ -159,9 +216,23 @@ std::vector<std::pair<int, Linear3>> drawn_meshes(const Asset& asset, int scene,
                                     world[n]);
             (*skinned)[m] = true;
         }
-        out.emplace_back(m, linear);
+        for (const Linear3& instance : node_instances(asset, node, linear))
+            out.emplace_back(m, instance);
     }
     return out;
+}
+
+// How much a linear map can enlarge an area: the Frobenius norm of its cofactor matrix, which
+// maps a triangle's normal to its image's (|cof(L) n| times the area), bounds it for every
+// orientation; for a uniform scale s it is sqrt(3) s^2.
+double area_bound(const Linear3& m) {
+    const double cof[9] = {
+        m[4] * m[8] - m[5] * m[7], m[5] * m[6] - m[3] * m[8], m[3] * m[7] - m[4] * m[6],
+        m[2] * m[7] - m[1] * m[8], m[0] * m[8] - m[2] * m[6], m[1] * m[6] - m[0] * m[7],
+        m[1] * m[5] - m[2] * m[4], m[2] * m[3] - m[0] * m[5], m[0] * m[4] - m[1] * m[3]};
+    double sum = 0;
+    for (double c : cof) sum += c * c;
+    return std::sqrt(sum);
 }
 
 }  // namespace
@@ -173,14 +244,21 @@ SceneInstances scene_instances(const Asset& asset) {
     if (out.scene < 0) return out;
     const std::vector<Linear3> world = world_linears(asset.doc);
     std::vector<bool> skinned(out.meshes.size(), false);
+    std::vector<std::set<Linear3>> distinct(out.meshes.size());
     for (const auto& drawn : drawn_meshes(asset, out.scene, world, &skinned)) {
         MeshInstances& m = out.meshes[drawn.first];
         ++m.instances;
         m.skinned = m.skinned || skinned[drawn.first];
-        if (regular(drawn.second) &&
-            std::find(m.distinct.begin(), m.distinct.end(), drawn.second) == m.distinct.end()) {
-            m.distinct.push_back(drawn.second);
-        }
+        if (regular(drawn.second)) distinct[drawn.first].insert(drawn.second);
+    }
+    for (size_t i = 0; i < out.meshes.size(); ++i) {
+        std::vector<Linear3>& kept = out.meshes[i].distinct;
+        kept.assign(distinct[i].begin(), distinct[i].end());
+        if (kept.size() <= kMaxCandidates) continue;
+        std::partial_sort(
+            kept.begin(), kept.begin() + kMaxCandidates, kept.end(),
+            [](const Linear3& a, const Linear3& b) { return area_bound(a) > area_bound(b); });
+        kept.resize(kMaxCandidates);
     }
     return out;
 }

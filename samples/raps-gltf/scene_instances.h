@@ -1,4 +1,6 @@
 // Where the default scene draws each mesh, and at which scale: the input of --group scene.
+// A node with EXT_mesh_gpu_instancing draws its mesh once per instance (its ROTATION and SCALE
+// after the node's transform).
 //
 // A node's world matrix is its parents' times its own (glTF 2.0, 3.5.3: a matrix, or translation,
 // rotation and scale). Only the linear part matters for texel density; translations are dropped.
@@ -25,7 +27,9 @@ using Linear3 = std::array<double, 9>;  // row-major 3x3
 struct MeshInstances {
     int instances = 0;     // nodes of the default scene that draw it, singular ones included
     bool skinned = false;  // at least one instance is skinned
-    std::vector<Linear3> distinct;  // the regular (invertible) linear maps it is drawn under
+    // The regular (invertible) linear maps it is drawn under; when there are more than 64, the
+    // 64 that can enlarge areas most (the Frobenius norm of their cofactor matrix).
+    std::vector<Linear3> distinct;
     bool drawn() const { return !distinct.empty(); }
 };
 

@@ -1,6 +1,7 @@
 #include "atlas/atlas_charts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -15,7 +16,7 @@ namespace {
 // triangle a, from a to find b, then every triangle goes to the nearer of a and b (ties to a).
 std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-    const std::vector<char>& seam) {
+    const std::vector<char>& seam, const ProgressSpan& beat) {
     std::vector<int32_t> local(surface.mesh.triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) local[triangles[i]] = static_cast<int32_t>(i);
     auto distances = [&](int32_t from) {
@@ -38,9 +39,12 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
                                     distance.begin());
     };
     const int32_t a = farthest(distances(0));
+    beat.report(0.0);
     const std::vector<int32_t> from_a = distances(a);
+    beat.report(0.0);
     const int32_t b = farthest(from_a);
     const std::vector<int32_t> from_b = distances(b);
+    beat.report(0.0);
     std::pair<std::vector<int32_t>, std::vector<int32_t>> halves;
     // Side per surface triangle (-1: outside the chart, itself a barrier), smoothed like the
     // segmentation's boundaries so the split does not leave a saw-tooth seam.
@@ -58,7 +62,7 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
             barrier[h] = seam[h] || (o >= 0 && side[o / 3] < 0);
         }
     }
-    smooth_chart_boundaries(surface, barrier, triangles, side);
+    smooth_chart_boundaries(surface, barrier, triangles, side, beat);
     for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
     if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
         const size_t half = halves.first.size() / 2;
@@ -95,21 +99,24 @@ double chart_area(const ChartDisk& disk) {
 // adaptive step.
 bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
-               AtlasChart& chart, double& unadapted_l2,
+               AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
                std::pair<const ChartDisk*, const ChartDisk*> parts = {}) {
     bool good = parts.first ? make_union_chart_disk(surface, triangles, seam, *parts.first,
-                                                    *parts.second, chart.disk)
-                            : make_chart_disk(surface, triangles, seam, chart.disk);
+                                                    *parts.second, chart.disk, beat)
+                            : make_chart_disk(surface, triangles, seam, chart.disk, beat);
     if (!good && triangles.size() > 1) return false;
-    LaplaceSystem system = chart_laplace_system(chart.disk);
+    beat.report(0.0);
+    LaplaceSystem system = chart_laplace_system(chart.disk, beat);
     if (good) {
-        chart.map = free_boundary_chart_map(chart.disk, system, limits.max_stretch_linf);
+        chart.map = free_boundary_chart_map(chart.disk, system, limits.max_stretch_linf, beat);
         good = chart.map.injective && chart.map.stretch_linf <= limits.max_stretch_linf;
     }
+    beat.report(0.0);
     if (!good && triangles.size() > 1) return false;
-    if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system);
+    if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system, beat);
     unadapted_l2 = chart.map.stretch_l2;
-    adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system);
+    adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system, beat);
+    beat.report(0.0);
     chart.box =
         smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles, chart.disk.boundary_loop);
     return true;
@@ -131,6 +138,12 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
     // Per chart, its L2 stretch before the adaptive step: the budget below splits charts by
     // it, while merging judges by the adapted maps.
     std::vector<double> unadapted_l2;
+    // Progress: the first maps by their share of the triangles to kMapped, then each merge pass
+    // half of what is left, by its share of candidates. Inside a chart the work repeats the
+    // fraction reached (`beat`: a span at 0, which the phase's progress never lets fall), so
+    // that a cancel is seen inside the largest charts too.
+    constexpr double kMapped = 0.4;
+    const ProgressSpan beat(progress, Phase::kInitialMap, 0.0, 0.0);
     const double total_triangles = static_cast<double>(chart_of.size());
     double done_triangles = 0;
     // Rounds: every pending chart in parallel; the ones that fail are split into the next round.
@@ -143,10 +156,10 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
             std::vector<size_t> cost(round.size());
             for (size_t i = 0; i < round.size(); ++i) cost[i] = round[i].size();
             parallel_largest_first(pool, cost, [&](size_t i) {
-                good[i] =
-                    try_chart(surface, round[i], seam, settings, limits, built[i], built_l2[i]);
+                good[i] = try_chart(surface, round[i], seam, settings, limits, built[i],
+                                    built_l2[i], beat);
                 progress.report(Phase::kInitialMap,
-                                std::min(1.0, done_triangles / total_triangles));
+                                kMapped * std::min(1.0, done_triangles / total_triangles));
             });
             std::vector<std::vector<int32_t>> next;
             for (size_t i = 0; i < round.size(); ++i) {
@@ -155,7 +168,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                     charts.push_back(std::move(built[i]));
                     unadapted_l2.push_back(built_l2[i]);
                 } else {
-                    auto halves = split_chart(surface, round[i], seam);
+                    auto halves = split_chart(surface, round[i], seam, beat);
                     next.push_back(std::move(halves.first));
                     next.push_back(std::move(halves.second));
                 }
@@ -191,7 +204,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         area.erase(area.begin() + static_cast<std::ptrdiff_t>(worst));
         unadapted_l2.erase(unadapted_l2.begin() + static_cast<std::ptrdiff_t>(worst));
         const size_t before = charts.size();
-        auto halves = split_chart(surface, triangles, seam);
+        auto halves = split_chart(surface, triangles, seam, beat);
         process({std::move(halves.first), std::move(halves.second)});
         for (size_t c = before; c < charts.size(); ++c) {
             area.push_back(chart_area(charts[c].disk));
@@ -231,6 +244,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         }
         std::map<std::pair<int32_t, int32_t>, double> shared;  // boundary length per pair
         for (size_t h = 0; h < surface.twin.size(); ++h) {
+            beat.at(static_cast<int64_t>(h), static_cast<int64_t>(surface.twin.size()));
             const int32_t o = surface.twin[h];
             if (o < 0 || seam[h]) continue;
             const int32_t a = owner[h / 3], b = owner[o / 3];
@@ -282,7 +296,7 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 // the larger, more curved charts that merging makes.
                 double unadapted;
                 good[i] = try_chart(surface, triangles, seam, settings, limits, built[i], unadapted,
-                                    {&charts[batch[i].a].disk, &charts[batch[i].b].disk});
+                                    beat, {&charts[batch[i].a].disk, &charts[batch[i].b].disk});
                 mapped[i] = 1;
             };
             std::vector<size_t> union_size(batch.size());
@@ -290,9 +304,13 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
                 union_size[i] = charts[batch[i].a].disk.surface_triangle.size() +
                                 charts[batch[i].b].disk.surface_triangle.size();
             }
+            const double pass_start = 1.0 - (1.0 - kMapped) * std::ldexp(1.0, -pass);
+            progress.report(Phase::kInitialMap,
+                            pass_start + (1.0 - pass_start) * 0.5 * static_cast<double>(next) /
+                                             static_cast<double>(candidates.size()));
             parallel_largest_first(pool, union_size, [&](size_t i) {
                 if (rejected.count(key(batch[i].a, batch[i].b)) == 0) map_union(i);
-                progress.report(Phase::kInitialMap, 1.0);
+                beat.report(0.0);
             });
             for (size_t i = 0; i < batch.size(); ++i) {
                 const int32_t a = batch[i].a, b = batch[i].b;

@@ -62,15 +62,17 @@ void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
 
 // Welds within each part only: parts that touch (or overlap) in space stay apart, so no chart
 // crosses from one mesh of a scene to another.
-std::vector<int32_t> weld_parts(const TriangleMesh& mesh, const AtlasParts& parts,
-                                double tolerance) {
-    if (parts.count() == 1) return weld_vertices(mesh.positions, tolerance);
+std::vector<int32_t> weld_parts(const TriangleMesh& mesh, const AtlasParts& parts, double tolerance,
+                                const ProgressSpan& progress) {
+    if (parts.count() == 1) return weld_vertices(mesh.positions, tolerance, progress);
     std::vector<int32_t> welded(mesh.positions.size());
     for (int32_t p = 0; p < parts.count(); ++p) {
         const auto begin = mesh.positions.begin() + parts.first_vertex[p];
         const auto end = mesh.positions.begin() + parts.first_vertex[p + 1];
         const std::vector<int32_t> local =
-            weld_vertices(std::vector<Eigen::Vector3d>(begin, end), tolerance);
+            weld_vertices(std::vector<Eigen::Vector3d>(begin, end), tolerance,
+                          progress.part(static_cast<double>(p) / parts.count(),
+                                        static_cast<double>(p + 1) / parts.count()));
         for (size_t v = 0; v < local.size(); ++v)
             welded[parts.first_vertex[p] + v] = parts.first_vertex[p] + local[v];
     }
@@ -78,7 +80,8 @@ std::vector<int32_t> weld_parts(const TriangleMesh& mesh, const AtlasParts& part
 }
 
 // Seams inside charts: hard edges (none at the default angle of 180 degrees).
-std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_angle_deg) {
+std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_angle_deg,
+                                  const ProgressSpan& progress) {
     std::vector<char> seam(surface.twin.size(), 0);
     if (hard_edge_angle_deg >= 180.0) return seam;
     const double limit = portable::cos(hard_edge_angle_deg * M_PI / 180.0);
@@ -89,6 +92,7 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
             .normalized();
     };
     for (size_t h = 0; h < seam.size(); ++h) {
+        progress.at(static_cast<int64_t>(h), static_cast<int64_t>(seam.size()));
         const int32_t o = surface.twin[h];
         seam[h] = o >= 0 && normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
     }
@@ -97,7 +101,7 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
 
 CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
                              const std::vector<int32_t>& welded, const AtlasSurface& surface,
-                             const std::vector<AtlasChart>& charts) {
+                             const std::vector<AtlasChart>& charts, const ProgressSpan& progress) {
     const int32_t triangle_count = mesh.triangle_count();
     CornerSources sources;
     sources.chart.assign(triangle_count, -1);
@@ -109,6 +113,7 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
     std::vector<int32_t> first_chart_of_welded(mesh.positions.size(), -1);
     for (size_t c = 0; c < charts.size(); ++c) {
         const ChartDisk& disk = charts[c].disk;
+        progress.report(0.8 * static_cast<double>(c) / static_cast<double>(charts.size()));
         for (size_t t = 0; t < disk.surface_triangle.size(); ++t) {
             const int32_t input = surface.input_triangle[disk.surface_triangle[t]];
             sources.chart[input] = static_cast<int32_t>(c);
@@ -126,34 +131,38 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
     // Triangles set aside: duplicates copy their primary; degenerate ones go on the chart of one
     // of their vertices (their uv triangle is then as degenerate as their 3D one).
     std::vector<int32_t> point_chart_of_part(parts.count(), -1);
-    for (size_t i = 0; i < surface.aside_triangles.size(); ++i) {
-        const int32_t t = surface.aside_triangles[i];
-        const Triangle& v = mesh.triangles[t];
-        int32_t chart = -1;
-        if (surface.aside_primary[i] >= 0) {
-            chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
-        } else {
-            for (int k = 0; k < 3 && chart < 0; ++k) chart = first_chart_of_welded[welded[v[k]]];
-        }
-        if (chart < 0) {
-            int32_t& point = point_chart_of_part[parts.part_of_triangle(t)];
-            if (point < 0) {
-                point = static_cast<int32_t>(charts.size() + sources.point_chart_part.size());
-                sources.point_chart_part.push_back(parts.part_of_triangle(t));
+    const int64_t aside_count = static_cast<int64_t>(surface.aside_triangles.size());
+    progress.part(0.8, 1.0).in_runs(aside_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
+            const int32_t t = surface.aside_triangles[i];
+            const Triangle& v = mesh.triangles[t];
+            int32_t chart = -1;
+            if (surface.aside_primary[i] >= 0) {
+                chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
+            } else {
+                for (int k = 0; k < 3 && chart < 0; ++k)
+                    chart = first_chart_of_welded[welded[v[k]]];
             }
-            sources.chart[t] = point;
-            continue;
+            if (chart < 0) {
+                int32_t& point = point_chart_of_part[parts.part_of_triangle(t)];
+                if (point < 0) {
+                    point = static_cast<int32_t>(charts.size() + sources.point_chart_part.size());
+                    sources.point_chart_part.push_back(parts.part_of_triangle(t));
+                }
+                sources.chart[t] = point;
+                continue;
+            }
+            sources.chart[t] = chart;
+            std::array<int32_t, 3>& corner = sources.vertex[t];
+            for (int k = 0; k < 3; ++k) {
+                const auto it = chart_vertex_of.find({welded[v[k]], chart});
+                corner[k] = it != chart_vertex_of.end() ? it->second : -1;
+            }
+            for (int k = 0; k < 3; ++k) {  // a vertex the chart lacks sits on one it has
+                if (corner[k] < 0) corner[k] = std::max({corner[0], corner[1], corner[2], 0});
+            }
         }
-        sources.chart[t] = chart;
-        std::array<int32_t, 3>& corner = sources.vertex[t];
-        for (int k = 0; k < 3; ++k) {
-            const auto it = chart_vertex_of.find({welded[v[k]], chart});
-            corner[k] = it != chart_vertex_of.end() ? it->second : -1;
-        }
-        for (int k = 0; k < 3; ++k) {  // a vertex the chart lacks sits on one it has
-            if (corner[k] < 0) corner[k] = std::max({corner[0], corner[1], corner[2], 0});
-        }
-    }
+    });
     return sources;
 }
 
@@ -162,7 +171,7 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
 // each part's output vertices come out contiguous.
 void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
                  const std::vector<AtlasChart>& charts, const CornerSources& sources,
-                 const PackResult& packed, AtlasOutput& out) {
+                 const PackResult& packed, AtlasOutput& out, const ProgressSpan& progress) {
     // Chart vertices numbered globally (chart offsets, the point charts last, one vertex
     // each); each keeps the short list of (input vertex, output vertex) pairs seen at it,
     // usually one.
@@ -184,27 +193,31 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
     out.indices.resize(3 * static_cast<size_t>(triangle_count));
     out.chart_of.resize(triangle_count);
     out.first_output_vertex.assign(1, 0);
-    for (int32_t t = 0; t < triangle_count; ++t) {
-        while (t == parts.first_triangle[out.first_output_vertex.size()])
-            out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
-        const int32_t c = sources.chart[t];
-        const bool point = c >= static_cast<int32_t>(charts.size());
-        out.chart_of[t] = static_cast<uint32_t>(c);
-        for (int k = 0; k < 3; ++k) {
-            const int32_t input_vertex = mesh.triangles[t][k];
-            const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
-            const int64_t global = chart_offset[c] + chart_vertex;
-            int32_t found = head[global];
-            while (found >= 0 && seen[found].input_vertex != input_vertex) found = seen[found].next;
-            if (found < 0) {
-                seen.push_back({input_vertex, static_cast<uint32_t>(out.uv.size()), head[global]});
-                found = head[global] = static_cast<int32_t>(seen.size() - 1);
-                out.remap.push_back(static_cast<uint32_t>(input_vertex));
-                out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
+    progress.in_runs(triangle_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            while (t == parts.first_triangle[out.first_output_vertex.size()])
+                out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
+            const int32_t c = sources.chart[t];
+            const bool point = c >= static_cast<int32_t>(charts.size());
+            out.chart_of[t] = static_cast<uint32_t>(c);
+            for (int k = 0; k < 3; ++k) {
+                const int32_t input_vertex = mesh.triangles[t][k];
+                const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
+                const int64_t global = chart_offset[c] + chart_vertex;
+                int32_t found = head[global];
+                while (found >= 0 && seen[found].input_vertex != input_vertex)
+                    found = seen[found].next;
+                if (found < 0) {
+                    seen.push_back(
+                        {input_vertex, static_cast<uint32_t>(out.uv.size()), head[global]});
+                    found = head[global] = static_cast<int32_t>(seen.size() - 1);
+                    out.remap.push_back(static_cast<uint32_t>(input_vertex));
+                    out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
+                }
+                out.indices[3 * static_cast<size_t>(t) + k] = seen[found].output_vertex;
             }
-            out.indices[3 * static_cast<size_t>(t) + k] = seen[found].output_vertex;
         }
-    }
+    });
     while (out.first_output_vertex.size() <= static_cast<size_t>(parts.count()))
         out.first_output_vertex.push_back(static_cast<int64_t>(out.uv.size()));
 }
@@ -213,29 +226,32 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
 // output (texel rectangles from the uvs as a texture of the page's size maps them).
 void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
                    const std::vector<AtlasChart>& charts, const CornerSources& sources,
-                   const PackResult& packed, const std::vector<int32_t>& place, AtlasOutput& out) {
+                   const PackResult& packed, const std::vector<int32_t>& place, AtlasOutput& out,
+                   const ProgressSpan& progress) {
     const size_t all_charts = charts.size() + sources.point_chart_part.size();
     out.charts.assign(all_charts, AtlasChartRecord());
     std::vector<Eigen::Vector2d> low(all_charts, Eigen::Vector2d::Constant(1e300));
     std::vector<Eigen::Vector2d> high(all_charts, Eigen::Vector2d::Constant(-1e300));
     const Eigen::Vector2d size(out.width, out.height);
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        AtlasChartRecord& record = out.charts[out.chart_of[t]];
-        record.part = parts.part_of_triangle(t);
-        ++record.triangle_count;
-        const Triangle& v = mesh.triangles[t];
-        record.area_3d += 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
-                                    .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
-                                    .norm();
-        Eigen::Vector2d p[3];
-        for (int k = 0; k < 3; ++k) {
-            p[k] = out.uv[out.indices[3 * static_cast<size_t>(t) + k]].cwiseProduct(size);
-            low[out.chart_of[t]] = low[out.chart_of[t]].cwiseMin(p[k]);
-            high[out.chart_of[t]] = high[out.chart_of[t]].cwiseMax(p[k]);
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            AtlasChartRecord& record = out.charts[out.chart_of[t]];
+            record.part = parts.part_of_triangle(t);
+            ++record.triangle_count;
+            const Triangle& v = mesh.triangles[t];
+            record.area_3d += 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                        .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
+                                        .norm();
+            Eigen::Vector2d p[3];
+            for (int k = 0; k < 3; ++k) {
+                p[k] = out.uv[out.indices[3 * static_cast<size_t>(t) + k]].cwiseProduct(size);
+                low[out.chart_of[t]] = low[out.chart_of[t]].cwiseMin(p[k]);
+                high[out.chart_of[t]] = high[out.chart_of[t]].cwiseMax(p[k]);
+            }
+            const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
+            record.area_texels += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
         }
-        const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
-        record.area_texels += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
+    });
     for (size_t c = 0; c < all_charts; ++c) {
         AtlasChartRecord& record = out.charts[c];
         // Texels touched: a chart placed on whole texels starts exactly on a texel's edge,
@@ -273,15 +289,17 @@ PageSettings page_settings(const Settings& settings) {
 
 // At a density, onto pages; on whole texels at a resolution, onto one page at the largest
 // density that fits; otherwise into one atlas filling the resolution.
-PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, ThreadPool& pool) {
+PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, ThreadPool& pool,
+                const ProgressSpan& progress) {
     if (settings.atlas_texels_per_unit > 0)
-        return pack_pages(inputs, page_settings(settings), pool);
-    if (settings.atlas_whole_texels) return pack_one_page(inputs, page_settings(settings), pool);
+        return pack_pages(inputs, page_settings(settings), pool, progress);
+    if (settings.atlas_whole_texels)
+        return pack_one_page(inputs, page_settings(settings), pool, progress);
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
     pack_settings.padding = settings.atlas_padding;
     pack_settings.rotation = settings.atlas_rotation;
-    return pack_charts(inputs, pack_settings, pool);
+    return pack_charts(inputs, pack_settings, pool, progress);
 }
 
 // Per chart, the chart whose place it takes (RAPS_PARAM_ATLAS_STACK), itself when none.
@@ -303,7 +321,7 @@ std::vector<int32_t> chart_places(const std::vector<AtlasChart>& charts,
 // Packs the charts that hold a place; the stacked ones take their place's uvs, page and turn.
 PackResult pack_places(const std::vector<AtlasChart>& charts, const std::vector<int32_t>& part,
                        const std::vector<int32_t>& place, const Settings& settings,
-                       ThreadPool& pool) {
+                       ThreadPool& pool, const ProgressSpan& progress) {
     std::vector<PackInput> inputs;
     std::vector<int32_t> slot(charts.size(), -1);
     for (size_t c = 0; c < charts.size(); ++c) {
@@ -312,7 +330,7 @@ PackResult pack_places(const std::vector<AtlasChart>& charts, const std::vector<
         const AtlasChart& chart = charts[c];
         inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation, part[c]});
     }
-    PackResult packed = pack(inputs, settings, pool);
+    PackResult packed = pack(inputs, settings, pool, progress);
     if (inputs.size() == charts.size()) return packed;
     PackResult all = packed;
     all.uv.resize(charts.size());
@@ -351,16 +369,22 @@ struct ChartSet {
     std::vector<AtlasChart> charts;
     CornerSources sources;
     std::vector<int32_t> part;  // per chart
+    // Mapped charts: what their corner sources are found from (corner_sources_of).
+    std::vector<int32_t> welded;
+    AtlasSurface surface;
 };
 
-// Steps 2-4: the surface, grown into charts, each cut to a disk and mapped.
+// Steps 2-4: the surface, grown into charts, each cut to a disk and mapped (their corner
+// sources are found in the packing phase: corner_sources_of).
 ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
                        const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
+    ChartSet set;
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
-    const std::vector<int32_t> welded = weld_parts(mesh, parts, settings.weld_tolerance);
+    set.welded = weld_parts(mesh, parts, settings.weld_tolerance, topology_timer.span(0.0, 0.2));
     const UserSeams seams(mesh, settings.atlas_keep_input_seams);
-    const AtlasSurface surface = build_atlas_surface(mesh, welded, seams, pool);
+    set.surface = build_atlas_surface(mesh, set.welded, seams, pool, topology_timer.span(0.2, 1.0));
     topology_timer.finish();
+    const AtlasSurface& surface = set.surface;
 
     PhaseTimer segment_timer(Phase::kSegment, progress, times);
     SegmentationSettings segmentation;
@@ -370,23 +394,31 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     // forced seams only when the caller's hard-edge angle says so.
     segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
     segmentation.max_normal_deviation_deg = 90.0;
-    const std::vector<int32_t> chart_of_surface = segment_charts(surface, segmentation);
-    const std::vector<char> seam = hard_edge_seams(surface, settings.hard_edge_angle_deg);
+    const std::vector<int32_t> chart_of_surface =
+        segment_charts(surface, segmentation, segment_timer.span(0.0, 0.95));
+    const std::vector<char> seam =
+        hard_edge_seams(surface, settings.hard_edge_angle_deg, segment_timer.span(0.95, 1.0));
     segment_timer.finish();
 
     PhaseTimer chart_timer(Phase::kInitialMap, progress, times);
     ChartLimits limits;
     limits.target_stretch_l2 = settings.atlas_target_l2;
     limits.max_stretch_linf = settings.atlas_max_linf;
-    ChartSet set;
     set.charts = build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
     chart_timer.finish();
-    set.sources = corner_sources(mesh, parts, welded, surface, set.charts);
+    return set;
+}
+
+// The mapped charts' corner sources and parts; with stacking across meshes, an instance takes
+// copies of its source's charts, without which it could share none of their texels.
+void corner_sources_of(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
+                       ChartSet& set, const ProgressSpan& progress) {
+    const AtlasSurface& surface = set.surface;
+    set.sources = corner_sources(mesh, parts, set.welded, surface, set.charts, progress);
     for (const AtlasChart& chart : set.charts) {
         const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
         set.part.push_back(parts.part_of_triangle(first));
     }
-    // Stacking across meshes: an instance must have its source's charts to share its texels.
     if (settings.atlas_stack != ChartStacking::kNone && !settings.atlas_mesh_per_page &&
         parts.count() > 1) {
         const std::vector<int32_t> source =
@@ -397,14 +429,14 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
         if (any)
             copy_instance_charts(mesh, parts, surface, source, set.charts, set.sources, set.part);
     }
-    return set;
 }
 
 // Repacking: the input's own uv islands are the charts, as they are (uv_repack.h).
 ChartSet repacked_charts(const TriangleMesh& mesh, const AtlasParts& parts,
                          const Settings& settings, const Progress& progress, PhaseTimes& times) {
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
-    const std::vector<int32_t> welded = weld_parts(mesh, parts, settings.weld_tolerance);
+    const std::vector<int32_t> welded =
+        weld_parts(mesh, parts, settings.weld_tolerance, topology_timer.span());
     topology_timer.finish();
     PhaseTimer segment_timer(Phase::kSegment, progress, times);
     RepackedCharts repacked = repack_charts(mesh, parts, welded);
@@ -442,20 +474,23 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
     {
         PhaseTimer timer(Phase::kValidate, progress, times);
         check_page_settings(settings);
-        check_indices_in_range(mesh);  // everything else an atlas takes as it comes
+        check_indices_in_range(mesh, timer.span());  // everything else an atlas takes as it comes
         check_user_seams(mesh, "");
         if (settings.atlas_repack) check_corner_uvs(mesh, "");
         timer.finish();
     }
-    const ChartSet set = settings.atlas_repack
-                             ? repacked_charts(mesh, parts, settings, progress, times)
-                             : mapped_charts(mesh, parts, settings, progress, times, pool);
+    ChartSet set = settings.atlas_repack
+                       ? repacked_charts(mesh, parts, settings, progress, times)
+                       : mapped_charts(mesh, parts, settings, progress, times, pool);
 
     PhaseTimer pack_timer(Phase::kPack, progress, times);
+    // Progress: where each corner comes from, the packing, the output's vertices and records.
+    if (!settings.atlas_repack)
+        corner_sources_of(mesh, parts, settings, set, pack_timer.span(0.0, 0.1));
     const std::vector<int32_t> place = chart_places(set.charts, set.part, settings);
-    const PackResult packed = pack_places(set.charts, set.part, place, settings, pool);
+    const PackResult packed =
+        pack_places(set.charts, set.part, place, settings, pool, pack_timer.span(0.1, 0.7));
     refuse_collapsed_atlas(mesh, settings.weld_tolerance, set.charts, packed);
-    pack_timer.finish();
 
     AtlasOutput out;
     out.width = packed.width;
@@ -463,8 +498,10 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
     out.page_count = packed.page_count;
     out.texels_per_unit = packed.texels_per_unit;
     for (const AtlasChart& chart : set.charts) out.adaptive_solves += chart.map.adaptive_solves;
-    emit_output(mesh, parts, set.charts, set.sources, packed, out);
-    record_charts(mesh, parts, set.charts, set.sources, packed, place, out);
+    emit_output(mesh, parts, set.charts, set.sources, packed, out, pack_timer.span(0.7, 0.9));
+    record_charts(mesh, parts, set.charts, set.sources, packed, place, out,
+                  pack_timer.span(0.9, 1.0));
+    pack_timer.finish();
     return out;
 }
 

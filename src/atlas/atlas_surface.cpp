@@ -12,20 +12,25 @@
 namespace raps {
 
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 const UserSeams& seams, ThreadPool& pool) {
+                                 const UserSeams& seams, ThreadPool& pool,
+                                 const ProgressSpan& progress) {
+    // Progress: each pass over the triangles, half-edges or corners reports every
+    // kItemsPerReport items within its share.
     AtlasSurface surface;
     const int32_t input_count = input.triangle_count();
 
     // Areas, for the zero-area test (same threshold as the metrics: 1e-12 of the mean).
     std::vector<double> area(input_count);
     double total = 0;
-    for (int32_t t = 0; t < input_count; ++t) {
-        const Triangle& v = input.triangles[t];
-        area[t] = 0.5 * (input.positions[v[1]] - input.positions[v[0]])
-                            .cross(input.positions[v[2]] - input.positions[v[0]])
-                            .norm();
-        total += area[t];
-    }
+    progress.part(0.0, 0.05).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = input.triangles[t];
+            area[t] = 0.5 * (input.positions[v[1]] - input.positions[v[0]])
+                                .cross(input.positions[v[2]] - input.positions[v[0]])
+                                .norm();
+            total += area[t];
+        }
+    });
     const double zero_area = 1e-12 * total / std::max(input_count, 1);
 
     // Exact duplicates (same welded vertices in the same rotation) follow their first copy.
@@ -37,40 +42,45 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     std::vector<int32_t> primary_of(input_count, -1);
     const size_t capacity = hash_table_size(static_cast<size_t>(input_count));
     std::vector<int32_t> slot(capacity, -1);
-    for (int32_t t = 0; t < input_count; ++t) {
-        const Triangle& v = input.triangles[t];
-        std::array<int32_t, 3>& w = rotated[t];
-        w = {welded[v[0]], welded[v[1]], welded[v[2]]};
-        if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0] || !(area[t] > zero_area)) {
-            surface.aside_triangles.push_back(t);
-            surface.aside_primary.push_back(-1);
-            continue;
+    progress.part(0.05, 0.2).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = input.triangles[t];
+            std::array<int32_t, 3>& w = rotated[t];
+            w = {welded[v[0]], welded[v[1]], welded[v[2]]};
+            if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0] || !(area[t] > zero_area)) {
+                surface.aside_triangles.push_back(t);
+                surface.aside_primary.push_back(-1);
+                continue;
+            }
+            std::rotate(w.begin(), std::min_element(w.begin(), w.end()), w.end());
+            const uint64_t hash =
+                mix_bits(mix_bits(static_cast<uint64_t>(w[0]) << 32 | static_cast<uint32_t>(w[1])) ^
+                         static_cast<uint32_t>(w[2]));
+            size_t i = hash & (capacity - 1);
+            while (slot[i] >= 0 &&
+                   (rotated[slot[i]] != w || seams.group(slot[i]) != seams.group(t)))
+                i = (i + 1) & (capacity - 1);
+            if (slot[i] < 0) {
+                slot[i] = t;
+            } else {
+                primary_of[t] = slot[i];
+            }
         }
-        std::rotate(w.begin(), std::min_element(w.begin(), w.end()), w.end());
-        const uint64_t hash =
-            mix_bits(mix_bits(static_cast<uint64_t>(w[0]) << 32 | static_cast<uint32_t>(w[1])) ^
-                     static_cast<uint32_t>(w[2]));
-        size_t i = hash & (capacity - 1);
-        while (slot[i] >= 0 && (rotated[slot[i]] != w || seams.group(slot[i]) != seams.group(t)))
-            i = (i + 1) & (capacity - 1);
-        if (slot[i] < 0) {
-            slot[i] = t;
-        } else {
-            primary_of[t] = slot[i];
-        }
-    }
+    });
     std::vector<int32_t> kept;  // input triangles that become surface triangles
     std::vector<int32_t> surface_of_input(input_count, -1);
-    for (int32_t t = 0; t < input_count; ++t) {
-        const Triangle& v = input.triangles[t];
-        if (welded[v[0]] == welded[v[1]] || welded[v[1]] == welded[v[2]] ||
-            welded[v[2]] == welded[v[0]] || !(area[t] > zero_area)) {
-            continue;
+    progress.part(0.2, 0.25).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = input.triangles[t];
+            if (welded[v[0]] == welded[v[1]] || welded[v[1]] == welded[v[2]] ||
+                welded[v[2]] == welded[v[0]] || !(area[t] > zero_area)) {
+                continue;
+            }
+            if (primary_of[t] >= 0) continue;
+            surface_of_input[t] = static_cast<int32_t>(kept.size());
+            kept.push_back(t);
         }
-        if (primary_of[t] >= 0) continue;
-        surface_of_input[t] = static_cast<int32_t>(kept.size());
-        kept.push_back(t);
-    }
+    });
     for (int32_t t = 0; t < input_count; ++t) {
         if (primary_of[t] >= 0) {
             surface.aside_triangles.push_back(t);
@@ -84,61 +94,75 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     TriangleMesh welded_mesh;
     welded_mesh.positions = input.positions;
     welded_mesh.triangles.resize(count);
-    for (int32_t s = 0; s < count; ++s) {
-        const Triangle& v = input.triangles[kept[s]];
-        welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
-    }
+    progress.part(0.25, 0.3).in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t s = static_cast<int32_t>(run_begin); s < run_end; ++s) {
+            const Triangle& v = input.triangles[kept[s]];
+            welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
+        }
+    });
     // Half-edges bucketed by their smaller vertex (a counting sort), each bucket sorted by the
     // larger vertex: the groups of one undirected edge in linear time, where one comparison sort
     // of all half-edges by their vertex pair was most of the atlas's topology phase.
     const int32_t halfedge_count = 3 * count;
     std::vector<int32_t> bucket_offset(input.positions.size() + 1, 0);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
-        ++bucket_offset[std::min(a, b) + 1];
-    }
+    progress.part(0.3, 0.35).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
+            ++bucket_offset[std::min(a, b) + 1];
+        }
+    });
     std::partial_sum(bucket_offset.begin(), bucket_offset.end(), bucket_offset.begin());
     std::vector<std::pair<int32_t, int32_t>> by_edge(halfedge_count);  // (larger vertex, h)
     {
         std::vector<int32_t> cursor(bucket_offset.begin(), bucket_offset.end() - 1);
-        for (int32_t h = 0; h < halfedge_count; ++h) {
-            const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
-            by_edge[cursor[std::min(a, b)]++] = {std::max(a, b), h};
-        }
+        progress.part(0.35, 0.45).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+            for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+                const int32_t a = halfedge_origin(welded_mesh, h),
+                              b = halfedge_target(welded_mesh, h);
+                by_edge[cursor[std::min(a, b)]++] = {std::max(a, b), h};
+            }
+        });
     }
     surface.twin.assign(halfedge_count, -1);
-    for (size_t v = 0; v + 1 < bucket_offset.size(); ++v) {
-        const auto begin = by_edge.begin() + bucket_offset[v],
-                   end = by_edge.begin() + bucket_offset[v + 1];
-        std::sort(begin, end);
-        for (auto i = begin; i != end;) {
-            auto j = i;
-            while (j != end && j->first == i->first) ++j;
-            if (j - i == 2) {
-                const int32_t h = i->second, g = (i + 1)->second;
-                if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
-                    !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
-                    surface.twin[h] = g;
-                    surface.twin[g] = h;
+    const int64_t bucket_count = static_cast<int64_t>(bucket_offset.size()) - 1;
+    progress.part(0.45, 0.65).in_runs(bucket_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t v = static_cast<int64_t>(run_begin); v < run_end; ++v) {
+            const auto begin = by_edge.begin() + bucket_offset[v],
+                       end = by_edge.begin() + bucket_offset[v + 1];
+            std::sort(begin, end);
+            for (auto i = begin; i != end;) {
+                auto j = i;
+                while (j != end && j->first == i->first) ++j;
+                if (j - i == 2) {
+                    const int32_t h = i->second, g = (i + 1)->second;
+                    if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
+                        !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
+                        surface.twin[h] = g;
+                        surface.twin[g] = h;
+                    }
                 }
+                i = j;
             }
-            i = j;
         }
-    }
+    });
 
     // Surface vertices: corners joined across interior edges, one class per fan.
-    const std::vector<int32_t> classes = corner_vertex_classes(surface.twin);
+    const std::vector<int32_t> classes =
+        corner_vertex_classes(surface.twin, progress.part(0.65, 0.8));
     surface.mesh.triangles.resize(count);
-    for (int32_t c = 0; c < 3 * count; ++c) {
-        if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
-            const int32_t w = welded_mesh.triangles[c / 3][c % 3];
-            surface.welded_vertex.push_back(w);
-            surface.mesh.positions.push_back(input.positions[w]);
+    progress.part(0.8, 0.85).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
+            if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
+                const int32_t w = welded_mesh.triangles[c / 3][c % 3];
+                surface.welded_vertex.push_back(w);
+                surface.mesh.positions.push_back(input.positions[w]);
+            }
+            surface.mesh.triangles[c / 3][c % 3] = classes[c];
         }
-        surface.mesh.triangles[c / 3][c % 3] = classes[c];
-    }
+    });
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
     parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
+        progress.at(begin, 3 * static_cast<int64_t>(count), 0.85, 1.0);
         for (int64_t c = begin; c < end; ++c) {
             const Triangle& t = surface.mesh.triangles[c / 3];
             const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];

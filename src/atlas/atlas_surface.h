@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "atlas/user_seams.h"
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 #include "parallel/thread_pool.h"
 
@@ -35,6 +36,7 @@ struct AtlasSurface {
 // `welded[v]`: the representative of input vertex v (vertex_welding.h); `seams` of `input`.
 // Corner angles are measured on `pool`.
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 const UserSeams& seams, ThreadPool& pool);
+                                 const UserSeams& seams, ThreadPool& pool,
+                                 const ProgressSpan& progress = {});
 
 }  // namespace raps

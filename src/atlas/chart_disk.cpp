@@ -140,16 +140,18 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
 }  // namespace
 
 bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                     const std::vector<char>& seam, ChartDisk& disk) {
+                     const std::vector<char>& seam, ChartDisk& disk, const ProgressSpan& progress) {
     if (!build_chart_disk(surface, triangles, seam, disk)) return false;
+    progress.report(0.0);
     disk.vertex_order = vertex_elimination_order(disk.mesh, disk.adjacency);
     return true;
 }
 
 bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                            const std::vector<char>& seam, const ChartDisk& a, const ChartDisk& b,
-                           ChartDisk& disk) {
+                           ChartDisk& disk, const ProgressSpan& progress) {
     if (!build_chart_disk(surface, triangles, seam, disk)) return false;
+    progress.report(0.0);
     // One level of nested dissection with the parts' own minimum degree orders inside: a's
     // vertices in a's order, then b's in b's, then the vertices they share (the seam between
     // them, which separates the two) in a's order. Measured by callgrind on one thread, the

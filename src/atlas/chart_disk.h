@@ -29,12 +29,13 @@ struct ChartDisk {
 // that must not be crossed even inside the chart (hard edges). Returns false when the chart
 // could not be made a disk (it is then split by the caller).
 bool make_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                     const std::vector<char>& seam, ChartDisk& disk);
+                     const std::vector<char>& seam, ChartDisk& disk,
+                     const ProgressSpan& progress = {});
 
 // The same for the union of two charts `a` and `b` (triangles: theirs together), whose vertex
 // order is made from theirs instead of ordering the union again.
 bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                            const std::vector<char>& seam, const ChartDisk& a, const ChartDisk& b,
-                           ChartDisk& disk);
+                           ChartDisk& disk, const ProgressSpan& progress = {});
 
 }  // namespace raps

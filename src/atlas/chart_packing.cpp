@@ -114,7 +114,11 @@ ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
 }
 
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
-                       ThreadPool& pool) {
+                       ThreadPool& pool, const ProgressSpan& progress) {
+    // Progress: a report at the start of every chart's raster and every trial layout, on
+    // whichever thread runs it (the fraction stays where the phase is: the trials' number is
+    // not known in advance).
+    const ProgressSpan beat = progress.part(0.0, 0.0);
     PackResult result;
     const size_t count = charts.size();
     result.uv.resize(count);
@@ -182,6 +186,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
     auto rasterise_all = [&](double at_scale, int32_t& widest) {
         std::vector<int32_t> narrow_side(count);
         parallel_for_each(pool, count, [&](size_t c) {
+            beat.report(0.0);
             BitImage raster;
             raster.resize(
                 static_cast<int32_t>(std::ceil(extent[c].x() * at_scale)) + 1 + 2 * padding,
@@ -258,6 +263,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
                               trial % 2 == 1, holes, p);
         };
         parallel_for_each(pool, trials, [&](size_t trial) {
+            beat.report(0.0);
             fits[trial] = (few && pack_trial(trial, true, packed[trial])) ||
                           pack_trial(trial, false, packed[trial]);
         });
@@ -273,6 +279,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             std::vector<Packed> with_holes(ranked.size());
             std::vector<char> holes_fit(ranked.size(), 0);
             parallel_for_each(pool, ranked.size(), [&](size_t k) {
+                beat.report(0.0);
                 holes_fit[k] = pack_trial(ranked[k], true, with_holes[k]);
             });
             for (size_t k = 0; k < ranked.size(); ++k) {
@@ -301,6 +308,7 @@ PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings&
             std::vector<Packed> tried(variants.size());
             std::vector<char> tried_fits(variants.size(), 0);
             parallel_for_each(pool, variants.size(), [&](size_t k) {
+                beat.report(0.0);
                 tried_fits[k] = pack_order(variants[k], width, count_waste, true, tried[k]);
             });
             bool improved = false;

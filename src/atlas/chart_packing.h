@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
 #include "parallel/thread_pool.h"
@@ -48,7 +49,7 @@ struct PackResult {
 
 // Charts are rasterised, and layouts tried, on `pool`; the result does not depend on its size.
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
-                       ThreadPool& pool);
+                       ThreadPool& pool, const ProgressSpan& progress = {});
 
 // The counter-clockwise turn, in degrees in [0, 360), of a chart turned by `rotation` (cos,
 // sin: its points p go to (r.x p.x + r.y p.y, -r.y p.x + r.x p.y), a clockwise turn) and then by

@@ -45,30 +45,34 @@ bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv) {
 
 // The adaptive step on `start` with its boundary held; returns whether it gave a map.
 bool adapted(const ChartDisk& disk, const Settings& settings,
-             const std::vector<Eigen::Vector2d>& start, ChartMap& out, LaplaceSystem& system) {
+             const std::vector<Eigen::Vector2d>& start, ChartMap& out, LaplaceSystem& system,
+             const ProgressSpan& progress) {
     const VertexAdjacency& adjacency = disk.adjacency;
     if (system.unknown_count() == 0) return false;
-    const std::vector<double> base = laplacian_weights(disk.mesh, adjacency, settings.weights);
+    const std::vector<double> base =
+        laplacian_weights(disk.mesh, adjacency, settings.weights, progress);
     out.uv = start;
     try {
-        adapt_map(disk.mesh, adjacency, system, base, settings, out.uv, nullptr);
+        adapt_map(disk.mesh, adjacency, system, base, settings, out.uv, progress);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;
         return false;
     }
+    progress.report(0.0);
     out.injective = injective(disk, out.uv);
     return out.injective;
 }
 
 }  // namespace
 
-LaplaceSystem chart_laplace_system(const ChartDisk& disk) {
+LaplaceSystem chart_laplace_system(const ChartDisk& disk, const ProgressSpan& progress) {
     std::vector<char> on_boundary(disk.mesh.positions.size(), 0);
     for (int32_t v : disk.boundary_loop) on_boundary[v] = 1;
-    return LaplaceSystem(disk.mesh, disk.adjacency, on_boundary, disk.vertex_order);
+    return LaplaceSystem(disk.mesh, disk.adjacency, on_boundary, disk.vertex_order, progress);
 }
 
-ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, LaplaceSystem& system) {
+ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, LaplaceSystem& system,
+                          const ProgressSpan& progress) {
     ChartMap circle;
     circle.method = ChartMethod::kCircle;
     circle.uv.assign(disk.mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
@@ -78,31 +82,34 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, Lapla
         circle.uv[disk.boundary_loop[i]] = boundary[i];
     const std::vector<double> base =
         laplacian_weights(disk.mesh, disk.adjacency, WeightScheme::kMeanValue);
-    system.solve(base, circle.uv, nullptr);
+    system.solve(base, circle.uv, progress);
     circle.injective = injective(disk, circle.uv);
     normalise(disk, circle);
-    adapt_chart_map(disk, settings, 1e300, circle, system);
+    adapt_chart_map(disk, settings, 1e300, circle, system, progress);
     return circle;
 }
 
-ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf) {
+ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf,
+                                 const ProgressSpan& progress) {
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
         // The prediction is given 5% of room, four times the largest shortfall measured.
         map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.corner_angle,
-                                             disk.boundary_loop, system, 1.05 * max_linf);
+                                             disk.boundary_loop, system, 1.05 * max_linf, progress);
+        progress.report(0.0);
         map.injective = !map.uv.empty() && injective(disk, map.uv);
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;
         map.injective = false;
     }
+    progress.report(0.0);
     if (map.injective) normalise(disk, map);
     return map;
 }
 
 void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max_linf,
-                     ChartMap& map, LaplaceSystem& system) {
+                     ChartMap& map, LaplaceSystem& system, const ProgressSpan& progress) {
     // A chart the free boundary already maps (nearly) isometrically gains nothing.
     if (settings.monitor == Monitor::kNone || !map.injective || map.stretch_l2 < 1.0005) return;
     ChartMap candidate;
@@ -110,7 +117,8 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
                                                           : ChartMethod::kFreeBoundaryAdapted;
     Settings chosen = settings;
     if (map.method == ChartMethod::kCircle) chosen.weights = WeightScheme::kMeanValue;
-    if (!adapted(disk, chosen, map.uv, candidate, system)) return;
+    if (!adapted(disk, chosen, map.uv, candidate, system, progress)) return;
+    progress.report(0.0);
     normalise(disk, candidate);
     // Equalising area can stretch a few triangles more: keep the Linf limit.
     if (candidate.stretch_l2 < map.stretch_l2 &&

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "atlas/chart_disk.h"
+#include "core/progress.h"
 #include "core/settings.h"
 #include "planar/laplace_system.h"
 
@@ -27,24 +28,29 @@ struct ChartMap {
     int64_t adaptive_solves = 0;  // behind this map (0 unless the adaptive step was kept)
 };
 
+// Each function reports its progress to `progress` (the atlas gives every chart the phase's
+// current fraction: a chart's work repeats it, so that a cancel is seen inside a large chart).
+
 // The chart's Laplace system with its boundary loop held, on which every map below is solved:
 // one ordering and symbolic analysis for all of a chart's solves. It refers to the disk, which
 // must outlive it.
-LaplaceSystem chart_laplace_system(const ChartDisk& disk);
+LaplaceSystem chart_laplace_system(const ChartDisk& disk, const ProgressSpan& progress = {});
 
 // The free-boundary map, its uvs scaled to the chart's 3D area. map.injective is false when
 // the free boundary overlaps itself, or when its conformal scale factors already show a Linf
 // stretch well above max_linf (the map is then not finished): the caller should split the chart.
-ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf);
+ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf,
+                                 const ProgressSpan& progress = {});
 
 // The paper's adaptive step on an injective map, boundary held; replaces the map when the
 // result is injective with a lower L2 stretch and a Linf stretch within max_linf (or the
 // map's own). A map already within 0.05% of isometric is left as it is (nothing to gain).
 void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max_linf,
-                     ChartMap& map, LaplaceSystem& system);
+                     ChartMap& map, LaplaceSystem& system, const ProgressSpan& progress = {});
 
 // The last resort for a chart that cannot be split further: the circle boundary, where mean
 // value weights guarantee a bijection (paper section 3), adapted when that lowers the stretch.
-ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, LaplaceSystem& system);
+ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, LaplaceSystem& system,
+                          const ProgressSpan& progress = {});
 
 }  // namespace raps

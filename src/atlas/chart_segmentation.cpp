@@ -17,30 +17,36 @@ struct Geometry {
     std::vector<char> barrier;            // per half-edge: charts may not grow across it
 };
 
-Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settings) {
+Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settings,
+                 const ProgressSpan& progress) {
     const TriangleMesh& mesh = surface.mesh;
     const int32_t count = mesh.triangle_count();
     Geometry g;
     g.normal.resize(count);
     std::vector<Eigen::Vector3d> centroid(count);
     g.area.resize(count);
-    for (int32_t t = 0; t < count; ++t) {
-        const Triangle& v = mesh.triangles[t];
-        const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
-                                      .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
-        g.area[t] = 0.5 * n.norm();
-        g.normal[t] = n.normalized();
-        centroid[t] = (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
-    }
+    progress.part(0.0, 0.5).in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = mesh.triangles[t];
+            const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                          .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
+            g.area[t] = 0.5 * n.norm();
+            g.normal[t] = n.normalized();
+            centroid[t] =
+                (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
+        }
+    });
     const double hard_cosine = portable::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
     g.barrier.assign(3 * static_cast<size_t>(count), 0);
     g.step.assign(3 * static_cast<size_t>(count), 0.0);  // every grow takes every step
-    for (int32_t h = 0; h < 3 * count; ++h) {
-        const int32_t o = surface.twin[h];
-        if (o >= 0) g.step[h] = (centroid[o / 3] - centroid[h / 3]).norm();
-        g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
-                                 g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
-    }
+    progress.part(0.5, 1.0).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t o = surface.twin[h];
+            if (o >= 0) g.step[h] = (centroid[o / 3] - centroid[h / 3]).norm();
+            g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
+                                     g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
+        }
+    });
     return g;
 }
 
@@ -125,9 +131,12 @@ class Grower {
           g_(geometry),
           min_cosine_(portable::cos(settings.max_normal_deviation_deg * M_PI / 180.0)) {}
 
-    // Grows charts from `seeds` until every triangle has one (adding seeds where none can grow).
-    std::vector<int32_t> grow(std::vector<int32_t> seeds) {
+    // Grows charts from `seeds` until every triangle has one (adding seeds where none can grow),
+    // reporting the share of triangles assigned every kItemsPerReport of them.
+    std::vector<int32_t> grow(std::vector<int32_t> seeds, const ProgressSpan& progress) {
         const int32_t count = surface_.mesh.triangle_count();
+        progress_ = progress;
+        assigned_ = 0;
         chart_.assign(count, -1);
         charts_.clear();
         queue_.clear();
@@ -143,11 +152,13 @@ class Grower {
     }
 
     // The triangle of each chart farthest (in hops) from the chart's boundary: its centre.
-    std::vector<int32_t> centres(const std::vector<int32_t>& chart) const {
+    std::vector<int32_t> centres(const std::vector<int32_t>& chart,
+                                 const ProgressSpan& progress) const {
         const int32_t count = surface_.mesh.triangle_count();
         const int32_t chart_count = *std::max_element(chart.begin(), chart.end()) + 1;
         std::vector<int32_t> depth(count, -1), frontier;
         for (int32_t t = 0; t < count; ++t) {
+            progress.at(t, count, 0.0, 0.4);
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = surface_.twin[3 * t + k];
                 if (o < 0 || chart[o / 3] != chart[t] || g_.barrier[3 * t + k]) {
@@ -158,6 +169,7 @@ class Grower {
             }
         }
         for (size_t i = 0; i < frontier.size(); ++i) {
+            progress.at(static_cast<int64_t>(i), count, 0.4, 0.9);
             const int32_t t = frontier[i];
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = surface_.twin[3 * t + k];
@@ -189,6 +201,7 @@ class Grower {
     }
 
     void assign(int32_t t, int32_t c, double distance) {
+        progress_.at(++assigned_, surface_.mesh.triangle_count());
         chart_[t] = c;
         Chart& chart = charts_[c];
         chart.normal_sum += g_.area[t] * g_.normal[t];
@@ -218,6 +231,8 @@ class Grower {
     std::vector<int32_t> chart_;
     std::vector<Chart> charts_;
     CandidateQueue queue_;
+    ProgressSpan progress_;
+    int64_t assigned_ = 0;
 };
 
 // Renumbers charts 0.. in order of their first triangle, dropping empty ids.
@@ -236,40 +251,53 @@ std::vector<int32_t> compact_ids(std::vector<int32_t> chart) {
 }  // namespace
 
 void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
-                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart) {
+                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress) {
     // Region growing over triangles leaves saw-tooth boundaries (single triangles poking into
     // the neighbour, most visibly on triangulated quad meshes); they lengthen seams and waste
     // packing space. A triangle whose two uncut neighbours share another chart joins it; a
     // few sweeps in index order remove the teeth (the order makes it deterministic).
     for (int sweep = 0; sweep < 4; ++sweep) {
         bool changed = false;
-        for (int32_t t : triangles) {
-            int32_t other[3], found = 0;
-            for (int k = 0; k < 3; ++k) {
-                const int32_t o = surface.twin[3 * t + k];
-                if (o >= 0 && !barrier[3 * t + k] && chart[o / 3] != chart[t])
-                    other[found++] = chart[o / 3];
-            }
-            int32_t winner = -1;
-            if (found >= 2 && other[0] == other[1]) winner = other[0];
-            if (found == 3 && (other[0] == other[2] || other[1] == other[2])) winner = other[2];
-            if (winner >= 0) {
-                chart[t] = winner;
-                changed = true;
-            }
-        }
+        const int64_t count = static_cast<int64_t>(triangles.size());
+        progress.part(sweep / 4.0, (sweep + 1) / 4.0)
+            .in_runs(count, [&](int64_t run_begin, int64_t run_end) {
+                for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
+                    const int32_t t = triangles[i];
+                    int32_t other[3], found = 0;
+                    for (int k = 0; k < 3; ++k) {
+                        const int32_t o = surface.twin[3 * t + k];
+                        if (o >= 0 && !barrier[3 * t + k] && chart[o / 3] != chart[t])
+                            other[found++] = chart[o / 3];
+                    }
+                    int32_t winner = -1;
+                    if (found >= 2 && other[0] == other[1]) winner = other[0];
+                    if (found == 3 && (other[0] == other[2] || other[1] == other[2]))
+                        winner = other[2];
+                    if (winner >= 0) {
+                        chart[t] = winner;
+                        changed = true;
+                    }
+                }
+            });
         if (!changed) break;
     }
 }
 
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
-                                    const SegmentationSettings& settings) {
+                                    const SegmentationSettings& settings,
+                                    const ProgressSpan& progress) {
     if (surface.mesh.triangles.empty()) return {};
-    const Geometry geometry = measure(surface, settings);
+    // Progress: the geometry, then each growth (the first and one per Lloyd iteration, with the
+    // centres before it) an equal share, then the smoothing.
+    const Geometry geometry = measure(surface, settings, progress.part(0.0, 0.1));
     Grower grower(surface, geometry, settings);
-    std::vector<int32_t> chart = compact_ids(grower.grow({0}));
+    const double share = 0.8 / (1 + settings.lloyd_iterations);
+    std::vector<int32_t> chart = compact_ids(grower.grow({0}, progress.part(0.1, 0.1 + share)));
     for (int i = 0; i < settings.lloyd_iterations; ++i) {
-        std::vector<int32_t> regrown = compact_ids(grower.grow(grower.centres(chart)));
+        const ProgressSpan iteration = progress.part(0.1 + (i + 1) * share, 0.1 + (i + 2) * share);
+        const std::vector<int32_t> centres = grower.centres(chart, iteration.part(0.0, 0.2));
+        std::vector<int32_t> regrown = compact_ids(grower.grow(centres, iteration.part(0.2, 1.0)));
         // The same charts again: their centres, hence every later iteration, are the same too
         // (charts fenced in by hard edges, as on CAD parts, are there from the start).
         if (regrown == chart) break;
@@ -277,7 +305,7 @@ std::vector<int32_t> segment_charts(const AtlasSurface& surface,
     }
     std::vector<int32_t> all(chart.size());
     std::iota(all.begin(), all.end(), 0);
-    smooth_chart_boundaries(surface, geometry.barrier, all, chart);
+    smooth_chart_boundaries(surface, geometry.barrier, all, chart, progress.part(0.9, 1.0));
     return compact_ids(chart);
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "atlas/atlas_surface.h"
+#include "core/progress.h"
 
 namespace raps {
 
@@ -24,10 +25,12 @@ struct SegmentationSettings {
 // removes saw-tooth boundaries. barrier[h] marks half-edges that separate charts regardless;
 // only `triangles` (ascending) are visited and may move.
 void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
-                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart);
+                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress = {});
 
 // Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
-                                    const SegmentationSettings& settings);
+                                    const SegmentationSettings& settings,
+                                    const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -15,8 +15,8 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                                                          const VertexAdjacency& adjacency,
                                                          const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
-                                                         LaplaceSystem& system,
-                                                         double give_up_linf) {
+                                                         LaplaceSystem& system, double give_up_linf,
+                                                         const ProgressSpan& progress) {
     const int32_t n = mesh.vertex_count();
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
     std::vector<double> angle_sum(n, 0.0);
@@ -51,7 +51,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
         std::vector<double> rhs(unknowns);
         for (int32_t row = 0; row < unknowns; ++row)
             rhs[row] = angle_sum[vertex_of[row]] - 2 * M_PI;
-        solver.solve(values, rhs.data(), 1, nullptr, Factorization::kCholesky);
+        solver.solve(values, rhs.data(), 1, progress, Factorization::kCholesky);
         for (int32_t row = 0; row < unknowns; ++row) log_scale[vertex_of[row]] = rhs[row];
     }
     // A chart the caller would reject for its Linf stretch needs no map (merging tries unions
@@ -116,7 +116,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                 rhs[unknowns + row] += cotangent[s] * uv[j].y();
             }
         }
-        solver.solve_more(rhs.data(), 2);
+        solver.solve_more(rhs.data(), 2, progress);
         for (int32_t row = 0; row < unknowns; ++row)
             uv[vertex_of[row]] = Eigen::Vector2d(rhs[row], rhs[unknowns + row]);
     }

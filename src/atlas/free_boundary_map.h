@@ -31,7 +31,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                                                          const VertexAdjacency& adjacency,
                                                          const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
-                                                         LaplaceSystem& system,
-                                                         double give_up_linf);
+                                                         LaplaceSystem& system, double give_up_linf,
+                                                         const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -334,9 +334,10 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
 }  // namespace
 
 PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
-                      ThreadPool& pool) {
+                      ThreadPool& pool, const ProgressSpan& progress) {
     const PageGrid grid = checked_grid(settings);
     PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+    progress.report(0.5);
     Layout layout;
     layout.page.assign(charts.size(), 0);
     layout.place.resize(charts.size());
@@ -349,7 +350,7 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
 }
 
 PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
-                         ThreadPool& pool) {
+                         ThreadPool& pool, const ProgressSpan& progress) {
     const PageGrid grid = checked_grid(settings);
     // Above this density the charts' area alone overflows the page, or the longest chart its
     // longer side.
@@ -373,6 +374,7 @@ PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings sett
     for (int attempt = 0;; ++attempt) {
         low *= 0.8;
         settings.texels_per_unit = low;
+        progress.report(0.0);  // each attempt packs every chart again
         if (pack_on_one_page(charts, settings, grid, pool, best)) break;
         high = low;
         if (attempt == 60) {
@@ -386,6 +388,7 @@ PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings sett
     while (high > 1.01 * low) {
         settings.texels_per_unit = std::sqrt(low * high);
         PackResult tried;
+        progress.report(0.5);
         if (pack_on_one_page(charts, settings, grid, pool, tried)) {
             low = settings.texels_per_unit;
             best = std::move(tried);

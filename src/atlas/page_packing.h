@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "atlas/chart_packing.h"
+#include "core/progress.h"
 #include "parallel/thread_pool.h"
 
 namespace raps {
@@ -33,7 +34,7 @@ struct PageSettings {
 // Every page is as large as the charts of any page reach (with the margin), uvs normalised to
 // it per axis. Charts are rasterised on `pool`; the result does not depend on its size.
 PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
-                      ThreadPool& pool);
+                      ThreadPool& pool, const ProgressSpan& progress = {});
 
 // The same placement on one page of at most max_width x max_height at the largest density
 // (within 1%, settings.texels_per_unit ignored) at which every chart fits it unshrunk: a
@@ -41,6 +42,6 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
 // until they fit, then by halving the gap. part_per_page is moot on one page. Throws
 // kInvalidArgument when no density fits them (too many charts for the page with their padding).
 PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
-                         ThreadPool& pool);
+                         ThreadPool& pool, const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -29,8 +29,8 @@ void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
 
 }  // namespace
 
-std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions,
-                                   double tolerance) {
+std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions, double tolerance,
+                                   const ProgressSpan& progress) {
     const int32_t n = static_cast<int32_t>(positions.size());
     if (tolerance <= 0.0) {
         // Exact equality: a hash table of positions, vertices visited in index order, so each
@@ -38,20 +38,22 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
         // was a fifth of fandisk's topology phase.
         const size_t capacity = hash_table_size(static_cast<size_t>(n));
         std::vector<int32_t> slot(capacity, -1), representative(n);
-        for (int32_t v = 0; v < n; ++v) {
-            const Eigen::Vector3d& p = positions[v];
-            uint64_t hash = 0;
-            for (int k = 0; k < 3; ++k) {
-                const double coordinate = p[k] + 0.0;  // -0 and +0 are one position
-                uint64_t bits;
-                std::memcpy(&bits, &coordinate, sizeof(bits));
-                hash = mix_bits(hash ^ bits);
+        progress.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+            for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
+                const Eigen::Vector3d& p = positions[v];
+                uint64_t hash = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const double coordinate = p[k] + 0.0;  // -0 and +0 are one position
+                    uint64_t bits;
+                    std::memcpy(&bits, &coordinate, sizeof(bits));
+                    hash = mix_bits(hash ^ bits);
+                }
+                size_t i = hash & (capacity - 1);
+                while (slot[i] >= 0 && positions[slot[i]] != p) i = (i + 1) & (capacity - 1);
+                if (slot[i] < 0) slot[i] = v;
+                representative[v] = slot[i];
             }
-            size_t i = hash & (capacity - 1);
-            while (slot[i] >= 0 && positions[slot[i]] != p) i = (i + 1) & (capacity - 1);
-            if (slot[i] < 0) slot[i] = v;
-            representative[v] = slot[i];
-        }
+        });
         return representative;
     }
     std::vector<int32_t> parent(n);
@@ -70,25 +72,28 @@ std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions
     std::vector<std::pair<Cell, int32_t>> cells(n);
     for (int32_t v = 0; v < n; ++v) cells[v] = {cell_of(positions[v]), v};
     std::sort(cells.begin(), cells.end());
+    progress.report(0.2);
     const double squared = tolerance * tolerance;
-    for (int32_t v = 0; v < n; ++v) {
-        const Cell c = cell_of(positions[v]);
-        for (int64_t dx = -1; dx <= 1; ++dx) {
-            for (int64_t dy = -1; dy <= 1; ++dy) {
-                for (int64_t dz = -1; dz <= 1; ++dz) {
-                    const Cell key = {c[0] + dx, c[1] + dy, c[2] + dz};
-                    auto it = std::lower_bound(cells.begin(), cells.end(),
-                                               std::make_pair(key, int32_t(0)));
-                    for (; it != cells.end() && it->first == key; ++it) {
-                        if (it->second != v &&
-                            (positions[it->second] - positions[v]).squaredNorm() <= squared) {
-                            unite(parent, v, it->second);
+    progress.part(0.2, 1.0).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
+            const Cell c = cell_of(positions[v]);
+            for (int64_t dx = -1; dx <= 1; ++dx) {
+                for (int64_t dy = -1; dy <= 1; ++dy) {
+                    for (int64_t dz = -1; dz <= 1; ++dz) {
+                        const Cell key = {c[0] + dx, c[1] + dy, c[2] + dz};
+                        auto it = std::lower_bound(cells.begin(), cells.end(),
+                                                   std::make_pair(key, int32_t(0)));
+                        for (; it != cells.end() && it->first == key; ++it) {
+                            if (it->second != v &&
+                                (positions[it->second] - positions[v]).squaredNorm() <= squared) {
+                                unite(parent, v, it->second);
+                            }
                         }
                     }
                 }
             }
         }
-    }
+    });
     std::vector<int32_t> representative(n);
     for (int32_t v = 0; v < n; ++v) representative[v] = find_root(parent, v);
     return representative;

@@ -7,10 +7,13 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
+
 namespace raps {
 
 // For every input vertex, the index of its representative: the smallest input index among the
 // vertices within `tolerance` of it (linked transitively). tolerance 0 welds exact equals only.
-std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions, double tolerance);
+std::vector<int32_t> weld_vertices(const std::vector<Eigen::Vector3d>& positions, double tolerance,
+                                   const ProgressSpan& progress = {});
 
 }  // namespace raps

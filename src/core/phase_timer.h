@@ -17,7 +17,11 @@ class PhaseTimer {
           progress_(progress),
           times_(times),
           start_(std::chrono::steady_clock::now()) {
-        progress_.report(phase_, 0.0);
+        progress_.start(phase_);
+    }
+    // The phase's progress, for the steps inside it.
+    ProgressSpan span(double from = 0.0, double to = 1.0) const {
+        return ProgressSpan(progress_, phase_, from, to);
     }
     // Reports the end of the phase (which may still cancel) and records its duration.
     void finish() {

@@ -4,6 +4,9 @@
 // report too: calls to the callback are serialised, so they never overlap.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 
@@ -32,24 +35,93 @@ class Progress {
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
 
+    bool active() const { return static_cast<bool>(callback_); }
+
+    // Reports the start of a pass through `phase` (fraction 0), from which its fractions rise.
+    void start(Phase phase) const { report(phase, 0.0, true); }
+
     // Reports that `fraction` (0..1) of `phase` is done; throws Error(kCancelled) on a stop.
     // Once cancelled, every later report (from any thread of the run) stops too, without
-    // calling back again.
-    void report(Phase phase, double fraction) const {
+    // calling back again. Worker threads report the fractions of their own pieces, which may
+    // arrive out of order: the callback gets the largest fraction reported since the phase
+    // started, so what it sees never falls.
+    void report(Phase phase, double fraction) const { report(phase, fraction, false); }
+
+  private:
+    void report(Phase phase, double fraction, bool start) const {
         if (!callback_) return;
         bool go_on;
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            go_on = !cancelled_ && callback_(phase, fraction);
+            double& last = last_fraction_[static_cast<int>(phase)];
+            last = start ? 0.0 : std::max(last, std::min(fraction, 1.0));
+            go_on = !cancelled_ && callback_(phase, last);
             cancelled_ = !go_on;
         }
         if (!go_on) throw Error(ErrorCode::kCancelled, "cancelled by the progress callback");
     }
 
-  private:
     Callback callback_;
     mutable std::mutex mutex_;
     mutable bool cancelled_ = false;
+    mutable std::array<double, kPhaseCount> last_fraction_{};
+};
+
+// Work between two progress calls: a loop reports every kItemsPerReport items (a triangle, a
+// vertex, an edge: well under a microsecond each), so a cancel waits for a few milliseconds of
+// work at most, and a call (a lock and the callback, well under a microsecond) costs nothing
+// measurable against the work it follows.
+constexpr int64_t kItemsPerReport = 8192;
+static_assert((kItemsPerReport & (kItemsPerReport - 1)) == 0, "a power of two: a mask tests it");
+
+// A share [from, to] of one phase's progress, handed to a step of it: the step reports its own
+// fraction in [0, 1], which lands in that share of the run's Progress. Spans are passed down,
+// never kept. A default span reports nothing (for callers outside a run: benchmarks of the
+// internals).
+class ProgressSpan {
+  public:
+    ProgressSpan() = default;
+    ProgressSpan(const Progress& progress, Phase phase, double from = 0.0, double to = 1.0)
+        : progress_(progress.active() ? &progress : nullptr), phase_(phase), from_(from), to_(to) {}
+
+    void report(double fraction) const {
+        if (progress_) progress_->report(phase_, from_ + (to_ - from_) * fraction);
+    }
+    // In a loop over `count` items, at item `i`: a report every kItemsPerReport items.
+    void at(int64_t i, int64_t count) const {
+        if ((i & (kItemsPerReport - 1)) == 0 && i > 0 && active())
+            report(static_cast<double>(i) / static_cast<double>(count));
+    }
+    // The same for a loop that is the share [from, to] of this span (nothing computed between
+    // reports: it runs at every item).
+    void at(int64_t i, int64_t count, double from, double to) const {
+        if ((i & (kItemsPerReport - 1)) == 0 && i > 0 && active())
+            part(from, to).report(static_cast<double>(i) / static_cast<double>(count));
+    }
+    // body(begin, end) over [0, count) in runs of kItemsPerReport items, a report between two
+    // runs: for the hottest loops, whose bodies then see no call they would have to keep their
+    // values around (a report inside measured 2% more instructions on the disk's passes).
+    template <typename Body>
+    void in_runs(int64_t count, Body&& body) const {
+        for (int64_t begin = 0; begin < count; begin += kItemsPerReport) {
+            if (begin > 0 && active())
+                report(static_cast<double>(begin) / static_cast<double>(count));
+            body(begin, std::min(count, begin + kItemsPerReport));
+        }
+    }
+    // The share [from, to] of this one, for a step of the step.
+    ProgressSpan part(double from, double to) const {
+        ProgressSpan span = *this;
+        span.from_ = from_ + (to_ - from_) * from;
+        span.to_ = from_ + (to_ - from_) * to;
+        return span;
+    }
+    bool active() const { return progress_ != nullptr; }
+
+  private:
+    const Progress* progress_ = nullptr;
+    Phase phase_ = Phase::kValidate;
+    double from_ = 0.0, to_ = 1.0;
 };
 
 }  // namespace raps

@@ -27,15 +27,20 @@ struct OutgoingHalfedges {
     std::vector<int32_t> halfedges;
 };
 
-OutgoingHalfedges group_by_origin(const TriangleMesh& mesh) {
+OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& progress) {
     OutgoingHalfedges out;
     const int32_t halfedge_count = 3 * mesh.triangle_count();
     out.offsets.assign(mesh.positions.size() + 1, 0);
-    for (int32_t h = 0; h < halfedge_count; ++h) ++out.offsets[halfedge_origin(mesh, h) + 1];
+    progress.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            ++out.offsets[halfedge_origin(mesh, h) + 1];
+        }
+    });
     std::partial_sum(out.offsets.begin(), out.offsets.end(), out.offsets.begin());
     out.halfedges.resize(halfedge_count);
     std::vector<int32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
+        progress.at(halfedge_count + h, 2 * static_cast<int64_t>(halfedge_count));
         out.halfedges[fill[halfedge_origin(mesh, h)]++] = h;
     }
     return out;
@@ -43,54 +48,62 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh) {
 
 }  // namespace
 
-Halfedges build_halfedges(const TriangleMesh& mesh) {
-    const OutgoingHalfedges out = group_by_origin(mesh);
+Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress) {
+    const OutgoingHalfedges out = group_by_origin(mesh, progress.part(0.0, 0.15));
     const int32_t halfedge_count = 3 * mesh.triangle_count();
     std::vector<int32_t> target(halfedge_count);
-    for (int32_t h = 0; h < halfedge_count; ++h) target[h] = halfedge_target(mesh, h);
+    progress.part(0.15, 0.2).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            target[h] = halfedge_target(mesh, h);
+        }
+    });
     Halfedges result;
     result.twin.assign(halfedge_count, -1);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        const int32_t a = halfedge_origin(mesh, h), b = target[h];
-        int32_t same_direction = -1, opposite = -1, opposite_count = 0;
-        for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
-            const int32_t g = out.halfedges[i];
-            if (g != h && target[g] == b) same_direction = g;
-        }
-        for (int32_t i = out.offsets[b]; i < out.offsets[b + 1]; ++i) {
-            const int32_t g = out.halfedges[i];
-            if (target[g] == a) {
-                opposite = g;
-                ++opposite_count;
+    const ProgressSpan pairing = progress.part(0.2, 1.0);
+    pairing.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t a = halfedge_origin(mesh, h), b = target[h];
+            int32_t same_direction = -1, opposite = -1, opposite_count = 0;
+            for (int32_t i = out.offsets[a]; i < out.offsets[a + 1]; ++i) {
+                const int32_t g = out.halfedges[i];
+                if (g != h && target[g] == b) same_direction = g;
             }
-        }
-        if (same_direction >= 0 || opposite_count > 1) {
-            const int32_t other = same_direction >= 0 ? same_direction : opposite;
-            if (same_vertex_set(mesh.triangles[h / 3], mesh.triangles[other / 3])) {
+            for (int32_t i = out.offsets[b]; i < out.offsets[b + 1]; ++i) {
+                const int32_t g = out.halfedges[i];
+                if (target[g] == a) {
+                    opposite = g;
+                    ++opposite_count;
+                }
+            }
+            if (same_direction >= 0 || opposite_count > 1) {
+                const int32_t other = same_direction >= 0 ? same_direction : opposite;
+                if (same_vertex_set(mesh.triangles[h / 3], mesh.triangles[other / 3])) {
+                    throw Error(ErrorCode::kNonManifoldEdge,
+                                "triangles " + std::to_string(h / 3) + " and " +
+                                    std::to_string(other / 3) +
+                                    " are duplicates (same three vertices), so edge " +
+                                    edge_name(a, b) + " has more than two triangles");
+                }
+                if (same_direction >= 0 && opposite < 0) {
+                    throw Error(ErrorCode::kInconsistentOrientation,
+                                "triangles " + std::to_string(h / 3) + " and " +
+                                    std::to_string(same_direction / 3) + " both traverse edge " +
+                                    edge_name(a, b) +
+                                    " in the same direction (their winding is inconsistent)");
+                }
                 throw Error(ErrorCode::kNonManifoldEdge,
-                            "triangles " + std::to_string(h / 3) + " and " +
-                                std::to_string(other / 3) +
-                                " are duplicates (same three vertices), so edge " +
-                                edge_name(a, b) + " has more than two triangles");
+                            "edge " + edge_name(a, b) + " is shared by more than two triangles (" +
+                                std::to_string(h / 3) + ", " + std::to_string(other / 3) +
+                                " and more)");
             }
-            if (same_direction >= 0 && opposite < 0) {
-                throw Error(ErrorCode::kInconsistentOrientation,
-                            "triangles " + std::to_string(h / 3) + " and " +
-                                std::to_string(same_direction / 3) + " both traverse edge " +
-                                edge_name(a, b) +
-                                " in the same direction (their winding is inconsistent)");
-            }
-            throw Error(ErrorCode::kNonManifoldEdge, "edge " + edge_name(a, b) +
-                                                         " is shared by more than two triangles (" +
-                                                         std::to_string(h / 3) + ", " +
-                                                         std::to_string(other / 3) + " and more)");
+            result.twin[h] = opposite;
         }
-        result.twin[h] = opposite;
-    }
+    });
     return result;
 }
 
-void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges) {
+void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges,
+                             const ProgressSpan& progress) {
     // Rotating around the origin v of an outgoing half-edge h: twin(prev(h)) is the next
     // outgoing half-edge (or -1 at a boundary), next(twin(h)) the previous one. The outgoing
     // half-edges of a manifold vertex form one such orbit (one fan).
@@ -98,32 +111,36 @@ void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedge
     const int32_t halfedge_count = static_cast<int32_t>(twin.size());
     std::vector<char> visited(halfedge_count, 0);
     std::vector<int32_t> fan_start(mesh.positions.size(), -1);
-    for (int32_t h0 = 0; h0 < halfedge_count; ++h0) {
-        if (visited[h0]) continue;
-        const int32_t v = halfedge_origin(mesh, h0);
-        if (fan_start[v] >= 0) {
-            throw Error(ErrorCode::kNonManifoldVertex,
-                        "vertex " + std::to_string(v) +
-                            " joins separate fans of triangles (e.g. triangles " +
-                            std::to_string(fan_start[v] / 3) + " and " + std::to_string(h0 / 3) +
-                            " meet only at this vertex)");
+    progress.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h0 = static_cast<int32_t>(run_begin); h0 < run_end; ++h0) {
+            if (visited[h0]) continue;
+            const int32_t v = halfedge_origin(mesh, h0);
+            if (fan_start[v] >= 0) {
+                throw Error(ErrorCode::kNonManifoldVertex,
+                            "vertex " + std::to_string(v) +
+                                " joins separate fans of triangles (e.g. triangles " +
+                                std::to_string(fan_start[v] / 3) + " and " +
+                                std::to_string(h0 / 3) + " meet only at this vertex)");
+            }
+            fan_start[v] = h0;
+            // Walk backwards to the fan's first half-edge (or all the way round), then forwards.
+            int32_t h = h0;
+            while (twin[h] >= 0 && Halfedges::next(twin[h]) != h0) h = Halfedges::next(twin[h]);
+            if (twin[h] >= 0) h = h0;  // closed fan: start anywhere
+            const int32_t start = h;
+            do {
+                visited[h] = 1;
+                const int32_t p = twin[Halfedges::prev(h)];
+                h = p;
+            } while (h >= 0 && h != start);
         }
-        fan_start[v] = h0;
-        // Walk backwards to the fan's first half-edge (or all the way round), then forwards.
-        int32_t h = h0;
-        while (twin[h] >= 0 && Halfedges::next(twin[h]) != h0) h = Halfedges::next(twin[h]);
-        if (twin[h] >= 0) h = h0;  // closed fan: start anywhere
-        const int32_t start = h;
-        do {
-            visited[h] = 1;
-            const int32_t p = twin[Halfedges::prev(h)];
-            h = p;
-        } while (h >= 0 && h != start);
-    }
+    });
 }
 
-std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges) {
+std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                           const ProgressSpan& progress) {
     std::vector<int32_t> piece(mesh.triangles.size(), -1), representatives, stack;
+    int64_t reached = 0;
     for (int32_t seed = 0; seed < mesh.triangle_count(); ++seed) {
         if (piece[seed] >= 0) continue;
         const int32_t id = static_cast<int32_t>(representatives.size());
@@ -133,6 +150,7 @@ std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfe
         while (!stack.empty()) {
             const int32_t t = stack.back();
             stack.pop_back();
+            progress.at(++reached, mesh.triangle_count());
             for (int k = 0; k < 3; ++k) {
                 const int32_t o = halfedges.twin[3 * t + k];
                 if (o >= 0 && piece[o / 3] < 0) {
@@ -176,8 +194,9 @@ int64_t edge_count(const Halfedges& halfedges) {
 
 namespace {
 
-void check_one_piece(const TriangleMesh& mesh, const Halfedges& halfedges, const char* shape) {
-    const std::vector<int32_t> pieces = piece_representatives(mesh, halfedges);
+void check_one_piece(const TriangleMesh& mesh, const Halfedges& halfedges, const char* shape,
+                     const ProgressSpan& progress) {
+    const std::vector<int32_t> pieces = piece_representatives(mesh, halfedges, progress);
     if (pieces.size() > 1) {
         throw Error(ErrorCode::kMultipleComponents,
                     "the mesh has " + std::to_string(pieces.size()) +
@@ -203,9 +222,11 @@ int64_t euler_characteristic(const TriangleMesh& mesh, const Halfedges& halfedge
 
 }  // namespace
 
-std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges) {
-    check_manifold_vertices(mesh, halfedges);
-    check_one_piece(mesh, halfedges, "a disk");
+std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                        const ProgressSpan& progress) {
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
+    check_one_piece(mesh, halfedges, "a disk", progress.part(0.5, 1.0));
+    progress.report(1.0);
     std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
     if (loops.empty()) {
         throw Error(ErrorCode::kNoBoundary,
@@ -228,9 +249,11 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
     return std::move(loops[0]);
 }
 
-void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges) {
-    check_manifold_vertices(mesh, halfedges);
-    check_one_piece(mesh, halfedges, "a sphere");
+void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges,
+                             const ProgressSpan& progress) {
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
+    check_one_piece(mesh, halfedges, "a sphere", progress.part(0.5, 1.0));
+    progress.report(1.0);
     const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
     if (!loops.empty()) {
         const std::string starts = loop_starts(loops);
@@ -263,7 +286,7 @@ std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& half
     return ring;
 }
 
-VertexTriangles build_vertex_triangles(const TriangleMesh& mesh) {
+VertexTriangles build_vertex_triangles(const TriangleMesh& mesh, const ProgressSpan& progress) {
     VertexTriangles stars;
     stars.offsets.assign(mesh.positions.size() + 1, 0);
     for (const Triangle& t : mesh.triangles) {
@@ -274,64 +297,75 @@ VertexTriangles build_vertex_triangles(const TriangleMesh& mesh) {
     stars.second.resize(stars.offsets.back());
     stars.triangle.resize(stars.offsets.back());
     std::vector<int32_t> fill(stars.offsets.begin(), stars.offsets.end() - 1);
-    for (int32_t f = 0; f < mesh.triangle_count(); ++f) {
-        const Triangle& t = mesh.triangles[f];
-        for (int k = 0; k < 3; ++k) {
-            const int32_t e = fill[t[k]]++;
-            stars.first[e] = t[(k + 1) % 3];
-            stars.second[e] = t[(k + 2) % 3];
-            stars.triangle[e] = f;
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t f = static_cast<int32_t>(run_begin); f < run_end; ++f) {
+            const Triangle& t = mesh.triangles[f];
+            for (int k = 0; k < 3; ++k) {
+                const int32_t e = fill[t[k]]++;
+                stars.first[e] = t[(k + 1) % 3];
+                stars.second[e] = t[(k + 2) % 3];
+                stars.triangle[e] = f;
+            }
         }
-    }
+    });
     return stars;
 }
 
-VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges) {
+VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                       const ProgressSpan& progress) {
     VertexAdjacency adjacency;
     const int32_t halfedge_count = static_cast<int32_t>(halfedges.twin.size());
     adjacency.offsets.assign(mesh.positions.size() + 1, 0);
     // Each undirected edge once: boundary half-edges, and the smaller of each twin pair.
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        if (halfedges.twin[h] > h) continue;
-        ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
-        ++adjacency.offsets[halfedge_target(mesh, h) + 1];
-    }
+    progress.part(0.0, 0.2).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            if (halfedges.twin[h] > h) continue;
+            ++adjacency.offsets[halfedge_origin(mesh, h) + 1];
+            ++adjacency.offsets[halfedge_target(mesh, h) + 1];
+        }
+    });
     std::partial_sum(adjacency.offsets.begin(), adjacency.offsets.end(), adjacency.offsets.begin());
     // Each entry carries its edge's half-edge h and direction (2h: in the row of h's origin,
     // 2h + 1: of its target) through the sort, so the slots come out of the sort itself: binary
     // searches for them afterwards were most of this function.
     std::vector<std::pair<int32_t, int32_t>> entries(adjacency.offsets.back());
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
-    for (int32_t h = 0; h < halfedge_count; ++h) {
-        if (halfedges.twin[h] > h) continue;
-        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
-        entries[fill[a]++] = {b, 2 * h};
-        entries[fill[b]++] = {a, 2 * h + 1};
-    }
+    progress.part(0.2, 0.4).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            if (halfedges.twin[h] > h) continue;
+            const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+            entries[fill[a]++] = {b, 2 * h};
+            entries[fill[b]++] = {a, 2 * h + 1};
+        }
+    });
+    const ProgressSpan sorting = progress.part(0.4, 0.9);
     adjacency.neighbors.resize(entries.size());
     adjacency.forward_slot.resize(halfedge_count);
     adjacency.backward_slot.resize(halfedge_count);
-    for (int32_t v = 0; v < mesh.vertex_count(); ++v) {
-        // Insertion sort by neighbour: a vertex has about six.
-        const int32_t first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
-        for (int32_t i = first + 1; i < last; ++i) {
-            const std::pair<int32_t, int32_t> entry = entries[i];
-            int32_t j = i;
-            for (; j > first && entries[j - 1].first > entry.first; --j)
-                entries[j] = entries[j - 1];
-            entries[j] = entry;
+    sorting.in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
+            // Insertion sort by neighbour: a vertex has about six.
+            const int32_t first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
+            for (int32_t i = first + 1; i < last; ++i) {
+                const std::pair<int32_t, int32_t> entry = entries[i];
+                int32_t j = i;
+                for (; j > first && entries[j - 1].first > entry.first; --j)
+                    entries[j] = entries[j - 1];
+                entries[j] = entry;
+            }
+            // A neighbour listed twice (two edges between the same vertices, in degenerate input)
+            // has its first slot, the one a search would find.
+            int32_t run = first;
+            for (int32_t slot = first; slot < last; ++slot) {
+                const auto [neighbor, tag] = entries[slot];
+                if (neighbor != entries[run].first) run = slot;
+                adjacency.neighbors[slot] = neighbor;
+                (tag % 2 ? adjacency.backward_slot : adjacency.forward_slot)[tag / 2] = run;
+            }
         }
-        // A neighbour listed twice (two edges between the same vertices, in degenerate input)
-        // has its first slot, the one a search would find.
-        int32_t run = first;
-        for (int32_t slot = first; slot < last; ++slot) {
-            const auto [neighbor, tag] = entries[slot];
-            if (neighbor != entries[run].first) run = slot;
-            adjacency.neighbors[slot] = neighbor;
-            (tag % 2 ? adjacency.backward_slot : adjacency.forward_slot)[tag / 2] = run;
-        }
-    }
+    });
     for (int32_t h = 0; h < halfedge_count; ++h) {  // the larger twin, g, runs the other way
+        progress.at(h, halfedge_count, 0.9, 1.0);
         const int32_t g = halfedges.twin[h];
         if (g < h) continue;
         adjacency.forward_slot[h] = adjacency.backward_slot[g];
@@ -340,7 +374,8 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     return adjacency;
 }
 
-std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin) {
+std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
+                                           const ProgressSpan& progress) {
     const int32_t corners = static_cast<int32_t>(twin.size());
     std::vector<int32_t> parent(corners);
     std::iota(parent.begin(), parent.end(), 0);
@@ -356,21 +391,25 @@ std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin) {
         b = root_of(b);
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
     };
-    for (int32_t h = 0; h < corners; ++h) {
-        const int32_t g = twin[h];
-        if (g < h) continue;
-        // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
-        // the corner after g; the corners at b are the corner after h and g's own corner.
-        unite(h, Halfedges::next(g));
-        unite(Halfedges::next(h), g);
-    }
+    progress.part(0.0, 0.6).in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
+            const int32_t g = twin[h];
+            if (g < h) continue;
+            // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
+            // the corner after g; the corners at b are the corner after h and g's own corner.
+            unite(h, Halfedges::next(g));
+            unite(Halfedges::next(h), g);
+        }
+    });
     std::vector<int32_t> class_of_root(corners, -1), classes(corners);
     int32_t count = 0;
-    for (int32_t c = 0; c < corners; ++c) {
-        int32_t& cls = class_of_root[root_of(c)];
-        if (cls < 0) cls = count++;
-        classes[c] = cls;
-    }
+    progress.part(0.6, 1.0).in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
+            int32_t& cls = class_of_root[root_of(c)];
+            if (cls < 0) cls = count++;
+            classes[c] = cls;
+        }
+    });
     return classes;
 }
 

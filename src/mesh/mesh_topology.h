@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 
 namespace raps {
@@ -29,19 +30,22 @@ inline int32_t halfedge_target(const TriangleMesh& mesh, int32_t h) {
 // Pairs every half-edge with its twin. Throws NON_MANIFOLD_EDGE when an edge has more than two
 // triangles (or a duplicate triangle), INCONSISTENT_ORIENTATION when two triangles traverse an
 // edge in the same direction.
-Halfedges build_halfedges(const TriangleMesh& mesh);
+Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress = {});
 
 // The vertices that twins imply: corners (3 t + k, the corner where half-edge 3 t + k starts)
 // joined across every paired edge (twin[h] < 0 on a boundary or a cut), so that the corners of
 // one fan of triangles around a vertex form one class. Returns each corner's class, classes
 // numbered in the order of their first corner.
-std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin);
+std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
+                                           const ProgressSpan& progress = {});
 
 // Throws NON_MANIFOLD_VERTEX when the triangles around a vertex form more than one fan.
-void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges);
+void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges,
+                             const ProgressSpan& progress = {});
 
 // Number of edge-connected pieces, and one triangle of each.
-std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges);
+std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                           const ProgressSpan& progress = {});
 
 // Boundary loops as vertex sequences, each traversed with the mesh on its left (so a disk's loop
 // runs counter-clockwise around it), starting at its smallest vertex index; loops sorted by that
@@ -54,12 +58,14 @@ int64_t edge_count(const Halfedges& halfedges);
 
 // Checks everything a topological disk needs (manifold, oriented, one piece, one boundary loop,
 // Euler characteristic 1) and returns its boundary loop.
-std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges);
+std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                        const ProgressSpan& progress = {});
 
 // Checks everything the sphere domain needs (manifold, oriented, one piece, no boundary loop,
 // Euler characteristic 2). Throws OPEN_MESH when the mesh has boundary loops, NONZERO_GENUS when
 // it has handles.
-void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges);
+void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges,
+                             const ProgressSpan& progress = {});
 
 // The neighbours of vertex v of a closed mesh in the order of its triangles: (v, ring[m],
 // ring[m + 1]) is a triangle for every m (cyclically). Needs manifold vertices and no boundary
@@ -74,7 +80,7 @@ struct VertexTriangles {
     std::vector<int32_t> first, second, triangle;
 };
 
-VertexTriangles build_vertex_triangles(const TriangleMesh& mesh);
+VertexTriangles build_vertex_triangles(const TriangleMesh& mesh, const ProgressSpan& progress = {});
 
 // Symmetric vertex adjacency in compressed rows: the neighbours of v are
 // neighbors[offsets[v] .. offsets[v + 1]), sorted ascending. A "slot" is a position in neighbors,
@@ -87,6 +93,7 @@ struct VertexAdjacency {
     std::vector<int32_t> backward_slot;
 };
 
-VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges);
+VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                       const ProgressSpan& progress = {});
 
 }  // namespace raps

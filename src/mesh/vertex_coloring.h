@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.h"
 #include "mesh/mesh_topology.h"
 
 namespace raps {
@@ -15,6 +16,7 @@ namespace raps {
 // Greedy colouring in vertex order: each vertex takes the smallest colour none of its
 // lower-numbered neighbours has. Deterministic; at most (max degree + 1) colours. Returns the
 // vertices of each colour, ascending.
-std::vector<std::vector<int32_t>> greedy_vertex_coloring(const VertexAdjacency& adjacency);
+std::vector<std::vector<int32_t>> greedy_vertex_coloring(const VertexAdjacency& adjacency,
+                                                         const ProgressSpan& progress = {});
 
 }  // namespace raps

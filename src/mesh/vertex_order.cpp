@@ -20,7 +20,8 @@ uint64_t spread_bits(uint64_t x) {
 
 }  // namespace
 
-std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& positions) {
+std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& positions,
+                                         const ProgressSpan& progress) {
     const int32_t n = static_cast<int32_t>(positions.size());
     Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector3d high = -low;
@@ -30,22 +31,39 @@ std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& pos
     }
     const double extent = std::max((high - low).maxCoeff(), 1e-300);
     std::vector<uint64_t> code(n);
-    for (int32_t i = 0; i < n; ++i) {
-        uint64_t key = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double t = std::clamp((positions[i][c] - low[c]) / extent, 0.0, 1.0);
-            key |= spread_bits(static_cast<uint64_t>(t * 2097151.0)) << c;
+    progress.part(0.0, 0.2).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t i = static_cast<int32_t>(run_begin); i < run_end; ++i) {
+            uint64_t key = 0;
+            for (int c = 0; c < 3; ++c) {
+                const double t = std::clamp((positions[i][c] - low[c]) / extent, 0.0, 1.0);
+                key |= spread_bits(static_cast<uint64_t>(t * 2097151.0)) << c;
+            }
+            code[i] = key;
         }
-        code[i] = key;
-    }
-    std::vector<int32_t> order(n);
+    });
+    // Stable radix sort by code, 16 bits a pass (codes have 63): the order a stable comparison
+    // sort gives, in linear passes that report their progress.
+    std::vector<int32_t> order(n), sorted(n);
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int32_t a, int32_t b) { return code[a] < code[b]; });
+    std::vector<int32_t> start(65537);
+    for (int shift = 0; shift < 64; shift += 16) {
+        const ProgressSpan pass = progress.part(0.2 + 0.2 * shift / 16, 0.4 + 0.2 * shift / 16);
+        std::fill(start.begin(), start.end(), 0);
+        for (int32_t i = 0; i < n; ++i) ++start[((code[i] >> shift) & 0xffff) + 1];
+        std::partial_sum(start.begin(), start.end(), start.begin());
+        pass.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+            for (int32_t k = static_cast<int32_t>(run_begin); k < run_end; ++k) {
+                const int32_t i = order[k];
+                sorted[start[(code[i] >> shift) & 0xffff]++] = i;
+            }
+        });
+        order.swap(sorted);
+    }
     return order;
 }
 
-TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_t>& order) {
+TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_t>& order,
+                              const ProgressSpan& progress) {
     TriangleMesh out;
     out.positions.resize(order.size());
     std::vector<int32_t> position_of(order.size());
@@ -54,9 +72,11 @@ TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_
         position_of[order[k]] = static_cast<int32_t>(k);
     }
     out.triangles = mesh.triangles;
-    for (Triangle& t : out.triangles) {
-        for (int32_t& v : t) v = position_of[v];
-    }
+    progress.in_runs(out.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            for (int32_t& v : out.triangles[t]) v = position_of[v];
+        }
+    });
     return out;
 }
 

@@ -9,15 +9,18 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 
 namespace raps {
 
 // order[k] = the input vertex placed at position k. Deterministic (ties keep input order).
-std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& positions);
+std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& positions,
+                                         const ProgressSpan& progress = {});
 
 // The same mesh with its vertices renumbered: vertex k of the result is vertex order[k] of
 // `mesh`; triangles keep their order and orientation.
-TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_t>& order);
+TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_t>& order,
+                              const ProgressSpan& progress = {});
 
 }  // namespace raps

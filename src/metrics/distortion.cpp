@@ -109,10 +109,15 @@ struct Figures {
 
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
                                    const MapGeometry& map, const std::vector<Triangle>& triangles,
-                                   ThreadPool& pool) {
+                                   ThreadPool& pool, const ProgressSpan& progress) {
+    // Progress: three passes, each block of a pass reporting as it starts (whichever thread
+    // takes it); the last pass is most of the work.
+    const ProgressSpan areas = progress.part(0.0, 0.15), sums = progress.part(0.15, 0.2),
+                       figures_span = progress.part(0.2, 1.0);
     const int64_t count = static_cast<int64_t>(triangles.size());
     std::vector<double> area(count), uv_signed_area(count);
     const double area_sum = parallel_sum<double>(pool, count, [&](int64_t begin, int64_t end) {
+        areas.at(begin, count);
         double sum = 0;
         for (int64_t t = begin; t < end; ++t) {
             const Triangle& v = triangles[t];
@@ -129,6 +134,7 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
         return area[t] >= degenerate_3d && area[t] > 0 && std::isfinite(uv_signed_area[t]);
     };
     const Totals totals = parallel_sum<Totals>(pool, count, [&](int64_t begin, int64_t end) {
+        sums.at(begin, count);
         Totals sum;
         for (int64_t t = begin; t < end; ++t) {
             if (!used(t)) continue;
@@ -147,6 +153,7 @@ DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions
     // r_t is 0 and, at scale 1, every singular value is 0.
     const double scale = total_uv > 0 ? std::sqrt(total_3d / total_uv) : 1.0;
     const Figures figures = parallel_sum<Figures>(pool, count, [&](int64_t begin, int64_t end) {
+        figures_span.at(begin, count);
         Figures sum;
         for (int64_t t = begin; t < end; ++t) {
             if (!used(t)) continue;

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 #include "metrics/map_geometry.h"
 #include "parallel/thread_pool.h"
@@ -43,6 +44,6 @@ Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
 // threads: the same bits for any thread count.
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
                                    const MapGeometry& map, const std::vector<Triangle>& triangles,
-                                   ThreadPool& pool);
+                                   ThreadPool& pool, const ProgressSpan& progress = {});
 
 }  // namespace raps

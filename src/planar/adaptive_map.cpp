@@ -7,18 +7,21 @@ namespace raps {
 
 int64_t adapt_map(const TriangleMesh& mesh, const VertexAdjacency& adjacency, LaplaceSystem& system,
                   const std::vector<double>& base_weights, const Settings& settings,
-                  std::vector<Eigen::Vector2d>& uv, const std::function<void(double)>& progress) {
+                  std::vector<Eigen::Vector2d>& uv, const ProgressSpan& progress) {
     if (settings.monitor == Monitor::kNone) return 0;
     std::vector<double> weights = base_weights;
     for (int step = 0; step < settings.iterations; ++step) {
-        const std::vector<double> monitor =
-            error_monitor(mesh, adjacency, PlanarMapGeometry(uv), settings.monitor);
+        // Per step: the monitor and the weights (passes over the mesh), then the solve.
+        const ProgressSpan span =
+            progress.part(static_cast<double>(step) / settings.iterations,
+                          static_cast<double>(step + 1) / settings.iterations);
+        const std::vector<double> monitor = error_monitor(mesh, adjacency, PlanarMapGeometry(uv),
+                                                          settings.monitor, span.part(0.0, 0.1));
         const std::vector<double>& previous =
             settings.iteration_mode == IterationMode::kAccumulate ? weights : base_weights;
-        weights = adaptive_weights(adjacency, previous, monitor, settings.alpha);
-        system.solve(weights, uv, [&](double fraction) {
-            if (progress) progress((step + fraction) / settings.iterations);
-        });
+        weights =
+            adaptive_weights(adjacency, previous, monitor, settings.alpha, span.part(0.1, 0.2));
+        system.solve(weights, uv, span.part(0.2, 1.0));
     }
     return settings.iterations;
 }

@@ -24,6 +24,6 @@ namespace raps {
 // up and down, never below its first solve's. `progress` gets the fraction done.
 int64_t adapt_map(const TriangleMesh& mesh, const VertexAdjacency& adjacency, LaplaceSystem& system,
                   const std::vector<double>& base_weights, const Settings& settings,
-                  std::vector<Eigen::Vector2d>& uv, const std::function<void(double)>& progress);
+                  std::vector<Eigen::Vector2d>& uv, const ProgressSpan& progress = {});
 
 }  // namespace raps

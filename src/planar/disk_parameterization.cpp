@@ -38,40 +38,46 @@ DiskMap parameterize_disk(const TriangleMesh& mesh, const Settings& settings,
                           const Progress& progress, PhaseTimes& times) {
     {
         PhaseTimer timer(Phase::kValidate, progress, times);
-        check_indices_in_range(mesh);
-        check_no_repeated_vertices(mesh);
-        check_no_isolated_vertices(mesh);
-        check_no_zero_area_triangles(mesh);
+        check_indices_in_range(mesh, timer.span(0.0, 0.2));
+        check_no_repeated_vertices(mesh, timer.span(0.2, 0.4));
+        check_no_isolated_vertices(mesh, timer.span(0.4, 0.6));
+        check_no_zero_area_triangles(mesh, timer.span(0.6, 1.0));
         timer.finish();
     }
 
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
-    const Halfedges halfedges = build_halfedges(mesh);
-    const std::vector<int32_t> loop = disk_boundary_loop(mesh, halfedges);
-    const VertexAdjacency adjacency = build_vertex_adjacency(mesh, halfedges);
+    // Progress: the half-edges, the checks of a disk, the adjacency (passes over the mesh),
+    // then the system's ordering and symbolic analysis (most of the phase).
+    const Halfedges halfedges = build_halfedges(mesh, topology_timer.span(0.0, 0.1));
+    const std::vector<int32_t> loop =
+        disk_boundary_loop(mesh, halfedges, topology_timer.span(0.1, 0.15));
+    DiskMap map;
+    map.adjacency = std::make_unique<const VertexAdjacency>(
+        build_vertex_adjacency(mesh, halfedges, topology_timer.span(0.15, 0.2)));
+    const VertexAdjacency& adjacency = *map.adjacency;
     std::vector<char> on_boundary(mesh.positions.size(), 0);
     for (int32_t v : loop) on_boundary[v] = 1;
-    LaplaceSystem system(mesh, adjacency, on_boundary);
+    map.system = std::make_unique<LaplaceSystem>(
+        mesh, adjacency, on_boundary, std::vector<int32_t>(), topology_timer.span(0.2, 1.0));
+    LaplaceSystem& system = *map.system;
     topology_timer.finish();
 
-    DiskMap map;
     map.uv.assign(mesh.positions.size(), Eigen::Vector2d(0.5, 0.5));
-    const std::vector<double> base_weights = laplacian_weights(mesh, adjacency, settings.weights);
+    std::vector<double> base_weights;
     {
         PhaseTimer timer(Phase::kInitialMap, progress, times);
+        base_weights = laplacian_weights(mesh, adjacency, settings.weights, timer.span(0.0, 0.1));
         const std::vector<Eigen::Vector2d> boundary =
             convex_boundary(mesh, loop, settings.boundary);
         for (size_t i = 0; i < loop.size(); ++i) map.uv[loop[i]] = boundary[i];
         for (double w : base_weights) map.negative_weights += w < 0.0;
-        system.solve(base_weights, map.uv,
-                     [&](double fraction) { progress.report(Phase::kInitialMap, fraction); });
+        system.solve(base_weights, map.uv, timer.span(0.1, 1.0));
         timer.finish();
     }
 
     PhaseTimer adapt_timer(Phase::kAdapt, progress, times);
     map.adaptive_solves =
-        adapt_map(mesh, adjacency, system, base_weights, settings, map.uv,
-                  [&](double fraction) { progress.report(Phase::kAdapt, fraction); });
+        adapt_map(mesh, adjacency, system, base_weights, settings, map.uv, adapt_timer.span());
     fit_into_unit_square(map.uv);
     adapt_timer.finish();
     return map;

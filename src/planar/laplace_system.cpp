@@ -41,7 +41,8 @@ struct InteriorPattern {
 };
 InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
                                  const std::vector<char>& on_boundary,
-                                 const std::vector<int32_t>& vertex_order) {
+                                 const std::vector<int32_t>& vertex_order,
+                                 const ProgressSpan& progress) {
     InteriorPattern interior;
     const int32_t vertex_count = static_cast<int32_t>(on_boundary.size());
     std::vector<int32_t> unknown_of_vertex(vertex_count, -1);
@@ -56,28 +57,31 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
     pattern.size = n;
     interior.value_of_slot.assign(adjacency.neighbors.size(), -1);
     interior.diagonal_of_unknown.resize(n);
-    for (int32_t row = 0; row < n; ++row) {
-        const int32_t v = interior.vertex_of_unknown[row];
-        bool diagonal_placed = false;
-        // Neighbours are sorted by vertex and unknowns are numbered in vertex order, so the
-        // columns come out sorted once the diagonal is slotted in.
-        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
-            const int32_t column = unknown_of_vertex[adjacency.neighbors[s]];
-            if (column < 0) continue;
-            if (!diagonal_placed && column > row) {
+    progress.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t row = static_cast<int32_t>(run_begin); row < run_end; ++row) {
+            const int32_t v = interior.vertex_of_unknown[row];
+            bool diagonal_placed = false;
+            // Neighbours are sorted by vertex and unknowns are numbered in vertex order, so the
+            // columns come out sorted once the diagonal is slotted in.
+            for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
+                const int32_t column = unknown_of_vertex[adjacency.neighbors[s]];
+                if (column < 0) continue;
+                if (!diagonal_placed && column > row) {
+                    interior.diagonal_of_unknown[row] =
+                        static_cast<int32_t>(pattern.columns.size());
+                    pattern.columns.push_back(row);
+                    diagonal_placed = true;
+                }
+                interior.value_of_slot[s] = static_cast<int32_t>(pattern.columns.size());
+                pattern.columns.push_back(column);
+            }
+            if (!diagonal_placed) {
                 interior.diagonal_of_unknown[row] = static_cast<int32_t>(pattern.columns.size());
                 pattern.columns.push_back(row);
-                diagonal_placed = true;
             }
-            interior.value_of_slot[s] = static_cast<int32_t>(pattern.columns.size());
-            pattern.columns.push_back(column);
+            pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
         }
-        if (!diagonal_placed) {
-            interior.diagonal_of_unknown[row] = static_cast<int32_t>(pattern.columns.size());
-            pattern.columns.push_back(row);
-        }
-        pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
-    }
+    });
     interior.order.reserve(vertex_order.size());
     for (int32_t v : vertex_order) {
         if (unknown_of_vertex[v] >= 0) interior.order.push_back(unknown_of_vertex[v]);
@@ -89,57 +93,62 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
 
 LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                              const std::vector<char>& on_boundary,
-                             const std::vector<int32_t>& vertex_order)
+                             const std::vector<int32_t>& vertex_order, const ProgressSpan& progress)
     : adjacency_(adjacency) {
-    InteriorPattern interior = interior_pattern(adjacency, on_boundary, vertex_order);
+    InteriorPattern interior =
+        interior_pattern(adjacency, on_boundary, vertex_order, progress.part(0.0, 0.1));
     vertex_of_unknown_ = std::move(interior.vertex_of_unknown);
     value_of_slot_ = std::move(interior.value_of_slot);
     diagonal_of_unknown_ = std::move(interior.diagonal_of_unknown);
     if (!vertex_order.empty()) {
-        solver_ =
-            std::make_unique<SparseSolver>(std::move(interior.pattern), std::move(interior.order));
+        solver_ = std::make_unique<SparseSolver>(
+            std::move(interior.pattern), std::move(interior.order), progress.part(0.1, 1.0));
         return;
     }
     const int32_t n = unknown_count();
     std::vector<Eigen::Vector3d> coordinates(n);
     for (int32_t row = 0; row < n; ++row)
         coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
-    solver_ = std::make_unique<SparseSolver>(std::move(interior.pattern), coordinates);
+    solver_ = std::make_unique<SparseSolver>(std::move(interior.pattern), coordinates,
+                                             progress.part(0.1, 1.0));
 }
 
 void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,
-                          const std::function<void(double)>& progress) {
+                          const ProgressSpan& progress) {
     const int32_t n = unknown_count();
     if (n == 0) return;  // every vertex is on the boundary
     std::vector<double> values(solver_->pattern().columns.size(), 0.0);
     std::vector<double> rhs(2 * static_cast<size_t>(n), 0.0);
-    for (int32_t row = 0; row < n; ++row) {
-        const int32_t v = vertex_of_unknown_[row];
-        double diagonal = 0.0;
-        for (int32_t s = adjacency_.offsets[v]; s < adjacency_.offsets[v + 1]; ++s) {
-            diagonal += weights[s];
-        }
-        if (!(std::abs(diagonal) > 0.0) || !std::isfinite(diagonal)) {
-            throw Error(ErrorCode::kSolverFailed,
-                        "the weights around vertex " + std::to_string(v) +
-                            " sum to zero, so its row of the Laplace system is singular");
-        }
-        // Rows scaled to a unit diagonal: the solution is unchanged, and pivots become
-        // comparable across rows whose weights differ by orders of magnitude.
-        const double inverse = 1.0 / diagonal;
-        values[diagonal_of_unknown_[row]] = 1.0;
-        for (int32_t s = adjacency_.offsets[v]; s < adjacency_.offsets[v + 1]; ++s) {
-            const double w = weights[s] * inverse;
-            if (value_of_slot_[s] >= 0) {
-                values[value_of_slot_[s]] = -w;
-            } else {
-                const Eigen::Vector2d& fixed = uv[adjacency_.neighbors[s]];
-                rhs[row] += w * fixed.x();
-                rhs[n + row] += w * fixed.y();
+    const ProgressSpan assembly = progress.part(0.0, 0.1);
+    assembly.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t row = static_cast<int32_t>(run_begin); row < run_end; ++row) {
+            const int32_t v = vertex_of_unknown_[row];
+            double diagonal = 0.0;
+            for (int32_t s = adjacency_.offsets[v]; s < adjacency_.offsets[v + 1]; ++s) {
+                diagonal += weights[s];
+            }
+            if (!(std::abs(diagonal) > 0.0) || !std::isfinite(diagonal)) {
+                throw Error(ErrorCode::kSolverFailed,
+                            "the weights around vertex " + std::to_string(v) +
+                                " sum to zero, so its row of the Laplace system is singular");
+            }
+            // Rows scaled to a unit diagonal: the solution is unchanged, and pivots become
+            // comparable across rows whose weights differ by orders of magnitude.
+            const double inverse = 1.0 / diagonal;
+            values[diagonal_of_unknown_[row]] = 1.0;
+            for (int32_t s = adjacency_.offsets[v]; s < adjacency_.offsets[v + 1]; ++s) {
+                const double w = weights[s] * inverse;
+                if (value_of_slot_[s] >= 0) {
+                    values[value_of_slot_[s]] = -w;
+                } else {
+                    const Eigen::Vector2d& fixed = uv[adjacency_.neighbors[s]];
+                    rhs[row] += w * fixed.x();
+                    rhs[n + row] += w * fixed.y();
+                }
             }
         }
-    }
-    solver_->solve(values, rhs.data(), 2, progress);
+    });
+    solver_->solve(values, rhs.data(), 2, progress.part(0.1, 1.0));
     for (int32_t row = 0; row < n; ++row) {
         if (!std::isfinite(rhs[row]) || !std::isfinite(rhs[n + row])) {
             throw Error(ErrorCode::kSolverFailed,

@@ -30,13 +30,13 @@ class LaplaceSystem {
     // vertices, or empty to order the system here.
     LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                   const std::vector<char>& on_boundary,
-                  const std::vector<int32_t>& vertex_order = {});
+                  const std::vector<int32_t>& vertex_order = {}, const ProgressSpan& progress = {});
 
     // Solves with `weights` (one per adjacency slot; rows of interior vertices must have a
     // nonzero sum) for the interior entries of `uv`, keeping its boundary entries.
     // Throws Error(kSolverFailed) when the system is singular.
     void solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,
-               const std::function<void(double)>& progress);
+               const ProgressSpan& progress = {});
 
     int32_t unknown_count() const { return static_cast<int32_t>(vertex_of_unknown_.size()); }
 

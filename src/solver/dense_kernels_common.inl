@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "solver/dense_kernels.h"
+
 #if !defined(RAPS_KERNEL_TILE_ROWS) || !defined(RAPS_KERNEL_VECTOR_DOUBLES)
 #error "RAPS_KERNEL_TILE_ROWS, RAPS_KERNEL_VECTOR_DOUBLES: set by the file including this one"
 #endif
@@ -97,6 +99,39 @@ void subtract_product(double* c, int64_t ldc, const double* a, int64_t lda, cons
     }
 }
 
+// subtract_product in chunks of whole tile columns of about kMultiplyAddsPerChunk each, telling
+// `progress` after each: every element gets the same operations in the same order whatever
+// the chunks (see above), so the bits are those of one call, and a cancel waits for one chunk
+// (a few milliseconds), not for a whole product (seconds for the largest fronts of a million
+// triangles).
+constexpr double kMultiplyAddsPerChunk = 4e6;
+
+void subtract_product_in_chunks(double* c, int64_t ldc, const double* a, int64_t lda,
+                                const double* b, int64_t b_row, int64_t b_col, int32_t rows,
+                                int32_t cols, int32_t depth, bool lower,
+                                const KernelProgress* progress) {
+    const double per_column = static_cast<double>(rows) * (depth > 0 ? depth : 0);
+    if (progress == nullptr || per_column * cols <= kMultiplyAddsPerChunk) {
+        subtract_product(c, ldc, a, lda, b, b_row, b_col, rows, cols, depth, lower);
+        if (progress != nullptr) progress->done(progress->context, per_column * cols);
+        return;
+    }
+    int32_t width = static_cast<int32_t>(kMultiplyAddsPerChunk / per_column);
+    width = width < kTileCols ? kTileCols : width / kTileCols * kTileCols;
+    for (int32_t j0 = 0; j0 < cols; j0 += width) {
+        const int32_t w = smaller(width, cols - j0);
+        if (lower) {
+            // Columns [j0, j0 + w) from row j0 down: the sub-block starts on the diagonal.
+            subtract_product(c + j0 + static_cast<int64_t>(j0) * ldc, ldc, a + j0, lda,
+                             b + j0 * b_col, b_row, b_col, rows - j0, w, depth, true);
+        } else {
+            subtract_product(c + static_cast<int64_t>(j0) * ldc, ldc, a, lda, b + j0 * b_col, b_row,
+                             b_col, rows, w, depth, false);
+        }
+        progress->done(progress->context, per_column * w);
+    }
+}
+
 // X = L^-1 X in place, L n x n unit lower triangular (column stride ldl), X n x cols (column
 // stride ldx): forward substitution, column by column.
 void solve_unit_lower(const double* l, int64_t ldl, int32_t n, double* x, int64_t ldx,
@@ -108,6 +143,23 @@ void solve_unit_lower(const double* l, int64_t ldl, int32_t n, double* x, int64_
             const double* l_column = l + static_cast<int64_t>(p) * ldl;
             for (int32_t i = p + 1; i < n; ++i) column[i] -= l_column[i] * factor;
         }
+    }
+}
+
+// solve_unit_lower in chunks of columns of about kMultiplyAddsPerChunk each, telling `progress`
+// after each: the columns are solved independently, so the bits are those of one call.
+void solve_unit_lower_in_chunks(const double* l, int64_t ldl, int32_t n, double* x, int64_t ldx,
+                                int32_t cols, const KernelProgress* progress) {
+    const double per_column = 0.5 * static_cast<double>(n) * n;
+    int32_t width = cols;
+    if (progress != nullptr && per_column * cols > kMultiplyAddsPerChunk) {
+        width = static_cast<int32_t>(kMultiplyAddsPerChunk / per_column);
+        width = width < 1 ? 1 : width;
+    }
+    for (int32_t j0 = 0; j0 < cols; j0 += width) {
+        const int32_t w = smaller(width, cols - j0);
+        solve_unit_lower(l, ldl, n, x + j0 * ldx, ldx, w);
+        if (progress != nullptr) progress->done(progress->context, per_column * w);
     }
 }
 

@@ -25,7 +25,8 @@ bool worth_merging(int64_t columns, double zero_fraction) {
 }  // namespace
 
 void MultifrontalFactorization::analyze(const SparsePattern& pattern,
-                                        const std::vector<int32_t>& order) {
+                                        const std::vector<int32_t>& order,
+                                        const ProgressSpan& progress) {
     const int32_t n = pattern.size;
     size_ = n;
     prepared_ = false;
@@ -34,7 +35,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     std::vector<int32_t> position(n);
     for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
     std::vector<int32_t> parent(n, -1), ancestor(n, -1);
+    const ProgressSpan tree = progress.part(0.0, 0.2);
     for (int32_t i = 0; i < n; ++i) {
+        tree.at(i, n);
         const int32_t row = order[i];
         for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
             int32_t j = position[pattern.columns[p]];
@@ -109,7 +112,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
                 for (int32_t k = j; k >= 0 && first[k] < 0; k = parent[k]) first[k] = j;
             }
         }
+        const ProgressSpan counts = progress.part(0.2, 0.45);
         for (int32_t j = 0; j < n; ++j) {
+            counts.at(j, n);
             if (parent[j] >= 0) --column_count[parent[j]];
             const int32_t row = order_[j];
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
@@ -233,7 +238,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     // from its children's update rows, sorted.
     row_indices_.clear();
     std::vector<int32_t> mark(n, -1);
+    const ProgressSpan fronts = progress.part(0.45, 0.8);
     for (int32_t s = 0; s < supernode_count; ++s) {
+        fronts.at(s, supernode_count);
         Supernode& node = supernodes_[s];
         const int32_t f = node.first_column, l = f + node.columns - 1;
         node.row_offset = static_cast<int64_t>(row_indices_.size());
@@ -272,7 +279,9 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     for (const Supernode& node : supernodes_) {
         max_front = std::max(max_front, static_cast<int64_t>(node.rows) * node.rows);
     }
+    const ProgressSpan relative = progress.part(0.8, 1.0);
     for (int32_t s = 0; s < supernode_count; ++s) {
+        relative.at(s, supernode_count);
         const Supernode& node = supernodes_[s];
         for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
         for (int32_t c = node.child_begin; c < node.child_end; ++c) {
@@ -305,7 +314,8 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     stack_ = allocate(stack_peak_);
 }
 
-void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorization kind) {
+void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorization kind,
+                                        const ProgressSpan& progress) {
     if (prepared_ && cholesky_ == (kind == Factorization::kCholesky)) return;
     prepared_ = true;
     cholesky_ = kind == Factorization::kCholesky;
@@ -331,6 +341,7 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     if (!cholesky_) {
         std::vector<int64_t> cursor(pattern.row_offsets.begin(), pattern.row_offsets.end() - 1);
         for (int32_t row = 0; row < n; ++row) {
+            progress.at(row, 2 * static_cast<int64_t>(n));
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
                 transposed[p] = cursor[pattern.columns[p]]++;
             }
@@ -343,9 +354,13 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     value_source_.resize(pattern.nonzeros());
     value_target_.resize(pattern.nonzeros());
     diagonal_source_.assign(n, -1);
-    int64_t next_value = 0;
+    int64_t next_value = 0, next_report = kItemsPerReport;
     for (Supernode& node : supernodes_) {
         const int32_t f = node.first_column, l = f + node.columns - 1;
+        if (f >= next_report) {
+            next_report = f + kItemsPerReport;
+            progress.report(0.5 + 0.5 * static_cast<double>(f) / n);
+        }
         for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
         node.value_begin = next_value;
         for (int32_t j = f; j <= l; ++j) {
@@ -391,8 +406,29 @@ double MultifrontalFactorization::front_flops(const Supernode& node) const {
     return k * m * m * (cholesky_ ? 0.5 : 1.0);
 }
 
-bool MultifrontalFactorization::factorize(const double* values,
-                                          const std::function<void(double)>& progress) {
+namespace {
+
+// Progress inside one large front: the kernel's multiply-adds so far, counted toward the front's
+// share of the factorization's work (its estimate, which they may exceed a little).
+struct FrontProgress {
+    const ProgressSpan* span;
+    double before, front, total, inside;
+};
+
+void front_work_done(void* context, double multiply_adds) {
+    FrontProgress& p = *static_cast<FrontProgress*>(context);
+    p.inside += multiply_adds;
+    p.span->report((p.before + std::min(p.inside, p.front)) / p.total);
+}
+
+// Fronts with more work than this report from inside the kernel (a few milliseconds of work).
+constexpr double kFrontReportFlops = 1e7;
+constexpr int32_t kFrontsPerReport = 1024;
+constexpr int64_t kEntriesPerReport = int64_t(1) << 21;
+
+}  // namespace
+
+bool MultifrontalFactorization::factorize(const double* values, const ProgressSpan& progress) {
     std::vector<double> pivot_scale(size_);
     for (int32_t j = 0; j < size_; ++j) {
         pivot_scale[j] = diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
@@ -400,12 +436,23 @@ bool MultifrontalFactorization::factorize(const double* values,
     }
     int64_t stack_top = 0;
     std::vector<int64_t> block_starts;
-    double flops_done = 0, next_report = 0.01 * total_flops_;
+    double flops_done = 0, next_report = std::min(0.01 * total_flops_, kFrontReportFlops);
+    int32_t fronts_since_report = 0;
+    // The largest fronts' clearing, assembly and copies move hundreds of megabytes at millions
+    // of unknowns: every kEntriesPerReport entries moved, the fraction reached is reported again.
+    int64_t entries_moved = 0;
+    auto moved = [&](int64_t entries) {
+        entries_moved += entries;
+        if (entries_moved < kEntriesPerReport) return;
+        entries_moved = 0;
+        progress.report(flops_done / total_flops_);
+    };
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
         double* front = front_.get();
         // Cholesky reads and writes only the lower triangle: the rest is never cleared.
         for (int32_t c = 0; c < m; ++c) {
+            moved(m);
             const int64_t begin = static_cast<int64_t>(c) * m;
             std::fill(front + begin + (cholesky_ ? c : 0), front + begin + m, 0.0);
         }
@@ -422,6 +469,7 @@ bool MultifrontalFactorization::factorize(const double* values,
             const double* block = stack_.get() + start;
             // Update rows are sorted, so a lower entry of the block lands in the lower triangle.
             for (int32_t jj = 0; jj < update; ++jj) {
+                moved(update);
                 double* target = front + static_cast<int64_t>(relative[jj]) * m;
                 const double* source = block + static_cast<int64_t>(jj) * update;
                 for (int32_t ii = cholesky_ ? jj : 0; ii < update; ++ii)
@@ -432,17 +480,23 @@ bool MultifrontalFactorization::factorize(const double* values,
             stack_top = block_starts[block_starts.size() - child_total];
             block_starts.resize(block_starts.size() - child_total);
         }
-        if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column))
+        FrontProgress inside{&progress, flops_done, front_flops(node), total_flops_, 0.0};
+        const KernelProgress kernel_progress{front_work_done, &inside};
+        const bool report_inside = progress.active() && inside.front > kFrontReportFlops;
+        if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column,
+                                    report_inside ? &kernel_progress : nullptr))
             return false;
         const int32_t skip_upper = cholesky_ ? 1 : 0;  // Cholesky: copy from the diagonal down
         double* lower = factors_.get() + node.factor_offset;
         for (int32_t c = 0; c < k; ++c) {
+            moved(m);
             const int64_t begin = static_cast<int64_t>(c) * m + c * skip_upper;
             std::copy(front + begin, front + static_cast<int64_t>(c + 1) * m, lower + begin);
         }
         if (!cholesky_) {
             double* upper = lower + static_cast<int64_t>(m) * k;  // k x (m - k), column-major
             for (int32_t c = k; c < m; ++c) {
+                moved(k);
                 std::copy(front + static_cast<int64_t>(c) * m,
                           front + static_cast<int64_t>(c) * m + k,
                           upper + static_cast<int64_t>(c - k) * k);
@@ -453,6 +507,7 @@ bool MultifrontalFactorization::factorize(const double* values,
             block_starts.push_back(stack_top);
             double* block = stack_.get() + stack_top;
             for (int32_t c = 0; c < update; ++c) {
+                moved(update);
                 const int32_t from = c * skip_upper;
                 const double* source = front + static_cast<int64_t>(k + c) * m + k;
                 std::copy(source + from, source + update,
@@ -461,16 +516,30 @@ bool MultifrontalFactorization::factorize(const double* values,
             stack_top += static_cast<int64_t>(update) * update;
         }
         flops_done += front_flops(node);
-        if (progress && flops_done >= next_report) {
-            progress(flops_done / total_flops_);
-            next_report = flops_done + 0.01 * total_flops_;
+        // Every 1% of the work, or every kFrontReportFlops of it (small fronts cost more time
+        // per flop), or every kFrontsPerReport fronts, whichever comes first.
+        if (progress.active() &&
+            (flops_done >= next_report || ++fronts_since_report >= kFrontsPerReport)) {
+            progress.report(flops_done / total_flops_);
+            next_report = flops_done + std::min(0.01 * total_flops_, kFrontReportFlops);
+            fronts_since_report = 0;
         }
     }
     return true;
 }
 
-void MultifrontalFactorization::solve(double* b, int rhs_count) const {
+void MultifrontalFactorization::solve(double* b, int rhs_count,
+                                      const ProgressSpan& progress) const {
     const int32_t n = size_;
+    // Progress: by columns done, forward then backward; a report every kItemsPerReport
+    // columns.
+    int64_t columns_done = 0, next_report = kItemsPerReport;
+    auto count_columns = [&](int32_t columns) {
+        columns_done += columns;
+        if (columns_done < next_report || !progress.active()) return;
+        next_report = columns_done + kItemsPerReport;
+        progress.report(0.5 * static_cast<double>(columns_done) / n);
+    };
     // Permute into elimination order.
     Matrix x(n, rhs_count);
     for (int c = 0; c < rhs_count; ++c) {
@@ -491,6 +560,7 @@ void MultifrontalFactorization::solve(double* b, int rhs_count) const {
     // diagonal.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
+        count_columns(k);
         const double* lower = factors_.get() + node.factor_offset;
         if (m <= kSmallFront) {
             const int32_t* rows = row_indices_.data() + node.row_offset + k;
@@ -529,6 +599,7 @@ void MultifrontalFactorization::solve(double* b, int rhs_count) const {
     for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
+        count_columns(k);
         const double* lower = factors_.get() + node.factor_offset;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         if (m <= kSmallFront && cholesky_) {

@@ -16,6 +16,7 @@
 #include <new>
 #include <vector>
 
+#include "core/progress.h"
 #include "solver/dense_kernels.h"
 #include "solver/sparse_pattern.h"
 
@@ -30,21 +31,23 @@ class MultifrontalFactorization {
   public:
     // Symbolic analysis of `pattern` eliminated in `order` (order[k] = k-th unknown eliminated):
     // elimination tree, supernodes and front structures, the same for LU and Cholesky.
-    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order);
+    void analyze(const SparsePattern& pattern, const std::vector<int32_t>& order,
+                 const ProgressSpan& progress = {});
 
     // Where the values of the analyzed `pattern` land in the fronts, and the factor's layout, for
     // factorizations of `kind`; nothing to do when that kind is already prepared. A chart's
     // Cholesky (free-boundary map) and LU (adaptive step) share one analysis this way.
-    void prepare(const SparsePattern& pattern, Factorization kind);
+    void prepare(const SparsePattern& pattern, Factorization kind,
+                 const ProgressSpan& progress = {});
 
     // Numeric factorization, of the kind prepared, of the values of `pattern` (in its column
     // order). Returns false when a pivot is zero or tiny against its row's original diagonal
     // (the matrix needs pivoting), or, for Cholesky, not positive.
     // `progress` receives the fraction of the work done (by flops), about every 1%.
-    bool factorize(const double* values, const std::function<void(double)>& progress);
+    bool factorize(const double* values, const ProgressSpan& progress);
 
     // Solves A X = B in place; b holds `rhs_count` columns of size() entries each.
-    void solve(double* b, int rhs_count) const;
+    void solve(double* b, int rhs_count, const ProgressSpan& progress = {}) const;
 
     int32_t size() const { return size_; }
 

@@ -81,8 +81,10 @@ struct TreeNode {
 
 class Dissection {
   public:
-    Dissection(const SparsePattern& pattern, const std::vector<Eigen::Vector3d>& coordinates)
+    Dissection(const SparsePattern& pattern, const std::vector<Eigen::Vector3d>& coordinates,
+               const ProgressSpan& progress)
         : pattern_(pattern),
+          progress_(progress),
           leaf_size_(static_cast<int32_t>(std::clamp(pattern.size / kLeafDivisor,
                                                      double{kMinLeafSize}, double{kMaxLeafSize}))) {
         build_hierarchy(coordinates);
@@ -103,13 +105,16 @@ class Dissection {
             std::vector<int32_t> ids(levels_[base_].size());
             std::iota(ids.begin(), ids.end(), 0);
             label_.assign(ids.size(), 0);
+            base_weight_ = static_cast<double>(n);
             dissect(ids);
         }
+        progress_.report(kDissected);
         // Phase B: project the tree to the finer levels, refining every separator on every
         // second level (refining on the others too measured no better).
         for (size_t l = base_; l-- > 0;) {
             project_labels(l);
             if (l % 2 == 0) refine_all(l);
+            progress_.report(kDissected + (kRefined - kDissected) * (base_ - l) / base_);
         }
         // Phase C: the order.
         emit();
@@ -131,7 +136,10 @@ class Dissection {
         fine.points = coordinates.data();
         while (levels_.back().size() > kCoarsestSize) {
             Level coarse;
-            coarsen(levels_.back(), coarse);
+            // Each level is about half the one before: the finest takes half the work.
+            const double done = 1.0 - static_cast<double>(levels_.back().size()) / n;
+            coarsen(levels_.back(), coarse,
+                    progress_.part(kBuilt * done, kBuilt * (done + 0.5 * (1.0 - done))));
             if (coarse.size() > 0.9 * levels_.back().size()) break;  // no longer shrinking
             levels_.push_back(std::move(coarse));
         }
@@ -145,7 +153,7 @@ class Dissection {
 
     // Heavy-edge matching (Karypis & Kumar 1998): each vertex is merged with the unmatched
     // neighbour it shares the heaviest edge with, the lightest such neighbour on ties.
-    void coarsen(Level& fine, Level& coarse) {
+    void coarsen(Level& fine, Level& coarse, const ProgressSpan& progress) {
         const int32_t n = fine.size();
         std::vector<int32_t> visit(n), match(n, -1);
         std::iota(visit.begin(), visit.end(), 0);
@@ -157,7 +165,9 @@ class Dissection {
             }
         }
         const bool unit = fine.edge_weights.empty();
-        for (int32_t v : visit) {
+        for (int32_t i = 0; i < n; ++i) {
+            progress.at(i, 2 * static_cast<int64_t>(n));
+            const int32_t v = visit[i];
             if (match[v] >= 0) continue;
             int32_t best = -1, best_weight = -1;
             for (int32_t p = fine.offsets[v]; p < fine.offsets[v + 1]; ++p) {
@@ -199,6 +209,7 @@ class Dissection {
         int32_t entries = 0;
         out_offsets[0] = 0;
         for (int32_t c = 0; c < m; ++c) {
+            progress.at(m + c, 2 * static_cast<int64_t>(m));
             const int32_t a = representative[c], b = match[a];
             const int32_t row_start = entries;
             bool long_row = false;
@@ -272,6 +283,10 @@ class Dissection {
             split = !left_ids.empty() && !right_ids.empty();
         }
         if (!split) {
+            // A leaf: its weight is done; one report per separator or leaf (a few hundred
+            // vertices each at least).
+            leaf_weight_ += static_cast<double>(weight);
+            progress_.report(kBuilt + (kDissected - kBuilt) * leaf_weight_ / base_weight_);
             for (int32_t v : ids) label_[v] = node;
             nodes_[node].end = node + 1;
             return node;
@@ -509,7 +524,10 @@ class Dissection {
     void project_labels(size_t l) {
         const Level& level = levels_[l];
         std::vector<int32_t> fine_label(level.size());
-        for (int32_t v = 0; v < level.size(); ++v) fine_label[v] = label_[level.parent[v]];
+        for (int32_t v = 0; v < level.size(); ++v) {
+            progress_.at(v, level.size());
+            fine_label[v] = label_[level.parent[v]];
+        }
         label_.swap(fine_label);
     }
 
@@ -525,7 +543,9 @@ class Dissection {
         }
         for (int32_t i = 0; i < count; ++i) prefix[i + 1] += prefix[i];
         for (int32_t node = 0; node < count; ++node) {
-            if (internal(node)) refine_separator(l, node, prefix);
+            if (!internal(node)) continue;
+            refine_separator(l, node, prefix);
+            progress_.report(kDissected);  // a band around one separator
         }
     }
 
@@ -674,6 +694,8 @@ class Dissection {
             const int32_t size = offsets[node + 1] - offsets[node];
             if (!internal(node)) {
                 order_leaf(first, size);
+                progress_.report(kRefined + (1.0 - kRefined) * static_cast<double>(order_.size()) /
+                                                fine.size());
             } else if (done) {
                 order_.insert(order_.end(), first, first + size);
             } else {
@@ -838,6 +860,7 @@ class Dissection {
     }
 
     const SparsePattern& pattern_;
+    ProgressSpan progress_;
     const int32_t leaf_size_;
     std::vector<Level> levels_;
     size_t base_ = 0;
@@ -847,6 +870,10 @@ class Dissection {
     std::vector<std::vector<int32_t>> separators_;  // vertices of each separator (phase B)
     std::vector<std::vector<int32_t>> lists_;       // the part on each level (phase A)
     std::vector<std::vector<int8_t>> sides_;        // its sides on each level (phase A)
+    // Progress: the hierarchy to kBuilt, the base level's dissection to kDissected, the
+    // refinements to kRefined, the leaves' orders to 1.
+    static constexpr double kBuilt = 0.3, kDissected = 0.5, kRefined = 0.8;
+    double base_weight_ = 1, leaf_weight_ = 0;
     std::vector<int32_t> order_;
     int32_t stamp_ = 0;
     VertexCut flow_;
@@ -862,8 +889,9 @@ class Dissection {
 }  // namespace
 
 std::vector<int32_t> nested_dissection_order(const SparsePattern& pattern,
-                                             const std::vector<Eigen::Vector3d>& coordinates) {
-    return Dissection(pattern, coordinates).run();
+                                             const std::vector<Eigen::Vector3d>& coordinates,
+                                             const ProgressSpan& progress) {
+    return Dissection(pattern, coordinates, progress).run();
 }
 
 }  // namespace raps

@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "solver/sparse_pattern.h"
 
 namespace raps {
@@ -29,6 +30,7 @@ namespace raps {
 // Returns the elimination order: order[k] is the unknown eliminated k-th. coordinates[i] is a
 // point in space for unknown i (a mesh vertex position); the graph is the pattern's.
 std::vector<int32_t> nested_dissection_order(const SparsePattern& pattern,
-                                             const std::vector<Eigen::Vector3d>& coordinates);
+                                             const std::vector<Eigen::Vector3d>& coordinates,
+                                             const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -22,31 +22,36 @@ constexpr int32_t kMinimumDegreeOnly = 150000;
 }  // namespace
 
 std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
-                                         const std::vector<Eigen::Vector3d>& coordinates) {
+                                         const std::vector<Eigen::Vector3d>& coordinates,
+                                         const ProgressSpan& progress) {
     // Small and medium systems are ordered by minimum degree alone: there the dissection's
     // separators cost more time than the fill they save.
     if (pattern.size <= kMinimumDegreeOnly) return minimum_degree_order(pattern);
-    return nested_dissection_order(pattern, coordinates);
+    return nested_dissection_order(pattern, coordinates, progress);
 }
 
-SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates)
+SparseSolver::SparseSolver(SparsePattern pattern, const std::vector<Eigen::Vector3d>& coordinates,
+                           const ProgressSpan& progress)
     : pattern_(std::move(pattern)) {
-    order_ = fill_reducing_order(pattern_, coordinates);
-    factorization_.analyze(pattern_, order_);
+    order_ = fill_reducing_order(pattern_, coordinates, progress.part(0.0, 0.7));
+    factorization_.analyze(pattern_, order_, progress.part(0.7, 1.0));
 }
 
-SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order)
+SparseSolver::SparseSolver(SparsePattern pattern, std::vector<int32_t> order,
+                           const ProgressSpan& progress)
     : pattern_(std::move(pattern)), order_(std::move(order)) {
-    factorization_.analyze(pattern_, order_);
+    factorization_.analyze(pattern_, order_, progress);
 }
 
 void SparseSolver::solve(const std::vector<double>& values, double* rhs, int rhs_count,
-                         const std::function<void(double)>& progress, Factorization kind) {
+                         const ProgressSpan& progress, Factorization kind) {
     if (pattern_.size == 0) return;
     pivoting_values_.clear();
-    factorization_.prepare(pattern_, kind);
-    if (factorization_.factorize(values.data(), progress)) {
-        factorization_.solve(rhs, rhs_count);
+    // Progress: the values' places (a pass over the pattern), the factorization (by flops),
+    // the triangular solves (a pass over the factor per right-hand side).
+    factorization_.prepare(pattern_, kind, progress.part(0.0, 0.05));
+    if (factorization_.factorize(values.data(), progress.part(0.05, 0.9))) {
+        factorization_.solve(rhs, rhs_count, progress.part(0.9, 1.0));
     } else {
         pivoting_values_ = values;
         solve_with_pivoting(values, rhs, rhs_count);
@@ -54,10 +59,10 @@ void SparseSolver::solve(const std::vector<double>& values, double* rhs, int rhs
     check_finite(rhs, rhs_count);
 }
 
-void SparseSolver::solve_more(double* rhs, int rhs_count) const {
+void SparseSolver::solve_more(double* rhs, int rhs_count, const ProgressSpan& progress) const {
     if (pattern_.size == 0) return;
     if (pivoting_values_.empty()) {
-        factorization_.solve(rhs, rhs_count);
+        factorization_.solve(rhs, rhs_count, progress);
     } else {
         solve_with_pivoting(pivoting_values_, rhs, rhs_count);
     }

@@ -144,7 +144,8 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
 std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
                                                  const std::vector<Eigen::Vector2d>& plane,
                                                  int32_t pole, double scale, ThreadPool& pool,
-                                                 double tolerance, int max_steps) {
+                                                 double tolerance, int max_steps,
+                                                 const ProgressSpan& progress) {
     Mobius m{scale, 0.0, 0.0, 1.0};
     std::vector<Eigen::Vector3d> points(plane.size());
     lift_all(plane, pole, m, points, pool);
@@ -157,18 +158,20 @@ std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
         const double t = std::min(0.75 * offset, 0.9);
         m = compose(boost_towards(centre / offset, (1.0 + t) / (1.0 - t)), m);
         lift_all(plane, pole, m, points, pool);
+        progress.report(static_cast<double>(step + 1) / max_steps);
     }
     return points;
 }
 
 int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u, ThreadPool& pool,
-                  double tolerance, int max_steps) {
+                  double tolerance, int max_steps, const ProgressSpan& progress) {
     std::vector<Eigen::Vector3d> scratch;
     int steps = 0;
     bool moved = true;
     while (steps < max_steps && moved &&
            centring_step(problem, u, scratch, pool, &moved) > tolerance) {
         ++steps;
+        progress.report(static_cast<double>(steps) / max_steps);
     }
     return steps;
 }

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "parallel/thread_pool.h"
 #include "sphere/sphere_problem.h"
 
@@ -39,8 +40,9 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
 
 // Centring steps until the centre of mass is shorter than `tolerance`, a step is refused or
 // `max_steps` were taken; returns the steps taken.
+// `progress` gets the share of max_steps taken after each step.
 int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u, ThreadPool& pool,
-                  double tolerance, int max_steps);
+                  double tolerance, int max_steps, const ProgressSpan& progress = {});
 
 // The same centring done in the plane before the lift, for a map given as planar points (the
 // stereographic coordinates of its sphere points, projected from the north pole) and one vertex
@@ -54,10 +56,11 @@ int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
 // on a circle of radius e^-aspect around it; centring it is a scaling, exact in the plane,
 // which on the sphere blew up the rounding of the squeezed end into folds (docs/sphere-status.md).
 // Takes steps until the centre of mass is shorter than `tolerance` or `max_steps` were taken;
-// returns the lifted points.
+// returns the lifted points. `progress` gets the share of max_steps taken after each step.
 std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
                                                  const std::vector<Eigen::Vector2d>& plane,
                                                  int32_t pole, double scale, ThreadPool& pool,
-                                                 double tolerance, int max_steps);
+                                                 double tolerance, int max_steps,
+                                                 const ProgressSpan& progress = {});
 
 }  // namespace raps

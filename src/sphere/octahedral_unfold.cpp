@@ -151,11 +151,15 @@ Cut choose_cut(const TriangleMesh& mesh, const Halfedges& halfedges,
 
 OctahedralUnfold octahedral_unfold(const TriangleMesh& mesh,
                                    const std::vector<Eigen::Vector3d>& points,
-                                   const std::function<void(double)>& progress) {
+                                   const ProgressSpan& progress) {
+    // Progress: the mesh's and the cut mesh's structures and weights, then the system's
+    // ordering, analysis and solve (most of it).
     const int32_t n = mesh.vertex_count();
-    const Halfedges halfedges = build_halfedges(mesh);
-    const VertexAdjacency adjacency = build_vertex_adjacency(mesh, halfedges);
+    const Halfedges halfedges = build_halfedges(mesh, progress.part(0.0, 0.05));
+    const VertexAdjacency adjacency =
+        build_vertex_adjacency(mesh, halfedges, progress.part(0.05, 0.1));
     const Cut cut = choose_cut(mesh, halfedges, adjacency, points);
+    progress.report(0.15);
     std::vector<Eigen::Vector3d> q(points.size());
     for (int32_t v = 0; v < n; ++v) q[v] = cut.rotation * points[v];
 
@@ -285,11 +289,13 @@ OctahedralUnfold octahedral_unfold(const TriangleMesh& mesh,
         }
     }
     chords.triangles = plane.triangles;
-    const Halfedges cut_halfedges = build_halfedges(plane);
-    const VertexAdjacency cut_adjacency = build_vertex_adjacency(plane, cut_halfedges);
-    std::vector<double> weights = laplacian_weights(plane, cut_adjacency, WeightScheme::kMeanValue);
-    const std::vector<double> fallback =
-        laplacian_weights(chords, cut_adjacency, WeightScheme::kMeanValue);
+    const Halfedges cut_halfedges = build_halfedges(plane, progress.part(0.15, 0.2));
+    const VertexAdjacency cut_adjacency =
+        build_vertex_adjacency(plane, cut_halfedges, progress.part(0.2, 0.25));
+    std::vector<double> weights =
+        laplacian_weights(plane, cut_adjacency, WeightScheme::kMeanValue, progress.part(0.25, 0.3));
+    const std::vector<double> fallback = laplacian_weights(
+        chords, cut_adjacency, WeightScheme::kMeanValue, progress.part(0.3, 0.35));
     for (int32_t o = 0; o < out_count; ++o) {
         const int32_t begin = cut_adjacency.offsets[o], end = cut_adjacency.offsets[o + 1];
         double sum = 0.0;
@@ -302,8 +308,8 @@ OctahedralUnfold octahedral_unfold(const TriangleMesh& mesh,
             std::copy(fallback.begin() + begin, fallback.begin() + end, weights.begin() + begin);
         }
     }
-    LaplaceSystem system(plane, cut_adjacency, boundary);
-    system.solve(weights, target, progress);
+    LaplaceSystem system(plane, cut_adjacency, boundary, {}, progress.part(0.35, 0.6));
+    system.solve(weights, target, progress.part(0.6, 1.0));
     out.uv.resize(out_count);
     for (int32_t o = 0; o < out_count; ++o) out.uv[o] = 0.5 * (target[o] + Eigen::Vector2d::Ones());
     return out;

@@ -32,6 +32,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 
 namespace raps {
@@ -44,9 +45,9 @@ struct OctahedralUnfold {
 };
 
 // `points`: one unit vector per vertex of `mesh`, a bijective map (det > 0 for every triangle).
-// `progress` receives the fraction of the sparse factorization done (it may throw to cancel).
+// `progress` receives the fraction done (it may throw to cancel).
 OctahedralUnfold octahedral_unfold(const TriangleMesh& mesh,
                                    const std::vector<Eigen::Vector3d>& points,
-                                   const std::function<void(double)>& progress);
+                                   const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -50,9 +50,9 @@ std::vector<double> ring_angles(const TriangleMesh& mesh, int32_t pole,
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> stereographic_initial_map(
-    const SphereProblem& problem, WeightScheme weights, ThreadPool& pool,
-    const std::function<void(double)>& progress) {
+std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& problem,
+                                                       WeightScheme weights, ThreadPool& pool,
+                                                       const ProgressSpan& progress) {
     const TriangleMesh& mesh = problem.mesh;
     const int32_t pole = choose_pole(problem);
     const std::vector<int32_t> ring = vertex_ring(mesh, problem.halfedges, pole);
@@ -73,8 +73,10 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(
     const WeightScheme positive =
         weights == WeightScheme::kCotangent ? WeightScheme::kMeanValue : weights;
     {
-        LaplaceSystem system(mesh, problem.adjacency, fixed);
-        system.solve(laplacian_weights(mesh, problem.adjacency, positive), plane, progress);
+        // Progress: ordering and analysis, weights, solve; the centring after it.
+        LaplaceSystem system(mesh, problem.adjacency, fixed, {}, progress.part(0.0, 0.4));
+        system.solve(laplacian_weights(mesh, problem.adjacency, positive, progress.part(0.4, 0.45)),
+                     plane, progress.part(0.45, 0.9));
     }
 
     // Inverse stereographic projection of s * plane. The ring (radius 1) lands on the circle of
@@ -84,8 +86,9 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(
     const double star_share = std::clamp(3.0 * problem.mass[pole], 1e-12, 0.5);
     const double s = std::sqrt(1.0 / star_share - 1.0);
     std::vector<Eigen::Vector3d> points =
-        mobius_centred_lift(problem, plane, pole, s, pool, 1e-4, 100);
-    mobius_centre(problem, points, pool, 1e-4, 100);
+        mobius_centred_lift(problem, plane, pole, s, pool, 1e-4, 100, progress.part(0.9, 0.95));
+    mobius_centre(problem, points, pool, 1e-4, 100, progress.part(0.95, 1.0));
+    progress.report(1.0);
     return points;
 }
 

@@ -36,6 +36,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "core/settings.h"
 #include "parallel/thread_pool.h"
 #include "sphere/sphere_problem.h"
@@ -46,6 +47,6 @@ namespace raps {
 // (it may throw to cancel).
 std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& problem,
                                                        WeightScheme weights, ThreadPool& pool,
-                                                       const std::function<void(double)>& progress);
+                                                       const ProgressSpan& progress);
 
 }  // namespace raps

@@ -13,23 +13,26 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 
 namespace raps {
 
 struct FoldCount {
-    int64_t folded = 0;         // triangles with det[a, b, c] <= 0 (or not finite)
-    int64_t first = -1;         // the lowest such triangle index, -1 if none
-    int64_t off_sphere = 0;     // points with | |u| - 1 | > kUnitTolerance (or not finite)
+    int64_t folded = 0;      // triangles with det[a, b, c] <= 0 (or not finite)
+    int64_t first = -1;      // the lowest such triangle index, -1 if none
+    int64_t off_sphere = 0;  // points with | |u| - 1 | > kUnitTolerance (or not finite)
 };
 
 constexpr double kUnitTolerance = 1e-12;
 
-FoldCount count_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& points);
+FoldCount count_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& points,
+                      const ProgressSpan& progress = {});
 
 // Throws Error(kSolverFailed) naming the folded triangles of `mesh` (the input mesh, `points` in
 // its vertex order) unless the map is fold-free and on the unit sphere.
 void require_bijective_sphere_map(const TriangleMesh& mesh,
-                                  const std::vector<Eigen::Vector3d>& points);
+                                  const std::vector<Eigen::Vector3d>& points,
+                                  const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -24,20 +24,23 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                               const Progress& progress, PhaseTimes& times) {
     {
         PhaseTimer timer(Phase::kValidate, progress, times);
-        check_indices_in_range(input);
-        check_no_repeated_vertices(input);
-        check_no_isolated_vertices(input);
-        check_no_zero_area_triangles(input);
+        check_indices_in_range(input, timer.span(0.0, 0.2));
+        check_no_repeated_vertices(input, timer.span(0.2, 0.4));
+        check_no_isolated_vertices(input, timer.span(0.4, 0.6));
+        check_no_zero_area_triangles(input, timer.span(0.6, 1.0));
         timer.finish();
     }
 
     // Checked on the input, so that messages name its vertices; then everything runs on the
     // vertices in Morton order (vertex_order.h) and the points go back to input order at the end.
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
-    check_closed_genus_zero(input, build_halfedges(input));
-    const std::vector<int32_t> order = morton_vertex_order(input.positions);
-    const TriangleMesh mesh = reorder_vertices(input, order);
-    const SphereProblem problem = make_sphere_problem(mesh, build_halfedges(mesh));
+    check_closed_genus_zero(input, build_halfedges(input, topology_timer.span(0.0, 0.2)),
+                            topology_timer.span(0.2, 0.3));
+    const std::vector<int32_t> order =
+        morton_vertex_order(input.positions, topology_timer.span(0.3, 0.45));
+    const TriangleMesh mesh = reorder_vertices(input, order, topology_timer.span(0.45, 0.5));
+    const SphereProblem problem = make_sphere_problem(
+        mesh, build_halfedges(mesh, topology_timer.span(0.5, 0.7)), topology_timer.span(0.7, 1.0));
     topology_timer.finish();
 
     const bool literal = settings.sphere_method == SphereMethod::kLiteral;
@@ -54,18 +57,19 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
 
     SphereMap map;
     std::vector<Eigen::Vector3d> points;
-    const std::vector<double> base_weights =
-        laplacian_weights(mesh, problem.adjacency, settings.weights);
-    for (double w : base_weights) map.negative_weights += w < 0.0;
+    std::vector<double> base_weights;
     {
-        // Progress: the initial map is the first half of the phase, its relaxation the second.
+        // Progress: the base weights and the initial map are the first half of the phase, its
+        // relaxation the second.
         PhaseTimer timer(Phase::kInitialMap, progress, times);
+        base_weights =
+            laplacian_weights(mesh, problem.adjacency, settings.weights, timer.span(0.0, 0.05));
+        for (double w : base_weights) map.negative_weights += w < 0.0;
         if (literal) {
             points = gauss_map(mesh);
         } else {
-            points = stereographic_initial_map(
-                problem, settings.weights, pool,
-                [&](double fraction) { progress.report(Phase::kInitialMap, 0.5 * fraction); });
+            points =
+                stereographic_initial_map(problem, settings.weights, pool, timer.span(0.05, 0.5));
         }
         map.relaxation_sweeps +=
             relax_on_sphere(problem, base_weights, points, options, pool, [&](double fraction) {
@@ -75,6 +79,9 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
     }
 
     PhaseTimer adapt_timer(Phase::kAdapt, progress, times);
+    // Progress: the adaptive relaxations, then the unfold when there is one.
+    const bool unfold = settings.sphere_uv == SphereUv::kOctahedral;
+    const ProgressSpan relaxations = adapt_timer.span(0.0, unfold ? 0.8 : 1.0);
     if (!literal && settings.sphere_max_sweeps == 0) options.max_sweeps = kRobustAdaptiveMaxSweeps;
     if (settings.monitor != Monitor::kNone) {
         // Iterations as in the plane (RAPS_PARAM_ITERATIONS, RAPS_PARAM_ITERATION_MODE). The
@@ -104,10 +111,12 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
             int retries = literal ? 0 : kStepRetries;
             while (reached < 1.0 - 1e-9) {
                 step = std::min(step, 1.0 - reached);
-                const std::vector<double> monitor = error_monitor(
-                    mesh, problem.adjacency, SphericalMapGeometry(points), settings.monitor);
+                const std::vector<double> monitor =
+                    error_monitor(mesh, problem.adjacency, SphericalMapGeometry(points),
+                                  settings.monitor, relaxations.part(reported, reported));
                 std::vector<double> trial =
-                    adaptive_weights(problem.adjacency, weights, monitor, settings.alpha * step);
+                    adaptive_weights(problem.adjacency, weights, monitor, settings.alpha * step,
+                                     relaxations.part(reported, reported));
                 if (!literal) before = points;
                 RelaxationOptions step_options = options;
                 step_options.max_sweeps = std::max<int64_t>(
@@ -115,7 +124,7 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                 const auto report = [&](double fraction) {
                     const double at = (iteration + reached + fraction * step) / settings.iterations;
                     reported = std::max(reported, at);  // a retried step does not go back
-                    progress.report(Phase::kAdapt, reported);
+                    relaxations.report(reported);
                 };
                 map.relaxation_sweeps +=
                     relax_on_sphere(problem, trial, points, step_options, pool, report).sweeps;
@@ -143,14 +152,11 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
     }
     map.points.resize(points.size());
     for (size_t k = 0; k < order.size(); ++k) map.points[order[k]] = points[k];
+    relaxations.report(1.0);
     // The literal method returns what algorithm 7.1 gives, folds and all (docs/bench-method.md,
     // "algorithm 7.1 as written", counts them); the robust one returns a bijection or nothing.
-    if (!literal) require_bijective_sphere_map(input, map.points);
-    if (settings.sphere_uv == SphereUv::kOctahedral) {
-        map.unfold = octahedral_unfold(input, map.points, [&](double) {
-            progress.report(Phase::kAdapt, 1.0);  // cancellation point inside the solve
-        });
-    }
+    if (!literal) require_bijective_sphere_map(input, map.points, relaxations.part(1.0, 1.0));
+    if (unfold) map.unfold = octahedral_unfold(input, map.points, adapt_timer.span(0.8, 1.0));
     adapt_timer.finish();
     map.threads_used = pool.threads_used();
     return map;

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 #include "mesh/mesh_topology.h"
 
@@ -25,7 +26,8 @@ struct SphereProblem {
 };
 
 // Builds everything above; the mesh must have passed check_closed_genus_zero.
-SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges);
+SphereProblem make_sphere_problem(const TriangleMesh& mesh, Halfedges halfedges,
+                                  const ProgressSpan& progress = {});
 
 // The plane floor. The robust relaxation never leaves a triangle whose plane (through its three
 // points) passes closer than kPlaneFloor to the centre of the sphere (it may leave one that

@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 
 #include "core/portable_math.h"
+#include "core/progress.h"
 #include "sphere/mobius_centring.h"
 #include "sphere/spherical_geometry.h"
 
@@ -133,6 +134,9 @@ double squared_move_modulo_rotation(const std::vector<Eigen::Vector3d>& after,
 
 constexpr int64_t kMeasureEvery = 4;
 
+// Vertices relaxed between two progress reports on all threads together.
+constexpr int64_t kVerticesPerChunk = 4 * kItemsPerReport;
+
 }  // namespace
 
 RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector<double>& weights,
@@ -156,17 +160,29 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
         const bool measure = (report.sweeps + 1) % kMeasureEvery == 0 ||
                              report.sweeps + 1 == options.max_sweeps || report.sweeps == 0;
         if (measure) before = u;
+        // Within a sweep the fraction stays, but it is reported again every kItemsPerReport
+        // vertices (a colour's vertices move independently, so cutting a colour into chunks
+        // changes nothing), so that a cancel never waits for a whole sweep.
         if (options.literal) {
-            for (int32_t i = 0; i < n; ++i) relaxer.update(i, false);
+            for (int32_t i = 0; i < n; ++i) {
+                if (i % kItemsPerReport == 0 && i > 0) progress(reported);
+                relaxer.update(i, false);
+            }
         } else {
             for (const std::vector<int32_t>& color : problem.colors) {
-                report.refused += parallel_sum<int64_t>(
-                    pool, static_cast<int64_t>(color.size()), [&](int64_t begin, int64_t end) {
-                        int64_t refused = 0;
-                        for (int64_t k = begin; k < end; ++k)
-                            refused += relaxer.update(color[k], true);
-                        return refused;
-                    });
+                const int64_t size = static_cast<int64_t>(color.size());
+                for (int64_t chunk = 0; chunk < size; chunk += kVerticesPerChunk) {
+                    if (chunk > 0) progress(reported);
+                    const int64_t chunk_size = std::min(kVerticesPerChunk, size - chunk);
+                    report.refused +=
+                        parallel_sum<int64_t>(pool, chunk_size, [&](int64_t begin, int64_t end) {
+                            int64_t refused = 0;
+                            for (int64_t k = chunk + begin; k < chunk + end; ++k)
+                                refused += relaxer.update(color[k], true);
+                            return refused;
+                        });
+                }
+                progress(reported);
             }
             centring_step(problem, u, scratch, pool, nullptr);
         }

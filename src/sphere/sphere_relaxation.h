@@ -67,7 +67,8 @@ struct RelaxationReport {
 };
 
 // Relaxes `u` (unit vectors, one per vertex) with `weights` (one per adjacency slot, rows with a
-// positive sum). `progress` gets the fraction done at least every 16 sweeps and every 1% (it may
+// positive sum). `progress` gets the fraction done at least every 16 sweeps and every 1%, and
+// the same fraction again after every colour and every few ten thousand vertices (it may
 // throw to cancel).
 RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector<double>& weights,
                                  std::vector<Eigen::Vector3d>& u, const RelaxationOptions& options,

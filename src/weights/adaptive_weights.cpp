@@ -9,23 +9,27 @@ namespace raps {
 
 std::vector<double> adaptive_weights(const VertexAdjacency& adjacency,
                                      const std::vector<double>& weights,
-                                     const std::vector<double>& monitor, double alpha) {
+                                     const std::vector<double>& monitor, double alpha,
+                                     const ProgressSpan& progress) {
     std::vector<double> adapted(weights.size());
     const int32_t vertex_count = static_cast<int32_t>(adjacency.offsets.size()) - 1;
-    for (int32_t v = 0; v < vertex_count; ++v) {
-        const int32_t begin = adjacency.offsets[v], end = adjacency.offsets[v + 1];
-        double row_sum = 0.0;
-        for (int32_t s = begin; s < end; ++s) {
-            const double exponent = std::clamp(alpha * portable::log(monitor[s]), -600.0, 600.0);
-            adapted[s] = weights[s] * portable::exp(exponent);
-            row_sum += adapted[s];
+    progress.in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
+            const int32_t begin = adjacency.offsets[v], end = adjacency.offsets[v + 1];
+            double row_sum = 0.0;
+            for (int32_t s = begin; s < end; ++s) {
+                const double exponent =
+                    std::clamp(alpha * portable::log(monitor[s]), -600.0, 600.0);
+                adapted[s] = weights[s] * portable::exp(exponent);
+                row_sum += adapted[s];
+            }
+            // A row sum that is not positive (possible with negative cotangent weights) is left
+            // unscaled; the solver reports the row if it is singular.
+            if (row_sum > 0.0 && std::isfinite(row_sum)) {
+                for (int32_t s = begin; s < end; ++s) adapted[s] /= row_sum;
+            }
         }
-        // A row sum that is not positive (possible with negative cotangent weights) is left
-        // unscaled; the solver reports the row if it is singular.
-        if (row_sum > 0.0 && std::isfinite(row_sum)) {
-            for (int32_t s = begin; s < end; ++s) adapted[s] /= row_sum;
-        }
-    }
+    });
     return adapted;
 }
 

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "core/progress.h"
 #include "mesh/mesh_topology.h"
 
 namespace raps {
@@ -16,6 +17,7 @@ namespace raps {
 // +-600, so no alpha under- or overflows to a zero or infinite weight.
 std::vector<double> adaptive_weights(const VertexAdjacency& adjacency,
                                      const std::vector<double>& weights,
-                                     const std::vector<double>& monitor, double alpha);
+                                     const std::vector<double>& monitor, double alpha,
+                                     const ProgressSpan& progress = {});
 
 }  // namespace raps

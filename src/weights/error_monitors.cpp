@@ -30,23 +30,26 @@ class EdgeAverage {
 };
 
 std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                 const MapGeometry& map) {
+                                 const MapGeometry& map, const ProgressSpan& progress) {
     const int32_t triangle_count = mesh.triangle_count();
     std::vector<double> ratio(triangle_count);
     double total_map = 0.0, total_3d = 0.0;
-    for (int32_t t = 0; t < triangle_count; ++t) {
-        const Triangle& v = mesh.triangles[t];
-        const double map_area = map.area(v[0], v[1], v[2]);
-        const double area = 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
-                                      .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
-                                      .norm();
-        ratio[t] = map_area / area;
-        total_map += std::abs(map_area);
-        total_3d += area;
-    }
+    progress.in_runs(triangle_count, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = mesh.triangles[t];
+            const double map_area = map.area(v[0], v[1], v[2]);
+            const double area = 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
+                                          .cross(mesh.positions[v[2]] - mesh.positions[v[0]])
+                                          .norm();
+            ratio[t] = map_area / area;
+            total_map += std::abs(map_area);
+            total_3d += area;
+        }
+    });
     const double scale = total_3d / total_map;
     EdgeAverage average(adjacency.neighbors.size());
     for (int32_t t = 0; t < triangle_count; ++t) {
+        progress.at(triangle_count + t, 2 * static_cast<int64_t>(triangle_count));
         const double e = std::max(ratio[t] * scale, kMonitorFloor);
         for (int k = 0; k < 3; ++k) {
             average.add(adjacency.forward_slot[3 * t + k], e);
@@ -57,57 +60,62 @@ std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency
 }
 
 std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                   const MapGeometry& map) {
+                                   const MapGeometry& map, const ProgressSpan& progress) {
     std::vector<double> e(adjacency.neighbors.size());
     double total_map = 0.0, total_3d = 0.0;
-    for (int32_t i = 0; i < mesh.vertex_count(); ++i) {
-        for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
-            const int32_t j = adjacency.neighbors[s];
-            const double map_length = map.length(i, j);
-            const double length = (mesh.positions[i] - mesh.positions[j]).norm();
-            e[s] = map_length / length;
-            total_map += map_length;
-            total_3d += length;
+    progress.in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t i = static_cast<int32_t>(run_begin); i < run_end; ++i) {
+            for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
+                const int32_t j = adjacency.neighbors[s];
+                const double map_length = map.length(i, j);
+                const double length = (mesh.positions[i] - mesh.positions[j]).norm();
+                e[s] = map_length / length;
+                total_map += map_length;
+                total_3d += length;
+            }
         }
-    }
+    });
     const double scale = total_3d / total_map;
     for (double& value : e) value = std::max(value * scale, kMonitorFloor);
     return e;
 }
 
 std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const MapGeometry& map) {
+                                  const MapGeometry& map, const ProgressSpan& progress) {
     EdgeAverage average(adjacency.neighbors.size());
-    for (int32_t t = 0; t < mesh.triangle_count(); ++t) {
-        const Triangle& v = mesh.triangles[t];
-        for (int k = 0; k < 3; ++k) {
-            const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
-            const Eigen::Vector3d a = mesh.positions[j] - mesh.positions[i];
-            const Eigen::Vector3d b = mesh.positions[l] - mesh.positions[i];
-            const double angle = portable::atan2(a.cross(b).norm(), a.dot(b));
-            double sine, cosine;
-            map.angle(i, j, l, &sine, &cosine);
-            // Signed: a flipped triangle has a negative angle in the map and gets the floor.
-            const double map_angle = portable::atan2(sine, cosine);
-            const double e = std::max(map_angle / angle, kMonitorFloor);
-            average.add(adjacency.forward_slot[3 * t + k], e);             // i -> j
-            average.add(adjacency.backward_slot[3 * t + (k + 2) % 3], e);  // i -> l
+    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
+            const Triangle& v = mesh.triangles[t];
+            for (int k = 0; k < 3; ++k) {
+                const int32_t i = v[k], j = v[(k + 1) % 3], l = v[(k + 2) % 3];
+                const Eigen::Vector3d a = mesh.positions[j] - mesh.positions[i];
+                const Eigen::Vector3d b = mesh.positions[l] - mesh.positions[i];
+                const double angle = portable::atan2(a.cross(b).norm(), a.dot(b));
+                double sine, cosine;
+                map.angle(i, j, l, &sine, &cosine);
+                // Signed: a flipped triangle has a negative angle in the map and gets the floor.
+                const double map_angle = portable::atan2(sine, cosine);
+                const double e = std::max(map_angle / angle, kMonitorFloor);
+                average.add(adjacency.forward_slot[3 * t + k], e);             // i -> j
+                average.add(adjacency.backward_slot[3 * t + (k + 2) % 3], e);  // i -> l
+            }
         }
-    }
+    });
     return std::move(average).mean();
 }
 
 }  // namespace
 
 std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const MapGeometry& map, Monitor monitor) {
+                                  const MapGeometry& map, Monitor monitor,
+                                  const ProgressSpan& progress) {
     switch (monitor) {
         case Monitor::kArea:
-            return area_monitor(mesh, adjacency, map);
+            return area_monitor(mesh, adjacency, map, progress);
         case Monitor::kEdgeLength:
-            return length_monitor(mesh, adjacency, map);
+            return length_monitor(mesh, adjacency, map, progress);
         case Monitor::kAngle:
-            return angle_monitor(mesh, adjacency, map);
+            return angle_monitor(mesh, adjacency, map, progress);
         case Monitor::kNone:
             break;
     }

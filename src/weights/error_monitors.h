@@ -21,6 +21,7 @@
 
 #include <vector>
 
+#include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
 #include "mesh/mesh_topology.h"
@@ -36,6 +37,7 @@ constexpr double kMonitorFloor = 1e-12;
 // angle (6.3):  e_ijk = map angle / 3D angle at corner i of triangle ijk; e_ij = mean over the
 //               triangles at ij, both measured at i (so e_ij != e_ji).
 std::vector<double> error_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                  const MapGeometry& map, Monitor monitor);
+                                  const MapGeometry& map, Monitor monitor,
+                                  const ProgressSpan& progress = {});
 
 }  // namespace raps

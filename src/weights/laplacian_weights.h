@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
 #include "mesh/mesh_topology.h"
@@ -19,6 +20,6 @@ namespace raps {
 // Uniform (Tutte 1963): w_ij = 1.
 // Each triangle contributes its part at each corner, so boundary edges get one triangle's part.
 std::vector<double> laplacian_weights(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-                                      WeightScheme scheme);
+                                      WeightScheme scheme, const ProgressSpan& progress = {});
 
 }  // namespace raps

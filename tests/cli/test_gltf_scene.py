@@ -4,14 +4,15 @@ matrices from the nodes, areas from the positions and the new uvs): every mesh g
 asked within 2 %; no page exceeds --max-size and each mesh's page is in its extras; charts too
 large for a page are shrunk, flagged and noted; --lightmap keeps TEXCOORD_0 and writes
 TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam of the new set; unorm16
-texcoords decode into the texels of the float uvs; a mesh drawn at several scales is packed at
-its largest and the report says so, and meshes defined alike share one place at the larger
-scale of either; bad flag combinations are refused with exit status 2 and nothing written, a
-node's malformed transform with status 1, a scene that draws nothing is nothing to bake; the
-Khronos validator finds no error in any output.
+texcoords decode into the texels of the float uvs; a mesh drawn at several scales (by nodes or
+by EXT_mesh_gpu_instancing) is packed at its largest and the report says so, and meshes defined
+alike share one place at the larger scale of either; bad flag combinations are refused with
+exit status 2 and nothing written, a node's malformed transform with status 1, a scene that
+draws nothing is nothing to bake; the Khronos validator finds no error in any output.
 
 usage: test_gltf_scene.py RAPS_GLTF SHARED_DATA_DIR VALIDATOR_PREFIX NODE
 """
+import base64
 import json
 import os
 import subprocess
@@ -225,6 +226,29 @@ class SceneAtlas(unittest.TestCase):
         self.assertAlmostEqual(mesh['scale'], 2, places=6)
         self.assertTrue(any('packed at the largest' in note for note in report['notes']))
         self.check_density(g, report, 0, 20)
+
+    def test_gpu_instances_take_the_largest(self):
+        with open(os.path.join(DATA, 'gltf', 'BoxTextured.gltf')) as fh:
+            doc = json.load(fh)
+        scales = np.array([[1, 1, 1], [4, 4, 4], [0.5, 0.5, 0.5]], dtype=np.float32)
+        doc['buffers'].append({'byteLength': scales.nbytes, 'uri': 'data:application/octet-stream;'
+                               'base64,' + base64.b64encode(scales.tobytes()).decode()})
+        doc['bufferViews'].append({'buffer': len(doc['buffers']) - 1, 'byteLength': scales.nbytes})
+        doc['accessors'].append({'bufferView': len(doc['bufferViews']) - 1, 'componentType': 5126,
+                                 'count': 3, 'type': 'VEC3'})
+        doc['nodes'][1]['extensions'] = {'EXT_mesh_gpu_instancing': {
+            'attributes': {'SCALE': len(doc['accessors']) - 1}}}
+        doc['extensionsUsed'] = ['EXT_mesh_gpu_instancing']
+        source = os.path.join(self.tmp.name, 'instanced.gltf')
+        with open(source, 'w') as fh:
+            json.dump(doc, fh)
+        g, report = self.bake(source, 'instanced_uv.glb', '--overwrite', '--texels-per-unit', '10')
+        mesh = report['scene']['meshes'][0]
+        self.assertEqual(mesh['instances'], 3)
+        np.testing.assert_allclose(mesh['scales'], [0.5, 1, 4], rtol=1e-6)
+        page = np.array(report['scene']['atlas'], dtype=float)
+        density = np.sqrt(texel_area(g, 0, page, 0) / world_area(g, 0, 4 * np.eye(3)))
+        self.assertAlmostEqual(density / 10.0, 1.0, delta=0.02)
 
     def test_meshes_defined_alike_share_one_place(self):
         with open(os.path.join(DATA, 'gltf', 'BoxTextured.gltf')) as fh:

@@ -1,0 +1,234 @@
+// raps-bench-progress: how long a cancel can wait. Runs each domain on a large mesh it builds
+// (1-to-4 midpoint subdivisions of shared meshes) with a progress callback that timestamps every
+// call, and prints per phase the calls, the longest wall-clock gap before one of its calls (the
+// work a cancel issued during it waits for) and whether its fractions rose monotonically to 1.
+// A cancel waits at most the longest gap of the run; the header promises about 1 % of a phase.
+//
+//   raps-bench-progress [--data DIR] [--subdivide K] [--threads N] [--only disk|atlas|sphere]
+//
+// Cases: disk and atlas on face.obj subdivided K times (default 2: 827K triangles; 3: 3.3M),
+// sphere on bunny.off subdivided K + 1 times (K = 2: 444K triangles). Each case runs once, in its
+// own child process (peak MB is that process's).
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh_io.h"
+#include "parameter_text.h"
+#include "raps.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Call {
+    Clock::time_point at;
+    raps_phase phase;
+    double fraction;
+};
+
+// What one run's calls say about each phase.
+struct PhaseFigures {
+    int calls = 0;
+    double longest_gap_ms = 0;  // before one of its calls, since the previous call
+    bool monotone = true;       // fractions never fell within one pass through the phase
+    bool reached_one = false;
+    double gap_from = 0, gap_to = 0;  // the fractions reported around the longest gap
+};
+
+struct Report {
+    int ok = 0;
+    uint64_t triangles = 0;
+    double total_ms = 0, after_last_call_ms = 0;
+    PhaseFigures phase[RAPS_PHASE_COUNT];
+};
+
+int32_t record_call(void* user, raps_phase phase, double fraction) {
+    static_cast<std::vector<Call>*>(user)->push_back({Clock::now(), phase, fraction});
+    return 1;
+}
+
+// Per phase figures from the calls of one run that began at `start`. A phase that ends (1) and
+// starts again (0) begins a new pass: its fractions are compared within a pass only.
+void summarise(const std::vector<Call>& calls, Clock::time_point start, Report& report) {
+    double last[RAPS_PHASE_COUNT];
+    std::fill(last, last + RAPS_PHASE_COUNT, -1.0);
+    Clock::time_point previous = start;
+    for (const Call& c : calls) {
+        PhaseFigures& p = report.phase[c.phase];
+        ++p.calls;
+        const double gap = std::chrono::duration<double, std::milli>(c.at - previous).count();
+        if (gap > p.longest_gap_ms) {
+            p.longest_gap_ms = gap;
+            p.gap_from = &c == &calls.front() ? 0.0 : (&c - 1)->fraction;
+            p.gap_to = c.fraction;
+        }
+        previous = c.at;
+        const bool new_pass = last[c.phase] == 1.0 && c.fraction == 0.0;
+        if (!new_pass && c.fraction < last[c.phase]) p.monotone = false;
+        last[c.phase] = c.fraction;
+        if (c.fraction == 1.0) p.reached_one = true;
+    }
+}
+
+Report run_case(const std::vector<double>& positions, const std::vector<uint32_t>& triangles,
+                int32_t domain, int threads) {
+    Report report;
+    raps_mesh* mesh = nullptr;
+    raps_settings* settings = nullptr;
+    raps_result* result = nullptr;
+    raps_mesh_create(&mesh);
+    raps_settings_create(&settings);
+    raps_result_create(&result);
+    raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, domain);
+    raps_settings_set_int(settings, RAPS_PARAM_THREADS, threads);
+    std::vector<Call> calls;
+    calls.reserve(1 << 20);
+    raps_settings_set_progress(settings, record_call, &calls);
+    raps_mesh_set_positions_f64(mesh, positions.data(), positions.size() / 3, 0);
+    raps_mesh_set_indices_u32(mesh, triangles.data(), triangles.size());
+    const Clock::time_point start = Clock::now();
+    const raps_status status = raps_parameterize(mesh, settings, result);
+    const Clock::time_point end = Clock::now();
+    if (status == RAPS_OK) {
+        report.ok = 1;
+        report.triangles = triangles.size() / 3;
+        report.total_ms = std::chrono::duration<double, std::milli>(end - start).count();
+        if (!calls.empty()) {
+            report.after_last_call_ms =
+                std::chrono::duration<double, std::milli>(end - calls.back().at).count();
+        }
+        summarise(calls, start, report);
+    } else {
+        std::fprintf(stderr, "raps-bench-progress: %s: %s\n", raps_status_string(status),
+                     raps_result_last_error(result));
+    }
+    raps_result_destroy(result);
+    raps_settings_destroy(settings);
+    raps_mesh_destroy(mesh);
+    return report;
+}
+
+struct Case {
+    const char* name;
+    int32_t domain;
+    const char* file;
+    int subdivisions;
+};
+
+// Runs the case in a child process; the report and the child's peak resident MB.
+std::pair<Report, double> run_in_child(const std::string& data, const Case& c, int threads) {
+    int fds[2];
+    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid == 0) {
+        close(fds[0]);
+        try {
+            const raps_samples::PolygonMesh mesh =
+                raps_samples::read_mesh(data + "/meshes/" + c.file);
+            std::vector<double> positions = mesh.positions;
+            std::vector<uint32_t> triangles = mesh.triangles();
+            for (int s = 0; s < c.subdivisions; ++s)
+                raps_samples::subdivide_midpoint(positions, triangles);
+            const Report report = run_case(positions, triangles, c.domain, threads);
+            if (write(fds[1], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
+                _exit(3);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "raps-bench-progress: %s\n", e.what());
+            _exit(2);
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    Report report;
+    if (read(fds[0], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
+        report.ok = 0;
+    close(fds[0]);
+    int status = 0;
+    struct rusage usage;
+    wait4(pid, &status, 0, &usage);
+    return {report, usage.ru_maxrss / 1024.0};
+}
+
+void print_case(const Case& c, const Report& r, double peak_mb) {
+    if (!r.ok) {
+        std::printf("| %s | %s/%d | failed |\n", c.name, c.file, 1 << (2 * c.subdivisions));
+        return;
+    }
+    double worst = r.after_last_call_ms;
+    for (const PhaseFigures& p : r.phase) worst = std::max(worst, p.longest_gap_ms);
+    std::printf("| %s | %s/%d | %llu | %.0f | %.0f | **%.1f**", c.name, c.file,
+                1 << (2 * c.subdivisions), static_cast<unsigned long long>(r.triangles), r.total_ms,
+                peak_mb, worst);
+    for (const PhaseFigures& p : r.phase) {
+        if (p.calls == 0) {
+            std::printf(" | -");
+            continue;
+        }
+        std::printf(" | %d / %.1f (%.3f-%.3f)%s", p.calls, p.longest_gap_ms, p.gap_from, p.gap_to,
+                    p.monotone && p.reached_one ? "" : " (not monotone to 1)");
+    }
+    std::printf(" | %.1f |\n", r.after_last_call_ms);
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string data = RAPS_SHARED_DATA_DIR, only;
+    int subdivisions = 2, threads = 0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (i + 1 >= argc) {
+            std::fprintf(stderr,
+                         "usage: raps-bench-progress [--data DIR] [--subdivide K] [--threads N] "
+                         "[--only disk|atlas|sphere]\n");
+            return 2;
+        }
+        const std::string value = argv[++i];
+        if (arg == "--data")
+            data = value;
+        else if (arg == "--subdivide")
+            subdivisions = std::max(0, std::atoi(value.c_str()));
+        else if (arg == "--threads")
+            threads = std::atoi(value.c_str());
+        else if (arg == "--only")
+            only = value;
+        else {
+            std::fprintf(stderr, "raps-bench-progress: unknown option %s\n", arg.c_str());
+            return 2;
+        }
+    }
+    const Case cases[] = {
+        {"disk", RAPS_DOMAIN_DISK, "face.obj", subdivisions},
+        {"atlas", RAPS_DOMAIN_ATLAS, "face.obj", subdivisions},
+        {"sphere", RAPS_DOMAIN_SPHERE, "bunny.off", subdivisions + 1},
+    };
+    std::printf("raps %s, threads %d (0 = all), one run per case\n\n", raps_version_string(),
+                threads);
+    std::printf(
+        "Per phase: progress calls / longest gap in ms before one of them (the fractions "
+        "of the calls before and after it). Worst: the "
+        "longest gap of the run, the time after the last call included.\n\n");
+    std::printf("| domain | mesh | triangles | ms | peak MB | worst gap ms");
+    for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p)
+        std::printf(" | %s", raps_samples::phase_name(p));
+    std::printf(" | after last call ms |\n|---|---|---:|---:|---:|---:");
+    for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p) std::printf("|---:");
+    std::printf("|---:|\n");
+    for (const Case& c : cases) {
+        if (!only.empty() && only != c.name) continue;
+        const std::pair<Report, double> r = run_in_child(data, c, threads);
+        print_case(c, r.first, r.second);
+    }
+    return 0;
+}
