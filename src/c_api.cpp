@@ -25,7 +25,8 @@ static_assert(sizeof(raps_stats) == 8 + 6 * 8 + 6 * 8 + 4 * 8 + 8 + 8 + 3 * 8,
 static_assert(offsetof(raps_stats, relaxation_sweeps) == 104, "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, threads_used) == 144, "raps_stats layout is ABI");
 static_assert(offsetof(raps_stats, texels_per_unit) == 168, "raps_stats layout is ABI");
-static_assert(sizeof(raps_chart) == 32 + 8 + 8 + 3 * 8, "raps_chart layout is ABI");
+static_assert(sizeof(raps_chart) == 32 + 8 + 8 + 3 * 8 + 8, "raps_chart layout is ABI");
+static_assert(offsetof(raps_chart, stacked_on) == 72, "raps_chart layout is ABI");
 static_assert(offsetof(raps_chart, rotation_deg) == 32, "raps_chart layout is ABI");
 
 #define RAPS_CHECK_CODE(name, value) \
@@ -55,6 +56,9 @@ RAPS_CHECK_CODE(kOpenMesh, RAPS_ERROR_OPEN_MESH);
 RAPS_CHECK_CODE(kInvalidTransform, RAPS_ERROR_INVALID_TRANSFORM);
 RAPS_CHECK_CODE(kGroupCount, RAPS_ERROR_GROUP_COUNT);
 RAPS_CHECK_CODE(kSeamNotAnEdge, RAPS_ERROR_SEAM_NOT_AN_EDGE);
+RAPS_CHECK_CODE(kUvCount, RAPS_ERROR_UV_COUNT);
+RAPS_CHECK_CODE(kNonFiniteUv, RAPS_ERROR_NON_FINITE_UV);
+RAPS_CHECK_CODE(kDegenerateUvChart, RAPS_ERROR_DEGENERATE_UV_CHART);
 #undef RAPS_CHECK_CODE
 
 struct raps_mesh {
@@ -188,6 +192,10 @@ constexpr ParamInfo kParams[] = {
     {RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
     {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, "atlas_keep_input_seams", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_REPACK, "atlas_repack", false, 0, 1, 0},
+    {RAPS_PARAM_ATLAS_STACK, "atlas_stack", false, RAPS_STACK_NONE, RAPS_STACK_MIRRORED,
+     RAPS_STACK_NONE},
+    {RAPS_PARAM_ATLAS_STACK_TOLERANCE, "atlas_stack_tolerance", true, 0.0, 0.1, 1e-4},
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -271,6 +279,10 @@ int64_t get_int(const raps::Settings& s, raps_param id) {
             return s.atlas_whole_texels ? 1 : 0;
         case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
             return s.atlas_keep_input_seams ? 1 : 0;
+        case RAPS_PARAM_ATLAS_REPACK:
+            return s.atlas_repack ? 1 : 0;
+        case RAPS_PARAM_ATLAS_STACK:
+            return static_cast<int64_t>(s.atlas_stack);
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -347,6 +359,12 @@ void set_int(raps::Settings& s, raps_param id, int64_t v) {
         case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
             s.atlas_keep_input_seams = v != 0;
             break;
+        case RAPS_PARAM_ATLAS_REPACK:
+            s.atlas_repack = v != 0;
+            break;
+        case RAPS_PARAM_ATLAS_STACK:
+            s.atlas_stack = static_cast<raps::ChartStacking>(v);
+            break;
         default:
             throw Error(ErrorCode::kInternal, "int parameter without a field");
     }
@@ -372,6 +390,8 @@ auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
             return &s.atlas_max_linf;
         case RAPS_PARAM_ATLAS_TEXELS_PER_UNIT:
             return &s.atlas_texels_per_unit;
+        case RAPS_PARAM_ATLAS_STACK_TOLERANCE:
+            return &s.atlas_stack_tolerance;
         default:
             throw Error(ErrorCode::kInternal, "float parameter without a field");
     }
@@ -427,6 +447,50 @@ void read_positions(raps_mesh* mesh, const T* xyz, size_t count, size_t stride) 
         }
     }
     mesh->mesh.positions = std::move(positions);
+}
+
+// Reads `count` uv pairs of type T at `stride` bytes into doubles, refusing non-finite and huge
+// values as positions are refused; NULL with 0 removes them.
+template <typename T>
+void read_corner_uvs(raps_mesh* mesh, const T* uv, size_t count, size_t stride) {
+    require(mesh != nullptr, "mesh is NULL");
+    require(uv != nullptr || count == 0, "uv pointer is NULL");
+    if (count > static_cast<size_t>(3 * kMaxTriangles)) {
+        throw Error(ErrorCode::kTooLarge, "corner_count " + std::to_string(count) +
+                                              " is more than the corners of the largest mesh "
+                                              "raps accepts (3 * 2^28)");
+    }
+    if (stride == 0) stride = 2 * sizeof(T);
+    if (stride < 2 * sizeof(T)) {
+        throw Error(ErrorCode::kInvalidArgument, "stride_bytes " + std::to_string(stride) +
+                                                     " is smaller than one uv pair (" +
+                                                     std::to_string(2 * sizeof(T)) + " bytes)");
+    }
+    if (count > 1 && stride > (SIZE_MAX - 2 * sizeof(T)) / (count - 1)) {
+        throw Error(ErrorCode::kInvalidArgument,
+                    "corner_count " + std::to_string(count) + " pairs at stride_bytes " +
+                        std::to_string(stride) + " span more bytes than an address can reach");
+    }
+    std::vector<Eigen::Vector2d> corner_uv(count);
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(uv);
+    for (size_t i = 0; i < count; ++i) {
+        T pair[2];
+        std::memcpy(pair, bytes + i * stride, sizeof(pair));
+        for (int c = 0; c < 2; ++c) {
+            const double value = static_cast<double>(pair[c]);
+            if (!(std::abs(value) <= kMaxCoordinate)) {  // also NaN
+                char text[32];
+                std::snprintf(text, sizeof(text), "%g", value);
+                throw Error(ErrorCode::kNonFiniteUv,
+                            "corner " + std::to_string(i) + " (triangle " + std::to_string(i / 3) +
+                                ") has a uv " +
+                                (std::isfinite(value) ? "beyond 1e30 (" : "that is not finite (") +
+                                text + ")");
+            }
+            corner_uv[i][c] = value;
+        }
+    }
+    mesh->mesh.corner_uv = std::move(corner_uv);
 }
 
 template <typename T>
@@ -579,13 +643,17 @@ Eigen::Matrix<double, 3, 4> checked_transform(const double* m) {
 }
 
 // Fills the fields of raps_chart that fit the caller's struct_size.
-void copy_chart(const raps::AtlasChartRecord& record, raps_chart* chart) {
+void copy_chart(const raps::AtlasChartRecord& record, size_t index, raps_chart* chart) {
     raps_chart full;
     std::memset(&full, 0, sizeof(full));
     full.struct_size = static_cast<uint32_t>(std::min<size_t>(chart->struct_size, sizeof(full)));
     full.mesh = static_cast<uint32_t>(record.part);
     full.page = static_cast<uint32_t>(record.page);
-    full.flags = record.scaled_down ? static_cast<uint32_t>(RAPS_CHART_SCALED_DOWN) : 0u;
+    full.flags = (record.scaled_down ? static_cast<uint32_t>(RAPS_CHART_SCALED_DOWN) : 0u) |
+                 (record.stacked_on != static_cast<int64_t>(index)
+                      ? static_cast<uint32_t>(RAPS_CHART_STACKED)
+                      : 0u);
+    full.stacked_on = static_cast<uint32_t>(record.stacked_on);
     full.x = static_cast<uint32_t>(record.x);
     full.y = static_cast<uint32_t>(record.y);
     full.width = static_cast<uint32_t>(record.width);
@@ -703,6 +771,12 @@ const char* raps_status_string(raps_status status) {
             return "triangle group count differs from the triangle count";
         case RAPS_ERROR_SEAM_NOT_AN_EDGE:
             return "seam edge is not an edge of the mesh";
+        case RAPS_ERROR_UV_COUNT:
+            return "corner uv count differs from three per triangle";
+        case RAPS_ERROR_NON_FINITE_UV:
+            return "non-finite uv";
+        case RAPS_ERROR_DEGENERATE_UV_CHART:
+            return "uv chart with zero area";
         default:
             return "unknown status";
     }
@@ -777,6 +851,18 @@ raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pai
             edges[i] = {vertex_pairs[2 * i], vertex_pairs[2 * i + 1]};
         mesh->mesh.seam_edges = std::move(edges);
     });
+}
+
+raps_status raps_mesh_set_corner_uvs_f32(raps_mesh* mesh, const float* uv, size_t corner_count,
+                                         size_t stride_bytes) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_corner_uvs(mesh, uv, corner_count, stride_bytes); });
+}
+
+raps_status raps_mesh_set_corner_uvs_f64(raps_mesh* mesh, const double* uv, size_t corner_count,
+                                         size_t stride_bytes) {
+    return guarded(mesh ? &mesh->last_error : nullptr,
+                   [&] { read_corner_uvs(mesh, uv, corner_count, stride_bytes); });
 }
 
 size_t raps_mesh_vertex_count(const raps_mesh* mesh) {
@@ -1005,7 +1091,7 @@ raps_status raps_result_get_chart(const raps_result* result, size_t index, raps_
                                                          " is out of range: the atlas has " +
                                                          std::to_string(charts.size()) + " charts");
         }
-        copy_chart(charts[index], chart);
+        copy_chart(charts[index], index, chart);
     });
 }
 

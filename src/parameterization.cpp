@@ -100,6 +100,20 @@ void check_limits(const TriangleMesh& mesh, const Settings& settings) {
     }
 }
 
+// The triangles of the charts that hold their own place in the atlas: a stacked chart's
+// texels are its place's, counted once.
+std::vector<Triangle> placed_triangles(const std::vector<Triangle>& triangles,
+                                       const AtlasOutput& atlas) {
+    std::vector<Triangle> placed;
+    placed.reserve(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        const uint32_t chart = atlas.chart_of[t];
+        if (atlas.charts[chart].stacked_on == static_cast<int64_t>(chart))
+            placed.push_back(triangles[t]);
+    }
+    return placed;
+}
+
 // The atlas of `mesh` made of `parts`; indices and remap global (into the whole mesh).
 Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
                            const Settings& settings, const Progress& progress) {
@@ -124,7 +138,8 @@ Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
     const std::vector<Triangle> triangles = output_triangles(atlas.indices, timer.span(0.1, 0.2));
     out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool,
                                         timer.span(0.2, 0.95));
-    out.utilization = uv_area(atlas.uv, triangles, timer.span(0.95, 1.0), atlas.page_count);
+    out.utilization = uv_area(atlas.uv, placed_triangles(triangles, atlas), timer.span(0.95, 1.0),
+                              atlas.page_count);
     out.uv = std::move(atlas.uv);
     out.indices = std::move(atlas.indices);
     out.vertex_remap = std::move(atlas.remap);
@@ -238,7 +253,7 @@ Parameterization parameterize_scene(const std::vector<ScenePart>& parts, const S
         meshes.push_back(part.mesh);
         transforms.push_back(part.transform);
     }
-    const SceneMesh scene = combine_scene(meshes, transforms);
+    const SceneMesh scene = combine_scene(meshes, transforms, settings.atlas_repack);
     check_limits(scene.mesh, settings);
     Parameterization out = atlas_map(scene.mesh, scene.parts, settings, progress);
     // Each mesh's share reads as its own: remap to its own input vertices, indices to its own

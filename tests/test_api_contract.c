@@ -52,6 +52,16 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(RAPS_ERROR_INVALID_TRANSFORM, 23);
     assert_int_equal(RAPS_ERROR_GROUP_COUNT, 24);
     assert_int_equal(RAPS_ERROR_SEAM_NOT_AN_EDGE, 25);
+    assert_int_equal(RAPS_ERROR_UV_COUNT, 26);
+    assert_int_equal(RAPS_ERROR_NON_FINITE_UV, 27);
+    assert_int_equal(RAPS_ERROR_DEGENERATE_UV_CHART, 28);
+    assert_int_equal(RAPS_PARAM_ATLAS_REPACK, 47);
+    assert_int_equal(RAPS_PARAM_ATLAS_STACK, 48);
+    assert_int_equal(RAPS_PARAM_ATLAS_STACK_TOLERANCE, 49);
+    assert_int_equal(RAPS_STACK_MIRRORED, 2);
+    assert_int_equal(RAPS_CHART_STACKED, 2);
+    assert_int_equal(offsetof(raps_chart, stacked_on), 72);
+    assert_int_equal(sizeof(raps_chart), 80);
     assert_int_equal(RAPS_PARAM_DOMAIN, 1);
     assert_int_equal(RAPS_PARAM_MAX_TRIANGLES, 8);
     assert_int_equal(RAPS_PARAM_THREADS, 9);
@@ -94,7 +104,6 @@ static void status_values_are_pinned(void** state) {
     assert_int_equal(offsetof(raps_stats, threads_used), 144);
     assert_int_equal(offsetof(raps_stats, page_count), 152);
     assert_int_equal(offsetof(raps_stats, texels_per_unit), 168);
-    assert_int_equal(sizeof(raps_chart), 72);
     assert_int_equal(offsetof(raps_chart, x), 16);
     assert_int_equal(offsetof(raps_chart, rotation_deg), 32);
     assert_int_equal(offsetof(raps_chart, stretch_l2), 64);
@@ -102,7 +111,7 @@ static void status_values_are_pinned(void** state) {
 
 static void every_status_has_a_description(void** state) {
     (void)state;
-    for (int s = RAPS_OK; s <= RAPS_ERROR_SEAM_NOT_AN_EDGE; ++s) {
+    for (int s = RAPS_OK; s <= RAPS_ERROR_DEGENERATE_UV_CHART; ++s) {
         const char* text = raps_status_string(s);
         assert_non_null(text);
         assert_string_not_equal(text, "unknown status");
@@ -147,7 +156,9 @@ static void settings_hold_the_documented_defaults(void** state) {
                     {RAPS_PARAM_SPHERE_MAX_SWEEPS, 0},
                     {RAPS_PARAM_SPHERE_ALPHA_STEPS, 2},
                     {RAPS_PARAM_MAX_MEMORY_MB, 0},
-                    {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, 0}};
+                    {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, 0},
+                    {RAPS_PARAM_ATLAS_REPACK, 0},
+                    {RAPS_PARAM_ATLAS_STACK, RAPS_STACK_NONE}};
     for (size_t i = 0; i < sizeof(expected) / sizeof(expected[0]); ++i) {
         int64_t value = -1;
         assert_status(raps_settings_get_int(s, expected[i].param, &value), RAPS_OK);
@@ -166,7 +177,8 @@ static void settings_hold_the_documented_defaults(void** state) {
         double value;
     } expected_float[] = {{RAPS_PARAM_ALPHA, 1.0},
                           {RAPS_PARAM_SPHERE_DAMPING, 1.0},
-                          {RAPS_PARAM_SPHERE_TOLERANCE, 1e-4}};
+                          {RAPS_PARAM_SPHERE_TOLERANCE, 1e-4},
+                          {RAPS_PARAM_ATLAS_STACK_TOLERANCE, 1e-4}};
     for (size_t i = 0; i < sizeof(expected_float) / sizeof(expected_float[0]); ++i) {
         double value = 0, fallback = -1;
         int32_t is_float = -1;
@@ -219,7 +231,7 @@ static void every_parameter_round_trips(void** state) {
                           RAPS_ERROR_INVALID_ARGUMENT);
         }
     }
-    assert_int_equal(known, 31);
+    assert_int_equal(known, 34);
     raps_settings_destroy(s);
 }
 

@@ -223,6 +223,12 @@ namespace Raps
         /// that gathers degenerate triangles with no chart beside them.
         /// </summary>
         public double StretchL2;
+        /// <summary>
+        /// The chart whose texels it shares (RAPS_PARAM_ATLAS_STACK; RAPS_CHART_STACKED is set);
+        /// its own index when it shares none.
+        /// </summary>
+        public uint StackedOn;
+        public uint Reserved;
     }
 
     /// <summary>
@@ -368,6 +374,22 @@ namespace Raps
         /// joins by an edge (the message names the pair).
         /// </summary>
         public const int RAPS_ERROR_SEAM_NOT_AN_EDGE = 25;
+        /// <summary>
+        /// Atlas domain with RAPS_PARAM_ATLAS_REPACK: the mesh's corner uvs
+        /// (raps_mesh_set_corner_uvs_f32/f64) are not three per triangle (never set, the indices
+        /// changed since, or the count was wrong).
+        /// </summary>
+        public const int RAPS_ERROR_UV_COUNT = 26;
+        /// <summary>
+        /// raps_mesh_set_corner_uvs_f32/f64: a uv coordinate is NaN, infinite or beyond +-1e30.
+        /// </summary>
+        public const int RAPS_ERROR_NON_FINITE_UV = 27;
+        /// <summary>
+        /// Atlas domain with RAPS_PARAM_ATLAS_REPACK: a uv chart of the input has 3D area but
+        /// (numerically) no uv area (below 1e-12 times its uv bounding box's squared diagonal): it
+        /// has no shape to keep. The message names its first triangle.
+        /// </summary>
+        public const int RAPS_ERROR_DEGENERATE_UV_CHART = 28;
 
         /// <summary>
         /// int. The parameter domain. Default RAPS_DOMAIN_DISK.
@@ -542,6 +564,65 @@ namespace Raps
         /// when those are expressed, as usual, by split vertices.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46;
+        /// <summary>
+        /// int, 0 or 1. 1 repacks the mesh's own uvs (raps_mesh_set_corner_uvs_f32/f64) instead of
+        /// mapping it again: the charts are the uv islands (triangles sharing an edge, whose two
+        /// vertices are welded by position as RAPS_PARAM_WELD_TOLERANCE says, are in one chart when
+        /// their corner uvs at both ends are equal, bit for bit), each scaled uniformly to the
+        /// atlas's one texel density (its uv area in texels is its 3D area in world units times the
+        /// density squared) and packed like mapped charts, by every packing setting (resolution or
+        /// density, pages, padding, margin, block alignment, rotation, mesh per page, whole texels).
+        /// A chart's uvs are only moved, turned (as RAPS_PARAM_ATLAS_ROTATION allows) and uniformly
+        /// scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
+        /// triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
+        /// raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
+        /// area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
+        /// stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
+        /// used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
+        /// chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
+        /// islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_REPACK = 47;
+        /// <summary>
+        /// int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
+        /// or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
+        /// one mesh in one mesh) then costs no extra texels. Two charts stack when they are the same
+        /// triangles over the same chart vertices (as copies with the same vertex and triangle order
+        /// give) and their 3D vertices agree, vertex for vertex, up to a rigid motion (or a mirror,
+        /// with RAPS_STACK_MIRRORED) within RAPS_PARAM_ATLAS_STACK_TOLERANCE; when repacking, their
+        /// own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
+        /// chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
+        /// RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
+        /// texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
+        /// that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
+        /// seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
+        /// of its own, each then stacked on its original. A copy drawn mirrored (a transform with
+        /// det &lt; 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
+        /// counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
+        /// stack. A lightmap needs every chart its own texels: leave this off for one. Default
+        /// NONE.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_STACK = 48;
+        /// <summary>
+        /// float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
+        /// farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
+        /// puts the chart it shares. Default 1e-4.
+        /// </summary>
+        public const int RAPS_PARAM_ATLAS_STACK_TOLERANCE = 49;
+
+        // RAPS_PARAM_ATLAS_STACK values
+        /// <summary>
+        /// every chart its own texels
+        /// </summary>
+        public const int RAPS_STACK_NONE = 0;
+        /// <summary>
+        /// congruent up to a rigid motion: one place
+        /// </summary>
+        public const int RAPS_STACK_RIGID = 1;
+        /// <summary>
+        /// also congruent up to a mirror (the texture appears mirrored)
+        /// </summary>
+        public const int RAPS_STACK_MIRRORED = 2;
 
         // RAPS_PARAM_ATLAS_ROTATION values
         /// <summary>
@@ -717,6 +798,10 @@ namespace Raps
         /// texels per world unit are below raps_stats.texels_per_unit).
         /// </summary>
         public const int RAPS_CHART_SCALED_DOWN = 1;
+        /// <summary>
+        /// The chart shares the texels of an earlier, congruent chart (raps_chart.stacked_on).
+        /// </summary>
+        public const int RAPS_CHART_STACKED = 2;
 
         /// <summary>
         /// The version of the library actually loaded, encoded like RAPS_VERSION. Thread-safe.
@@ -842,6 +927,46 @@ namespace Raps
         public static extern int raps_mesh_set_seam_edges(MeshHandle mesh, uint[] vertex_pairs, UIntPtr edge_count);
 
         /// <summary>
+        /// The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+        /// ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+        /// pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+        /// pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+        /// f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+        /// are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+        /// Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+        /// removes them (the default: none). The data is copied; the pointer need not be aligned. The
+        /// count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+        /// set in either order.
+        /// Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+        /// smaller than one pair, or so large that the pairs would span more bytes than an address
+        /// reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+        /// +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+        /// failure. When repacked: UV_COUNT (not three per triangle).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_corner_uvs_f32(MeshHandle mesh, float[] uv, UIntPtr corner_count, UIntPtr stride_bytes);
+
+        /// <summary>
+        /// The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+        /// ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+        /// pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+        /// pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+        /// f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+        /// are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+        /// Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+        /// removes them (the default: none). The data is copied; the pointer need not be aligned. The
+        /// count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+        /// set in either order.
+        /// Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+        /// smaller than one pair, or so large that the pairs would span more bytes than an address
+        /// reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+        /// +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+        /// failure. When repacked: UV_COUNT (not three per triangle).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_mesh_set_corner_uvs_f64(MeshHandle mesh, double[] uv, UIntPtr corner_count, UIntPtr stride_bytes);
+
+        /// <summary>
         /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -959,7 +1084,8 @@ namespace Raps
         /// INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
         /// MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
         /// INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
-        /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges).
+        /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges); UV_COUNT and
+        /// DEGENERATE_UV_CHART when repacking (RAPS_PARAM_ATLAS_REPACK).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_parameterize(MeshHandle mesh, SettingsHandle settings, ResultHandle result);
@@ -969,7 +1095,8 @@ namespace Raps
         /// RAPS_DOMAIN_ATLAS): each mesh is placed in world units by its transform
         /// (raps_mesh_set_transform), cut into charts of its own (no chart joins two meshes, even where
         /// they touch) and every chart is packed at one texel density. The same mesh handle may appear
-        /// more than once (it is then packed once per appearance). meshes and settings are only read,
+        /// more than once (it is then packed once per appearance, or shares its first appearance's
+        /// texels with RAPS_PARAM_ATLAS_STACK). meshes and settings are only read,
         /// as for raps_parameterize; the result is replaced.
         /// The result holds the meshes' outputs one after another, in the order given:
         /// raps_result_mesh_range gives each mesh's output vertices and indices, and within a mesh's

@@ -48,7 +48,14 @@ namespace Raps
         GroupCount = Native.RAPS_ERROR_GROUP_COUNT,
         /// <summary>Atlas domain: a seam edge (Mesh.SetSeamEdges) is not an edge of the
         /// mesh.</summary>
-        SeamNotAnEdge = Native.RAPS_ERROR_SEAM_NOT_AN_EDGE
+        SeamNotAnEdge = Native.RAPS_ERROR_SEAM_NOT_AN_EDGE,
+        /// <summary>Repacking (Settings.AtlasRepack): the corner uvs (Mesh.SetCornerUvs) are
+        /// not three per triangle.</summary>
+        UvCount = Native.RAPS_ERROR_UV_COUNT,
+        /// <summary>Mesh.SetCornerUvs: a uv is NaN, infinite or beyond 1e30.</summary>
+        NonFiniteUv = Native.RAPS_ERROR_NON_FINITE_UV,
+        /// <summary>Repacking: a uv chart has 3D area but no uv area.</summary>
+        DegenerateUvChart = Native.RAPS_ERROR_DEGENERATE_UV_CHART
     }
 
     public enum Param
@@ -83,7 +90,10 @@ namespace Raps
         AtlasBlockAlign = Native.RAPS_PARAM_ATLAS_BLOCK_ALIGN,
         AtlasMeshPerPage = Native.RAPS_PARAM_ATLAS_MESH_PER_PAGE,
         AtlasWholeTexels = Native.RAPS_PARAM_ATLAS_WHOLE_TEXELS,
-        AtlasKeepInputSeams = Native.RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS
+        AtlasKeepInputSeams = Native.RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
+        AtlasRepack = Native.RAPS_PARAM_ATLAS_REPACK,
+        AtlasStack = Native.RAPS_PARAM_ATLAS_STACK,
+        AtlasStackTolerance = Native.RAPS_PARAM_ATLAS_STACK_TOLERANCE
     }
 
     /// <summary>Which turns the atlas's packing may give a chart (Param.AtlasRotation).</summary>
@@ -96,6 +106,19 @@ namespace Raps
         Quarter = Native.RAPS_ROTATION_QUARTER,
         /// <summary>None: each chart keeps its map's orientation.</summary>
         None = Native.RAPS_ROTATION_NONE
+    }
+
+    /// <summary>Whether congruent charts share one place in the atlas
+    /// (Param.AtlasStack).</summary>
+    public enum Stacking
+    {
+        /// <summary>Every chart its own texels (the default).</summary>
+        None = Native.RAPS_STACK_NONE,
+        /// <summary>Charts congruent up to a rigid motion share one place.</summary>
+        Rigid = Native.RAPS_STACK_RIGID,
+        /// <summary>Also charts congruent only up to a mirror (their texture appears
+        /// mirrored).</summary>
+        Mirrored = Native.RAPS_STACK_MIRRORED
     }
 
     /// <summary>Where one input mesh lies in a result's output (Result.GetMeshRange).</summary>
@@ -343,6 +366,32 @@ namespace Raps
             uint[] data = vertexPairs != null && vertexPairs.Length > 0 ? vertexPairs : null;
             Interop.Check(Native.raps_mesh_set_seam_edges(
                               handle, data, Interop.Size(data == null ? 0 : data.Length / 2)),
+                          LastError);
+        }
+
+        /// <summary>The mesh's own uvs, read when Settings.AtlasRepack repacks them: packed
+        /// u, v per triangle corner (corner 3t + k is corner k of triangle t). null or an empty
+        /// array removes them. A non-finite uv throws Status.NonFiniteUv; a count other than
+        /// three per triangle throws Status.UvCount when the mesh is repacked.</summary>
+        public void SetCornerUvs(float[] uv)
+        {
+            if (uv != null && uv.Length % 2 != 0)
+                throw Interop.BadInput("corner uvs are u, v pairs, not " + uv.Length + " values");
+            float[] data = uv != null && uv.Length > 0 ? uv : null;
+            Interop.Check(Native.raps_mesh_set_corner_uvs_f32(
+                              handle, data, Interop.Size(data == null ? 0 : data.Length / 2),
+                              UIntPtr.Zero),
+                          LastError);
+        }
+
+        public void SetCornerUvs(double[] uv)
+        {
+            if (uv != null && uv.Length % 2 != 0)
+                throw Interop.BadInput("corner uvs are u, v pairs, not " + uv.Length + " values");
+            double[] data = uv != null && uv.Length > 0 ? uv : null;
+            Interop.Check(Native.raps_mesh_set_corner_uvs_f64(
+                              handle, data, Interop.Size(data == null ? 0 : data.Length / 2),
+                              UIntPtr.Zero),
                           LastError);
         }
 
@@ -670,6 +719,24 @@ namespace Raps
         {
             get { return GetFloat(Param.AtlasMaxLinfStretch); }
             set { SetFloat(Param.AtlasMaxLinfStretch, value); }
+        }
+
+        /// <summary>Atlas: true repacks the mesh's own uvs (Mesh.SetCornerUvs) instead of
+        /// mapping it: the uv islands are the charts, each only moved, turned and uniformly
+        /// scaled to the one texel density.</summary>
+        public bool AtlasRepack
+        {
+            get { return GetInt(Param.AtlasRepack) != 0; }
+            set { SetInt(Param.AtlasRepack, value ? 1 : 0); }
+        }
+
+        /// <summary>Atlas: whether congruent charts share one place (Stacking.None by
+        /// default); a stacked chart's Chart.StackedOn names the chart whose texels it
+        /// takes.</summary>
+        public Stacking AtlasStack
+        {
+            get { return (Stacking)GetInt(Param.AtlasStack); }
+            set { SetInt(Param.AtlasStack, (long)value); }
         }
 
         public void Dispose()

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -63,6 +64,17 @@ double parse_double(std::string_view token, const std::string& path, size_t line
         fail(path, line, "cannot read number '" + std::string(token) + "'");
     }
     return value;
+}
+
+// A texcoord's coordinate; NaN when it is not a number. Only --repack reads them (and the
+// library refuses NaN there, naming the corner), so a file whose vt lines nothing uses still
+// reads as before.
+double lenient_double(std::string_view token) {
+    double value = 0;
+    const char* first = token.data();
+    if (!token.empty() && token[0] == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
+    return ec != std::errc() || ptr != token.data() + token.size() ? NAN : value;
 }
 
 long long parse_integer(std::string_view token, const std::string& path, size_t line) {
@@ -143,6 +155,9 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
                                               .first->second);
         } else if (keyword == "vt") {
             ++texcoord_count;
+            std::string_view coordinate;
+            mesh.texcoords.push_back(tokens.next(coordinate) ? lenient_double(coordinate) : NAN);
+            mesh.texcoords.push_back(tokens.next(coordinate) ? lenient_double(coordinate) : 0.0);
         } else if (keyword == "g" || keyword == "usemtl") {
             std::string name;
             for (std::string_view part; tokens.next(part);) name += std::string(part) + ' ';
@@ -227,6 +242,22 @@ std::vector<uint32_t> PolygonMesh::triangles() const {
             out.push_back(corners[polygon_offsets[f]]);
             out.push_back(corners[c]);
             out.push_back(corners[c + 1]);
+        }
+    }
+    return out;
+}
+
+std::vector<double> PolygonMesh::triangle_texcoords() const {
+    std::vector<double> out;
+    auto add = [&](uint32_t corner) {
+        out.push_back(texcoords[2 * static_cast<size_t>(texcoord_corners[corner])]);
+        out.push_back(texcoords[2 * static_cast<size_t>(texcoord_corners[corner]) + 1]);
+    };
+    for (size_t f = 0; f < polygon_count(); ++f) {
+        for (uint32_t c = polygon_offsets[f] + 1; c + 1 < polygon_offsets[f + 1]; ++c) {
+            add(polygon_offsets[f]);
+            add(c);
+            add(c + 1);
         }
     }
     return out;

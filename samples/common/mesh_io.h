@@ -19,6 +19,7 @@ struct PolygonMesh {
     static constexpr uint32_t kNoTexcoord = 0xffffffffu;
     std::vector<uint32_t> texcoord_corners;
     std::vector<uint32_t> polygon_groups;
+    std::vector<double> texcoords;  // OBJ: u, v per `vt` line (v 0 where the line has none)
 
     size_t vertex_count() const { return positions.size() / 3; }
     size_t polygon_count() const { return polygon_offsets.size() - 1; }
@@ -26,6 +27,9 @@ struct PolygonMesh {
     std::vector<uint32_t> triangles() const;
     // Per triangle of triangles(), its polygon's group (empty without groups).
     std::vector<uint32_t> triangle_groups() const;
+    // Per corner of triangles(), its texcoord's u, v (needs texcoord_corners without
+    // kNoTexcoord): the file's own uvs, as raps_mesh_set_corner_uvs takes them.
+    std::vector<double> triangle_texcoords() const;
     // The mesh with one vertex per distinct (vertex, texcoord) pair of its corners, in order of
     // first use: the input's uv seams become vertex splits. Needs texcoord_corners.
     PolygonMesh split_at_texcoord_seams() const;

@@ -58,6 +58,7 @@ const std::vector<ParameterFlag> kParameterFlags = {
       {"quarter", RAPS_ROTATION_QUARTER},
       {"none", RAPS_ROTATION_NONE}}},
     {"--margin", RAPS_PARAM_ATLAS_MARGIN, true, {}},
+    {"--stack-tolerance", RAPS_PARAM_ATLAS_STACK_TOLERANCE, false, {}},
     {"--damping", RAPS_PARAM_SPHERE_DAMPING, false, {}},
     {"--tolerance", RAPS_PARAM_SPHERE_TOLERANCE, false, {}},
     {"--max-sweeps", RAPS_PARAM_SPHERE_MAX_SWEEPS, false, {}},

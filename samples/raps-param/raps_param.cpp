@@ -93,11 +93,24 @@ atlas options:
   --keep-uv-seams            keep the input's uv seams as chart boundaries: an OBJ's corners
                              with different `vt` are different vertices to the atlas, which
                              does not weld across them (every face corner needs a vt)
+  --repack                   keep each input's own uvs: the islands of its `vt` (faces that
+                             share an edge whose two ends name equal uvs) are the charts,
+                             each scaled to the one density and packed, never mapped again;
+                             only moved, turned (--rotate) and scaled; flipped or overlapping
+                             faces stay so (every face corner needs a vt)
+  --stack                    congruent charts share one place (the same triangles, vertices
+                             that agree up to a rigid motion): an input given twice, or one
+                             repeating an earlier one, costs no extra texels; the JSON's
+                             charts say "stacked_on"
+  --stack-mirrored           --stack, mirrored copies too (their texture appears mirrored)
+  --stack-tolerance F        how far a stacked chart's vertices may lie from its original's,
+                             as a fraction of the chart's extent, [0, 0.1] (default 1e-4)
   --obj-groups               no chart crosses from one OBJ group to another: faces under
                              different `g` or `usemtl` lines never share a chart
   --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
                              --mesh-per-page --whole-texels (--padding and --rotate given
-                             override theirs)
+                             override theirs); refuses --stack, a lightmap needs every chart
+                             its own texels
 sphere options:
   --sphere-method literal|robust
                              literal: the paper's algorithm 7.1 as written (Gauss map,
@@ -210,6 +223,7 @@ struct Options {
     std::string output;
     bool keep_uv_seams = false;  // the library sees a vertex per (v, vt) pair of the OBJ
     bool obj_groups = false;     // OBJ `g` / `usemtl` as triangle groups
+    bool repack = false;         // the OBJ's own vt as the charts
 };
 
 // Reads the command line into the settings; returns the files. Exits early (returning false)
@@ -250,6 +264,20 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
             check(raps_settings_set_int(settings, on->param, 1),
                   [&] { return raps_settings_last_error(settings); });
             options.keep_uv_seams = options.keep_uv_seams || arg == "--keep-uv-seams";
+        } else if (arg == "--repack") {
+            check(raps_settings_set_int(settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS),
+                  [&] { return raps_settings_last_error(settings); });
+            check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_REPACK, 1),
+                  [&] { return raps_settings_last_error(settings); });
+            options.repack = true;
+        } else if (arg == "--stack" || arg == "--stack-mirrored") {
+            if (lightmap)
+                throw UsageError(arg +
+                                 " and --lightmap exclude each other: a lightmap "
+                                 "needs every chart its own texels");
+            check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_STACK,
+                                        arg == "--stack" ? RAPS_STACK_RIGID : RAPS_STACK_MIRRORED),
+                  [&] { return raps_settings_last_error(settings); });
         } else if (arg == "--obj-groups") {
             options.obj_groups = true;
         } else if (const raps_samples::ParameterFlag* flag =
@@ -284,6 +312,22 @@ struct Input {
     ~Input() { raps_mesh_destroy(mesh); }
 };
 
+// --keep-uv-seams and --repack read the file's vt: every face corner must name one.
+void require_texcoords(const std::string& path, const raps_samples::PolygonMesh& polygons,
+                       const char* flag, raps_status status) {
+    const auto missing =
+        std::find(polygons.texcoord_corners.begin(), polygons.texcoord_corners.end(),
+                  raps_samples::PolygonMesh::kNoTexcoord);
+    if (polygons.texcoord_corners.empty() || missing != polygons.texcoord_corners.end()) {
+        const size_t corner = static_cast<size_t>(missing - polygons.texcoord_corners.begin());
+        throw Failure(status,
+                      path + ": " + flag + " needs an OBJ whose every face corner names a vt" +
+                          (polygons.texcoord_corners.empty()
+                               ? std::string(" (this file has no faces with vt)")
+                               : "; face corner " + std::to_string(corner) + " names none"));
+    }
+}
+
 // With --keep-uv-seams the library gets one vertex per (v, vt) pair, so the file's uv seams are
 // vertex splits it keeps; the OBJ is still written with the file's own `v` (the output's faces
 // are matched to the input's corners in order, never through the remap).
@@ -291,17 +335,7 @@ raps_samples::PolygonMesh library_view(const std::string& path,
                                        const raps_samples::PolygonMesh& polygons,
                                        const Options& options) {
     if (!options.keep_uv_seams) return polygons;
-    const auto missing =
-        std::find(polygons.texcoord_corners.begin(), polygons.texcoord_corners.end(),
-                  raps_samples::PolygonMesh::kNoTexcoord);
-    if (polygons.texcoord_corners.empty() || missing != polygons.texcoord_corners.end()) {
-        const size_t corner = static_cast<size_t>(missing - polygons.texcoord_corners.begin());
-        throw Failure(RAPS_ERROR_INVALID_ARGUMENT,
-                      path + ": --keep-uv-seams needs an OBJ whose every face corner names a vt" +
-                          (polygons.texcoord_corners.empty()
-                               ? std::string(" (this file has no faces with vt)")
-                               : "; face corner " + std::to_string(corner) + " names none"));
-    }
+    require_texcoords(path, polygons, "--keep-uv-seams", RAPS_ERROR_INVALID_ARGUMENT);
     return polygons.split_at_texcoord_seams();
 }
 
@@ -317,6 +351,12 @@ void load_input(const std::string& path, const Options& options, Input& input) {
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
     check(raps_mesh_set_indices_u32(input.mesh, triangles.data(), triangles.size()),
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    if (options.repack) {
+        require_texcoords(path, library, "--repack", RAPS_ERROR_UV_COUNT);
+        const std::vector<double> uv = library.triangle_texcoords();
+        check(raps_mesh_set_corner_uvs_f64(input.mesh, uv.data(), uv.size() / 2, 0),
+              [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    }
     if (options.obj_groups) {
         const std::vector<uint32_t> groups = library.triangle_groups();
         check(raps_mesh_set_triangle_groups(input.mesh, groups.data(), groups.size()),

@@ -54,8 +54,9 @@ std::string json_number(double value) {
 std::string settings_json(const raps_settings* settings) {
     int64_t domain, weights, monitor, iterations, mode, boundary, max_triangles, threads,
         resolution, padding, method, sphere_uv, max_sweeps, alpha_steps, max_width, max_height,
-        rotation, margin, block_align, mesh_per_page, whole_texels, keep_uv_seams;
-    double alpha, weld, hard_edge, max_l2, max_linf, damping, tolerance, texels_per_unit;
+        rotation, margin, block_align, mesh_per_page, whole_texels, keep_uv_seams, repack, stack;
+    double alpha, weld, hard_edge, max_l2, max_linf, damping, tolerance, texels_per_unit,
+        stack_tolerance;
     raps_settings_get_int(settings, RAPS_PARAM_DOMAIN, &domain);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_RESOLUTION, &resolution);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_PADDING, &padding);
@@ -72,6 +73,9 @@ std::string settings_json(const raps_settings* settings) {
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, &mesh_per_page);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_WHOLE_TEXELS, &whole_texels);
     raps_settings_get_int(settings, RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, &keep_uv_seams);
+    raps_settings_get_int(settings, RAPS_PARAM_ATLAS_REPACK, &repack);
+    raps_settings_get_int(settings, RAPS_PARAM_ATLAS_STACK, &stack);
+    raps_settings_get_float(settings, RAPS_PARAM_ATLAS_STACK_TOLERANCE, &stack_tolerance);
     raps_settings_get_int(settings, RAPS_PARAM_WEIGHTS, &weights);
     raps_settings_get_int(settings, RAPS_PARAM_MONITOR, &monitor);
     raps_settings_get_int(settings, RAPS_PARAM_ITERATIONS, &iterations);
@@ -117,7 +121,12 @@ std::string settings_json(const raps_settings* settings) {
                 ", \"block_align\": " + (block_align ? "true" : "false") +
                 ", \"mesh_per_page\": " + (mesh_per_page ? "true" : "false") +
                 ", \"whole_texels\": " + (whole_texels ? "true" : "false") +
-                ", \"keep_uv_seams\": " + (keep_uv_seams ? "true" : "false");
+                ", \"keep_uv_seams\": " + (keep_uv_seams ? "true" : "false") +
+                ", \"repack\": " + (repack ? "true" : "false") + ", \"stack\": \"" +
+                (stack == RAPS_STACK_NONE    ? "none"
+                 : stack == RAPS_STACK_RIGID ? "rigid"
+                                             : "mirrored") +
+                "\", \"stack_tolerance\": " + json_number(stack_tolerance);
     } else {
         json += std::string(", \"boundary\": \"") + choice_name("--boundary", boundary) + "\"";
     }
@@ -156,7 +165,10 @@ std::string atlas_json(const std::vector<std::string>& paths, const std::vector<
     };
     std::vector<Sum> per_input(paths.size()), per_page(stats.page_count);
     for (const raps_chart& chart : charts) {
+        // A stacked chart's texels are its original's: a page counts them once.
+        const bool stacked = (chart.flags & RAPS_CHART_STACKED) != 0;
         for (Sum* sum : {&per_input[chart.mesh], &per_page[chart.page]}) {
+            if (stacked && sum != &per_input[chart.mesh]) continue;
             ++sum->charts;
             sum->area_3d += chart.area_3d;
             sum->area_texels += chart.area_texels;
@@ -194,7 +206,7 @@ std::string atlas_json(const std::vector<std::string>& paths, const std::vector<
             ", \"area_texels\": " + json_number(chart.area_texels) +
             ", \"stretch_l2\": " + json_number(chart.stretch_l2) +
             ", \"scaled_down\": " + ((chart.flags & RAPS_CHART_SCALED_DOWN) ? "true" : "false") +
-            "}";
+            ", \"stacked_on\": " + std::to_string(chart.stacked_on) + "}";
     }
     return json + "]";
 }

@@ -11,8 +11,12 @@
 #include "atlas/atlas_surface.h"
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
+#include "atlas/chart_stacking.h"
+#include "atlas/corner_sources.h"
+#include "atlas/instanced_parts.h"
 #include "atlas/page_packing.h"
 #include "atlas/user_seams.h"
+#include "atlas/uv_repack.h"
 #include "atlas/vertex_welding.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
@@ -94,15 +98,6 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
     }
     return seam;
 }
-
-// Where each input triangle's corners come from: a chart (its index; the point charts of
-// degenerate triangles with no chart beside them follow the real ones, one per part that has
-// such triangles) and, per corner, the chart vertex.
-struct CornerSources {
-    std::vector<int32_t> chart;                  // per input triangle
-    std::vector<std::array<int32_t, 3>> vertex;  // per input triangle, per corner
-    std::vector<int32_t> point_chart_part;       // per point chart: its part
-};
 
 CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
                              const std::vector<int32_t>& welded, const AtlasSurface& surface,
@@ -231,7 +226,8 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
 // output (texel rectangles from the uvs as a texture of the page's size maps them).
 void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
                    const std::vector<AtlasChart>& charts, const CornerSources& sources,
-                   const PackResult& packed, AtlasOutput& out, const ProgressSpan& progress) {
+                   const PackResult& packed, const std::vector<int32_t>& place, AtlasOutput& out,
+                   const ProgressSpan& progress) {
     const size_t all_charts = charts.size() + sources.point_chart_part.size();
     out.charts.assign(all_charts, AtlasChartRecord());
     std::vector<Eigen::Vector2d> low(all_charts, Eigen::Vector2d::Constant(1e300));
@@ -266,6 +262,7 @@ void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
         record.y = lo.y();
         record.width = std::max(1, hi.x() - lo.x());
         record.height = std::max(1, hi.y() - lo.y());
+        record.stacked_on = c < charts.size() ? place[c] : static_cast<int64_t>(c);
         if (c < charts.size()) {
             record.page = packed.page[c];
             record.rotation_deg = packed.rotation_deg[c];
@@ -305,6 +302,51 @@ PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, 
     return pack_charts(inputs, pack_settings, pool, progress);
 }
 
+// Per chart, the chart whose place it takes (RAPS_PARAM_ATLAS_STACK), itself when none.
+std::vector<int32_t> chart_places(const std::vector<AtlasChart>& charts,
+                                  const std::vector<int32_t>& part, const Settings& settings) {
+    if (settings.atlas_stack == ChartStacking::kNone) {
+        std::vector<int32_t> place(charts.size());
+        for (size_t c = 0; c < place.size(); ++c) place[c] = static_cast<int32_t>(c);
+        return place;
+    }
+    StackSettings stacking;
+    stacking.allow_mirror = settings.atlas_stack == ChartStacking::kMirrored;
+    stacking.tolerance = settings.atlas_stack_tolerance;
+    stacking.within_part = settings.atlas_mesh_per_page;
+    stacking.compare_uvs = settings.atlas_repack;
+    return stack_charts(charts, part, stacking);
+}
+
+// Packs the charts that hold a place; the stacked ones take their place's uvs, page and turn.
+PackResult pack_places(const std::vector<AtlasChart>& charts, const std::vector<int32_t>& part,
+                       const std::vector<int32_t>& place, const Settings& settings,
+                       ThreadPool& pool, const ProgressSpan& progress) {
+    std::vector<PackInput> inputs;
+    std::vector<int32_t> slot(charts.size(), -1);
+    for (size_t c = 0; c < charts.size(); ++c) {
+        if (place[c] != static_cast<int32_t>(c)) continue;
+        slot[c] = static_cast<int32_t>(inputs.size());
+        const AtlasChart& chart = charts[c];
+        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation, part[c]});
+    }
+    PackResult packed = pack(inputs, settings, pool, progress);
+    if (inputs.size() == charts.size()) return packed;
+    PackResult all = packed;
+    all.uv.resize(charts.size());
+    all.page.resize(charts.size());
+    all.rotation_deg.resize(charts.size());
+    all.scaled_down.resize(charts.size());
+    for (size_t c = 0; c < charts.size(); ++c) {
+        const int32_t s = slot[place[c]];
+        all.uv[c] = packed.uv[s];
+        all.page[c] = packed.page[s];
+        all.rotation_deg[c] = packed.rotation_deg[s];
+        all.scaled_down[c] = packed.scaled_down[s];
+    }
+    return all;
+}
+
 // A page must keep room for a chart inside its margin: refused before any work is done.
 void check_page_settings(const Settings& settings) {
     if (settings.atlas_texels_per_unit <= 0 && !settings.atlas_whole_texels) return;
@@ -320,6 +362,96 @@ void check_page_settings(const Settings& settings) {
                         std::to_string(margin) + ", no more than the padding of " +
                         std::to_string(pages.padding) + ": no chart fits");
     }
+}
+
+// The charts and where each input triangle's corners come from, with each chart's part.
+struct ChartSet {
+    std::vector<AtlasChart> charts;
+    CornerSources sources;
+    std::vector<int32_t> part;  // per chart
+    // Mapped charts: what their corner sources are found from (corner_sources_of).
+    std::vector<int32_t> welded;
+    AtlasSurface surface;
+};
+
+// Steps 2-4: the surface, grown into charts, each cut to a disk and mapped (their corner
+// sources are found in the packing phase: corner_sources_of).
+ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
+                       const Progress& progress, PhaseTimes& times, ThreadPool& pool) {
+    ChartSet set;
+    PhaseTimer topology_timer(Phase::kTopology, progress, times);
+    set.welded = weld_parts(mesh, parts, settings.weld_tolerance, topology_timer.span(0.0, 0.2));
+    const UserSeams seams(mesh, settings.atlas_keep_input_seams);
+    set.surface = build_atlas_surface(mesh, set.welded, seams, pool, topology_timer.span(0.2, 1.0));
+    topology_timer.finish();
+    const AtlasSurface& surface = set.surface;
+
+    PhaseTimer segment_timer(Phase::kSegment, progress, times);
+    SegmentationSettings segmentation;
+    // Charts do not grow across creases sharper than 60 degrees (CAD edges): growing across
+    // them leaves charts that wrap around corners and must be split again; merging may still
+    // join the pieces later where the union maps well (fandisk: 24 -> 6 charts). Creases are
+    // forced seams only when the caller's hard-edge angle says so.
+    segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
+    segmentation.max_normal_deviation_deg = 90.0;
+    const std::vector<int32_t> chart_of_surface =
+        segment_charts(surface, segmentation, segment_timer.span(0.0, 0.95));
+    const std::vector<char> seam =
+        hard_edge_seams(surface, settings.hard_edge_angle_deg, segment_timer.span(0.95, 1.0));
+    segment_timer.finish();
+
+    PhaseTimer chart_timer(Phase::kInitialMap, progress, times);
+    ChartLimits limits;
+    limits.target_stretch_l2 = settings.atlas_target_l2;
+    limits.max_stretch_linf = settings.atlas_max_linf;
+    set.charts = build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
+    chart_timer.finish();
+    return set;
+}
+
+// The mapped charts' corner sources and parts; with stacking across meshes, an instance takes
+// copies of its source's charts, without which it could share none of their texels.
+void corner_sources_of(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
+                       ChartSet& set, const ProgressSpan& progress) {
+    const AtlasSurface& surface = set.surface;
+    set.sources = corner_sources(mesh, parts, set.welded, surface, set.charts, progress);
+    for (const AtlasChart& chart : set.charts) {
+        const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
+        set.part.push_back(parts.part_of_triangle(first));
+    }
+    if (settings.atlas_stack != ChartStacking::kNone && !settings.atlas_mesh_per_page &&
+        parts.count() > 1) {
+        const std::vector<int32_t> source =
+            instance_sources(mesh, parts, set.sources, settings.atlas_stack_tolerance,
+                             settings.atlas_stack == ChartStacking::kMirrored);
+        bool any = false;
+        for (int32_t p = 0; p < parts.count(); ++p) any = any || source[p] != p;
+        if (any)
+            copy_instance_charts(mesh, parts, surface, source, set.charts, set.sources, set.part);
+    }
+}
+
+// Repacking: the input's own uv islands are the charts, as they are (uv_repack.h).
+ChartSet repacked_charts(const TriangleMesh& mesh, const AtlasParts& parts,
+                         const Settings& settings, const Progress& progress, PhaseTimes& times) {
+    PhaseTimer topology_timer(Phase::kTopology, progress, times);
+    const std::vector<int32_t> welded =
+        weld_parts(mesh, parts, settings.weld_tolerance, topology_timer.span());
+    topology_timer.finish();
+    PhaseTimer segment_timer(Phase::kSegment, progress, times);
+    RepackedCharts repacked = repack_charts(mesh, parts, welded);
+    ChartSet set;
+    set.charts = std::move(repacked.charts);
+    set.sources.chart = std::move(repacked.chart_of);
+    set.sources.vertex = std::move(repacked.corner_vertex);
+    set.sources.point_chart_part = std::move(repacked.point_chart_part);
+    set.part.assign(set.charts.size(), 0);
+    for (int32_t t = mesh.triangle_count() - 1; t >= 0; --t) {
+        const int32_t c = set.sources.chart[t];
+        if (c < static_cast<int32_t>(set.part.size())) set.part[c] = parts.part_of_triangle(t);
+    }
+    segment_timer.finish();
+    return set;
 }
 
 }  // namespace
@@ -344,60 +476,31 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
         check_page_settings(settings);
         check_indices_in_range(mesh, timer.span());  // everything else an atlas takes as it comes
         check_user_seams(mesh, "");
+        if (settings.atlas_repack) check_corner_uvs(mesh, "");
         timer.finish();
     }
-    PhaseTimer topology_timer(Phase::kTopology, progress, times);
-    const std::vector<int32_t> welded =
-        weld_parts(mesh, parts, settings.weld_tolerance, topology_timer.span(0.0, 0.2));
-    const UserSeams seams(mesh, settings.atlas_keep_input_seams);
-    const AtlasSurface surface =
-        build_atlas_surface(mesh, welded, seams, pool, topology_timer.span(0.2, 1.0));
-    topology_timer.finish();
-
-    PhaseTimer segment_timer(Phase::kSegment, progress, times);
-    SegmentationSettings segmentation;
-    // Charts do not grow across creases sharper than 60 degrees (CAD edges): growing across
-    // them leaves charts that wrap around corners and must be split again; merging may still
-    // join the pieces later where the union maps well (fandisk: 24 -> 6 charts). Creases are
-    // forced seams only when the caller's hard-edge angle says so.
-    segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
-    segmentation.max_normal_deviation_deg = 90.0;
-    const std::vector<int32_t> chart_of_surface =
-        segment_charts(surface, segmentation, segment_timer.span(0.0, 0.95));
-    const std::vector<char> seam =
-        hard_edge_seams(surface, settings.hard_edge_angle_deg, segment_timer.span(0.95, 1.0));
-    segment_timer.finish();
-
-    PhaseTimer chart_timer(Phase::kInitialMap, progress, times);
-    ChartLimits limits;
-    limits.target_stretch_l2 = settings.atlas_target_l2;
-    limits.max_stretch_linf = settings.atlas_max_linf;
-    const std::vector<AtlasChart> charts =
-        build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
-    chart_timer.finish();
+    ChartSet set = settings.atlas_repack
+                       ? repacked_charts(mesh, parts, settings, progress, times)
+                       : mapped_charts(mesh, parts, settings, progress, times, pool);
 
     PhaseTimer pack_timer(Phase::kPack, progress, times);
     // Progress: where each corner comes from, the packing, the output's vertices and records.
-    const CornerSources sources =
-        corner_sources(mesh, parts, welded, surface, charts, pack_timer.span(0.0, 0.1));
-    std::vector<PackInput> inputs;
-    inputs.reserve(charts.size());
-    for (const AtlasChart& chart : charts) {
-        const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
-        inputs.push_back({&chart.map.uv, &chart.disk.mesh.triangles, chart.box.rotation,
-                          parts.part_of_triangle(first)});
-    }
-    const PackResult packed = pack(inputs, settings, pool, pack_timer.span(0.1, 0.7));
-    refuse_collapsed_atlas(mesh, settings.weld_tolerance, charts, packed);
+    if (!settings.atlas_repack)
+        corner_sources_of(mesh, parts, settings, set, pack_timer.span(0.0, 0.1));
+    const std::vector<int32_t> place = chart_places(set.charts, set.part, settings);
+    const PackResult packed =
+        pack_places(set.charts, set.part, place, settings, pool, pack_timer.span(0.1, 0.7));
+    refuse_collapsed_atlas(mesh, settings.weld_tolerance, set.charts, packed);
 
     AtlasOutput out;
     out.width = packed.width;
     out.height = packed.height;
     out.page_count = packed.page_count;
     out.texels_per_unit = packed.texels_per_unit;
-    for (const AtlasChart& chart : charts) out.adaptive_solves += chart.map.adaptive_solves;
-    emit_output(mesh, parts, charts, sources, packed, out, pack_timer.span(0.7, 0.9));
-    record_charts(mesh, parts, charts, sources, packed, out, pack_timer.span(0.9, 1.0));
+    for (const AtlasChart& chart : set.charts) out.adaptive_solves += chart.map.adaptive_solves;
+    emit_output(mesh, parts, set.charts, set.sources, packed, out, pack_timer.span(0.7, 0.9));
+    record_charts(mesh, parts, set.charts, set.sources, packed, place, out,
+                  pack_timer.span(0.9, 1.0));
     pack_timer.finish();
     return out;
 }

@@ -7,6 +7,8 @@
 // vertices and triangles contiguous and in the scene's order: no chart crosses from one part to
 // another (parts are welded apart), and each part's output vertices and triangles come out
 // contiguous too.
+// With RAPS_PARAM_ATLAS_REPACK the input's own uv islands replace steps 2-4 (uv_repack.h): weld
+// -> islands -> pack -> output.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +43,7 @@ struct AtlasChartRecord {
     double area_3d = 0, area_texels = 0;
     double stretch_l2 = 0;     // Sander's L2 stretch of the chart's map; 0 for degenerate triangles
     bool scaled_down = false;  // shrunk below the atlas's density to fit a page
+    int64_t stacked_on = 0;  // the chart whose texels it shares (chart_stacking.h); itself if none
 };
 
 struct AtlasOutput {

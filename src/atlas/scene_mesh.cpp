@@ -4,6 +4,7 @@
 #include <string>
 
 #include "atlas/user_seams.h"
+#include "atlas/uv_repack.h"
 #include "core/error.h"
 
 namespace raps {
@@ -15,7 +16,7 @@ constexpr double kMaxCoordinate = 1e30;
 constexpr int64_t kMaxVertices = 0x7fffffff;
 constexpr int64_t kMaxTriangles = int64_t{1} << 28;
 
-void check_part(const TriangleMesh& mesh, size_t index) {
+void check_part(const TriangleMesh& mesh, size_t index, bool repack) {
     const std::string name = "mesh " + std::to_string(index);
     if (mesh.positions.empty() || mesh.triangles.empty()) {
         throw Error(ErrorCode::kEmptyMesh,
@@ -35,17 +36,18 @@ void check_part(const TriangleMesh& mesh, size_t index) {
         }
     }
     check_user_seams(mesh, name);
+    if (repack) check_corner_uvs(mesh, name);
 }
 
 }  // namespace
 
 SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
-                        const std::vector<Eigen::Matrix<double, 3, 4>>& transforms) {
+                        const std::vector<Eigen::Matrix<double, 3, 4>>& transforms, bool repack) {
     SceneMesh scene;
     int64_t vertices = 0, triangles = 0;
     bool any_groups = false;
     for (size_t i = 0; i < meshes.size(); ++i) {
-        check_part(*meshes[i], i);
+        check_part(*meshes[i], i, repack);
         any_groups = any_groups || !meshes[i]->triangle_group.empty();
         vertices += meshes[i]->vertex_count();
         triangles += meshes[i]->triangle_count();
@@ -85,6 +87,11 @@ SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
                 scene.mesh.triangle_group.insert(scene.mesh.triangle_group.end(), group.begin(),
                                                  group.end());
             }
+        }
+        // uvs are not transformed: the repacking scales each chart to its world-unit area.
+        if (repack) {
+            scene.mesh.corner_uv.insert(scene.mesh.corner_uv.end(), meshes[i]->corner_uv.begin(),
+                                        meshes[i]->corner_uv.end());
         }
         for (const std::array<uint32_t, 2>& pair : meshes[i]->seam_edges) {
             scene.mesh.seam_edges.push_back(

@@ -19,7 +19,8 @@ struct SceneMesh {
 // Checks each mesh on its own (it has vertices and triangles, its indices name its own
 // vertices, its transformed coordinates stay within 1e30 like any position) and joins them in
 // the order given; a message names the mesh. transforms[i] is mesh i's [A | t], row-major.
+// With `repack`, every mesh must have its corner uvs (uv_repack.h), which are joined too.
 SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
-                        const std::vector<Eigen::Matrix<double, 3, 4>>& transforms);
+                        const std::vector<Eigen::Matrix<double, 3, 4>>& transforms, bool repack);
 
 }  // namespace raps

@@ -36,6 +36,9 @@ enum class ErrorCode : int32_t {
     kInvalidTransform = 23,
     kGroupCount = 24,
     kSeamNotAnEdge = 25,
+    kUvCount = 26,
+    kNonFiniteUv = 27,
+    kDegenerateUvChart = 28,
 };
 
 class Error : public std::runtime_error {

@@ -16,6 +16,9 @@ enum class SphereUv { kNone, kOctahedral };
 // Which turns the atlas's packing may give a chart: any angle (its smallest box, then quarter
 // turns), quarter turns of its map only, or none.
 enum class ChartRotation { kAny = 0, kQuarter = 1, kNone = 2 };
+// Whether congruent charts share one place in the atlas: never, when a rigid motion takes one
+// onto the other, or also when only a mirror does.
+enum class ChartStacking { kNone = 0, kRigid = 1, kMirrored = 2 };
 
 struct Settings {
     Domain domain = Domain::kDisk;
@@ -53,6 +56,9 @@ struct Settings {
     bool atlas_mesh_per_page = false;     // a scene's mesh on one page, with a density
     bool atlas_whole_texels = false;      // without a density: whole texels on one page
     bool atlas_keep_input_seams = false;  // input vertex splits stay chart boundaries
+    bool atlas_repack = false;            // pack the input's own uv charts, no new map
+    ChartStacking atlas_stack = ChartStacking::kNone;
+    double atlas_stack_tolerance = 1e-4;  // of a chart's extent
 };
 
 }  // namespace raps

@@ -4,10 +4,12 @@ failure. Its statistics are cross-checked against the project's reference metric
 shared/tools/uvmetrics.py. With --sphere: the points on the unit sphere as v lines, and with
 --sphere-uv octahedral one vt per output vertex (the seams' vertices once per side). With --atlas
 and several inputs: one atlas, one `o` per input in order, per input, page and chart figures.
+With --repack the inputs' own vt islands come back only moved, turned and uniformly scaled.
 
 usage: test_raps_param.py RAPS_PARAM SHARED_DATA_DIR
 """
 import json
+import math
 import os
 import subprocess
 import sys
@@ -238,7 +240,8 @@ class RapsParamTest(unittest.TestCase):
                      '--sphere', '--sphere-method', '--sphere-uv', '--threads', '--damping',
                      '--tolerance', '--max-sweeps', '--alpha-steps', '--texels-per-unit',
                      '--max-size', '--rotate', '--margin', '--block-align', '--mesh-per-page',
-                     '--whole-texels', '--lightmap', '--keep-uv-seams', '--obj-groups'):
+                     '--whole-texels', '--lightmap', '--keep-uv-seams', '--obj-groups', '--repack',
+                     '--stack', '--stack-mirrored', '--stack-tolerance'):
             self.assertIn(flag, out)
 
     def test_sphere_writes_the_points_on_the_unit_sphere(self):
@@ -508,12 +511,132 @@ class RapsParamTest(unittest.TestCase):
         self.assertEqual(len(faces), len(quads))  # groups follow the quads: none is cut
         self.assertEqual(self.faces_joined_across(self.out, label), 0)
 
+    @staticmethod
+    def vt_islands(faces):
+        """Faces joined by a shared corner (position, uv) pair, each corner given as such a
+        pair: in a raps atlas no two charts share a uv (padding keeps them apart), and a chart's
+        faces are joined through its corners, also where the file splits a vertex. Island label
+        per face."""
+        parent = list(range(len(faces)))
+        def root(x):
+            while parent[x] != x:
+                parent[x] = parent[parent[x]]
+                x = parent[x]
+            return x
+        first_face = {}
+        for i, face in enumerate(faces):
+            for _, t in face:
+                j = first_face.setdefault(t, i)
+                parent[root(i)] = root(j)
+        return [root(i) for i in range(len(faces))]
+
+    def test_repack_keeps_each_inputs_vt_islands_and_packs_them_at_one_density(self):
+        firsts = []
+        for name in ('teapot.obj', 'spot.obj'):
+            first = os.path.join(self.dir.name, 'first_' + name)
+            rc, out, err = run('--atlas', self.mesh(name), '-o', first)
+            self.assertEqual(rc, 0, err)
+            firsts.append((first, json.loads(out)['stats']['charts']))
+        rc, out, err = run('--atlas', *[f for f, _ in firsts], '-o', self.out, '--repack',
+                           '--texels-per-unit', '200', '--rotate', 'quarter', '--padding', '2')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        s, st = d['settings'], d['stats']
+        self.assertEqual((s['repack'], s['rotate'], s['texels_per_unit']), (True, 'quarter', 200))
+        self.assertEqual(st['adaptive_solves'], 0)
+        self.assertEqual([i['charts'] for i in d['inputs']], [c for _, c in firsts])
+        width, height = st['atlas_width'], st['atlas_height']
+        for (first, _), (name, v, vt, faces) in zip(firsts, self.objects(self.out)):
+            v_in, vt_in, f_in = obj_records(first)
+            self.assertEqual(v, v_in)
+            self.assertEqual([[c[0] for c in face] for face in faces],
+                             [[c[0] - 1 for c in face] for face in f_in])
+            label = self.vt_islands([[(v_in[c[0] - 1], vt_in[c[1] - 1]) for c in face]
+                                     for face in f_in])
+            # Per island, one similarity out = z * in + t (complex numbers) takes the input's
+            # vt to the output's texels: moved, turned by quarter turns, uniformly scaled.
+            corners = {}
+            for face_in, face_out, island in zip(f_in, faces, label):
+                for c_in, c_out in zip(face_in, face_out):
+                    a = complex(*vt_in[c_in[1] - 1])
+                    b = complex(vt[c_out[1]][0] * width, vt[c_out[1]][1] * height)
+                    corners.setdefault(island, []).append((a, b))
+            self.assertEqual(len(corners), dict(firsts)[first])
+            for pairs in corners.values():
+                a0, b0 = pairs[0]
+                a1, b1 = max(pairs, key=lambda p: abs(p[0] - a0))
+                z = (b1 - b0) / (a1 - a0)
+                for a, b in pairs:
+                    self.assertLess(abs(b - (b0 + z * (a - a0))), 1e-4 * abs(b1 - b0) + 1e-6)
+                turn = math.degrees(math.atan2(z.imag, z.real)) % 90
+                self.assertLess(min(turn, 90 - turn), 1e-4)
+        for chart in d['charts']:
+            self.assertEqual(chart['rotation_deg'] % 90, 0)
+            if not chart['scaled_down']:
+                self.assertAlmostEqual(chart['area_texels'] / chart['area_3d'], 40000, delta=40)
+        ref = json.loads(subprocess.run(['/usr/bin/python3', os.path.join(DATA, '..', 'tools', 'uvmetrics.py'),
+                                         '--raster', '2048', self.out], capture_output=True, text=True).stdout)
+        self.assertEqual(ref['n_flipped'], 0)
+        self.assertLess(ref['uv_overlap_fraction'], 0.002)  # raster noise only
+
+    def test_repack_needs_a_vt_on_every_corner(self):
+        rc, out, err = run(self.mesh('suzanne.obj'), '-o', self.out, '--repack')
+        self.assertEqual(rc, 1)
+        error = json.loads(out)['error']
+        self.assertEqual(error['status'], 26)  # RAPS_ERROR_UV_COUNT
+        self.assertIn('--repack needs an OBJ whose every face corner names a vt', error['message'])
+        self.assertFalse(os.path.exists(self.out))
+        # A vt that is not a number is the library's non-finite uv, naming the corner.
+        bad = os.path.join(self.dir.name, 'bad.obj')
+        with open(bad, 'w') as fh:
+            fh.write('v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt x 0\nvt 0 1\nf 1/1 2/2 3/3\n')
+        rc, out, err = run(bad, '-o', self.out, '--repack')
+        self.assertEqual(rc, 1)
+        self.assertEqual(json.loads(out)['error']['status'], 27)  # RAPS_ERROR_NON_FINITE_UV
+        self.assertFalse(os.path.exists(self.out))
+
+    def test_stack_gives_an_input_repeated_its_originals_texels(self):
+        names = ['spot.obj', 'teapot.obj', 'spot.obj']
+        rc, out, err = run('--atlas', *[self.mesh(n) for n in names], '-o', self.out,
+                           '--stack', '--threads', '2')
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual((d['settings']['stack'], d['settings']['stack_tolerance']), ('rigid', 1e-4))
+        charts = d['charts']
+        for index, chart in enumerate(charts):
+            place = charts[chart['stacked_on']]
+            if chart['input'] == 2:  # the repeated spot: every chart on one of the first's
+                self.assertLess(chart['stacked_on'], index)
+                self.assertEqual(place['input'], 0)
+                self.assertEqual([place[k] for k in ('page', 'x', 'y', 'width', 'height')],
+                                 [chart[k] for k in ('page', 'x', 'y', 'width', 'height')])
+            else:
+                self.assertEqual(chart['stacked_on'], index)
+        self.assertEqual(d['inputs'][2]['charts'], d['inputs'][0]['charts'])
+        # Corner for corner, the repeated spot's vt are the first's.
+        first, _, third = self.objects(self.out)
+        self.assertEqual([[first[2][t] for _, t in face] for face in first[3]],
+                         [[third[2][t] for _, t in face] for face in third[3]])
+        # Each shared place counted once.
+        st = d['stats']
+        placed = sum(c['area_texels'] for i, c in enumerate(charts) if c['stacked_on'] == i)
+        self.assertAlmostEqual(st['utilization'], placed / (st['atlas_width'] * st['atlas_height']),
+                               places=6)
+        self.assertAlmostEqual(d['pages'][0]['utilization'], st['utilization'], places=6)
+        rc, out, err = run('--atlas', self.mesh('spot.obj'), '-o', self.out, '--stack-mirrored',
+                           '--stack-tolerance', '0.01')
+        self.assertEqual(rc, 0, err)
+        s = json.loads(out)['settings']
+        self.assertEqual((s['stack'], s['stack_tolerance']), ('mirrored', 0.01))
+
     def test_scene_usage_errors_exit_2(self):
         spot, teapot = self.mesh('spot.obj'), self.mesh('teapot.obj')
         for args in ([spot, teapot, '-o', self.out],  # several inputs need --atlas
                      ['--atlas', spot, '-o', self.out, '--rotate', 'sideways'],
                      ['--atlas', spot, '-o', self.out, '--max-size', '8'],
-                     ['--atlas', spot, '-o', self.out, '--texels-per-unit', '-2']):
+                     ['--atlas', spot, '-o', self.out, '--texels-per-unit', '-2'],
+                     ['--atlas', spot, '-o', self.out, '--stack', '--lightmap'],
+                     ['--atlas', spot, '-o', self.out, '--stack-tolerance', '0.5']):
             rc, out, err = run(*args)
             self.assertEqual(rc, 2, args)
             self.assertIn('error', json.loads(out))

@@ -295,7 +295,10 @@ static raps_status run_once(const raps_mesh* mesh, raps_settings* settings, int 
                 raps_mesh_vertex_count(mesh), raps_mesh_triangle_count(mesh),
                 raps_status_string(status), raps_result_last_error(result));
     }
-    CHECK(status >= RAPS_OK && status <= RAPS_ERROR_OPEN_MESH);
+    /* Repacking corner uvs (FUZZ_FLAG_CORNER_UVS, or the repack parameter set from the bytes)
+     * adds its own refusals: no uvs for the triangles, an island without uv area. */
+    CHECK((status >= RAPS_OK && status <= RAPS_ERROR_OPEN_MESH) ||
+          status == RAPS_ERROR_UV_COUNT || status == RAPS_ERROR_DEGENERATE_UV_CHART);
     /* Neither a bug report nor an argument error: the handles given are all valid. */
     CHECK(status != RAPS_ERROR_INTERNAL && status != RAPS_ERROR_INVALID_ARGUMENT &&
           status != RAPS_ERROR_INVALID_OPERATION);
@@ -309,6 +312,41 @@ static raps_status run_once(const raps_mesh* mesh, raps_settings* settings, int 
     }
     raps_result_destroy(result);
     return status;
+}
+
+/* With FUZZ_FLAG_CORNER_UVS: each triangle corner's uv is the (x, y) of the point its index
+ * names (modulo the points; (0, 0) without points), whatever those bytes hold, and the run
+ * repacks them. The setter refuses a uv that is not finite, leaving the mesh without uvs; the
+ * run must then refuse with UV_COUNT, which run_once accepts like any input's status. */
+static void set_corner_uvs(raps_mesh* mesh, raps_settings* settings, const fuzz_mesh_input* in) {
+    const int u16 = (in->flags & FUZZ_FLAG_U16) != 0;
+    double* uv = malloc(2 * in->index_count * sizeof(double) + 16);
+    CHECK(uv != NULL);
+    int acceptable_uvs = 1;
+    for (size_t i = 0; i < in->index_count; ++i) {
+        uint32_t index = 0;
+        memcpy(&index, in->indices + i * (u16 ? 2 : 4), u16 ? 2 : 4);
+        double p[2] = {0, 0};
+        if (in->point_count > 0) {
+            const uint8_t* point = in->points + (index % in->point_count) * in->point_stride;
+            if (in->flags & FUZZ_FLAG_F64) {
+                memcpy(p, point, sizeof(p));
+            } else {
+                float f[2];
+                memcpy(f, point, sizeof(f));
+                p[0] = f[0];
+                p[1] = f[1];
+            }
+        }
+        acceptable_uvs = acceptable_uvs && acceptable(p[0]) && acceptable(p[1]);
+        uv[2 * i] = p[0];
+        uv[2 * i + 1] = p[1];
+    }
+    CHECK_STATUS(
+        raps_mesh_set_corner_uvs_f64(mesh, in->index_count ? uv : NULL, in->index_count, 0),
+        acceptable_uvs ? RAPS_OK : RAPS_ERROR_NON_FINITE_UV);
+    free(uv);
+    CHECK_STATUS(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_REPACK, 1), RAPS_OK);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -328,6 +366,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         set_positions(mesh, &in);
         set_indices(mesh, &in);
     }
+    if (in.flags & FUZZ_FLAG_CORNER_UVS) set_corner_uvs(mesh, settings, &in);
     run_output first, second;
     const raps_status status = run_once(mesh, settings, in.domain, &in, &first);
     if (in.flags & FUZZ_FLAG_RUN_TWICE) {

@@ -37,7 +37,8 @@ enum {
     FUZZ_FLAG_HUGE_INDEX_COUNT = 8,  /* also claim 3 * 2^31 or more indices (the same) */
     FUZZ_FLAG_INDICES_FIRST = 16,    /* set the indices before the positions */
     FUZZ_FLAG_CANCEL = 32,           /* a progress callback that cancels at call cancel_at */
-    FUZZ_FLAG_RUN_TWICE = 64         /* a second run must give the same bits */
+    FUZZ_FLAG_RUN_TWICE = 64,        /* a second run must give the same bits */
+    FUZZ_FLAG_CORNER_UVS = 128       /* corner uvs from the points, repacked (fuzz_mesh_api.c) */
 };
 
 enum { FUZZ_HEADER_BYTES = 8, FUZZ_SETTING_BYTES = 9, FUZZ_MAX_SETTINGS = 16 };

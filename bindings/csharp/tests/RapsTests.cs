@@ -968,6 +968,113 @@ static class RapsTests
         }
     }
 
+    // Existing uvs repacked: the cap's two uv islands (one mirrored) come back as two charts,
+    // each only moved, turned and uniformly scaled, at one density; bad uvs are refused.
+    static void RepackKeepsIslands()
+    {
+        Off cap = FanDisk();
+        var uv = new double[36];
+        for (int c = 0; c < 18; c++)
+        {
+            double x = cap.Xyz[3 * cap.Indices[c]], y = cap.Xyz[3 * cap.Indices[c] + 1];
+            uv[2 * c] = c < 9 ? x : 5.0 - 2.0 * x;
+            uv[2 * c + 1] = c < 9 ? y : 2.0 * y;
+        }
+        using (var mesh = new Mesh(cap.Xyz, cap.Indices))
+        using (var settings = new Settings())
+        {
+            settings.SetInt(Param.Domain, (long)Domain.Atlas);
+            settings.Threads = 1;
+            settings.AtlasRepack = true;
+            Expect(settings.AtlasRepack, "repack set");
+            ExpectFailure(Status.UvCount, () => Library.Parameterize(mesh, settings).Dispose());
+            mesh.SetCornerUvs(uv);
+            using (Result result = Library.Parameterize(mesh, settings))
+            {
+                var stats = result.GetStats();
+                Expect(stats.ChartCount == 2 && stats.FlippedTriangles == 3,
+                       "two islands, the mirrored one still flipped");
+                double[] outUv = result.GetUvsDouble();
+                uint[] indices = result.GetIndices();
+                uint[] ids = result.GetChartIds();
+                for (uint chart = 0; chart < 2; chart++)
+                {
+                    var corners = Enumerable.Range(0, 18).Where(c => ids[c / 3] == chart).ToList();
+                    Func<int, double[]> input = c => new[] { uv[2 * c], uv[2 * c + 1] };
+                    Func<int, double[]> output = c => new[] {
+                        outUv[2 * indices[c]] * stats.AtlasWidth,
+                        outUv[2 * indices[c] + 1] * stats.AtlasHeight };
+                    Func<double[], double[], double[]> minus = (p, q) => new[] { p[0] - q[0],
+                                                                                 p[1] - q[1] };
+                    Func<double[], double> length = p => Math.Sqrt(p[0] * p[0] + p[1] * p[1]);
+                    int a = corners[0];
+                    int b = corners.OrderByDescending(c => length(minus(input(c), input(a))))
+                                .First();
+                    // z = (output(b) - output(a)) / (input(b) - input(a)), complex numbers
+                    double[] o = minus(output(b), output(a)), d = minus(input(b), input(a));
+                    double dd = d[0] * d[0] + d[1] * d[1];
+                    double zr = (o[0] * d[0] + o[1] * d[1]) / dd;
+                    double zi = (o[1] * d[0] - o[0] * d[1]) / dd;
+                    foreach (int c in corners)
+                    {
+                        double[] e = minus(input(c), input(a));
+                        double[] expected = { output(a)[0] + zr * e[0] - zi * e[1],
+                                              output(a)[1] + zi * e[0] + zr * e[1] };
+                        Expect(length(minus(output(c), expected)) < 1e-6 * length(o),
+                               "corner " + c + " only moved, turned and scaled");
+                    }
+                }
+                Chart[] charts = result.GetCharts();
+                Expect(Math.Abs(charts[0].AreaTexels / charts[0].Area3d /
+                                (charts[1].AreaTexels / charts[1].Area3d) - 1) < 1e-6,
+                       "one density");
+            }
+            uv[9] = double.NaN;
+            RapsException error = ExpectFailure(Status.NonFiniteUv, () => mesh.SetCornerUvs(uv));
+            Expect(error.Message.Contains("corner 4"), "the message names the corner");
+            mesh.SetCornerUvs(Enumerable.Repeat(0.5f, 36).ToArray());  // every island a point
+            ExpectFailure(Status.DegenerateUvChart,
+                          () => Library.Parameterize(mesh, settings).Dispose());
+            mesh.SetCornerUvs((float[])null);
+            ExpectFailure(Status.UvCount, () => Library.Parameterize(mesh, settings).Dispose());
+        }
+    }
+
+    // Stacking: the cap given twice to a scene (the copy moved and turned) costs no texels:
+    // every chart of the copy is stacked on the original's and has its uvs, corner for corner.
+    static void RepeatedMeshSharesTexels()
+    {
+        Off cap = FanDisk();
+        using (var original = new Mesh(cap.Xyz, cap.Indices))
+        using (var copy = new Mesh(cap.Xyz, cap.Indices))
+        using (var settings = new Settings { AtlasStack = Stacking.Rigid })
+        {
+            Expect(settings.AtlasStack == Stacking.Rigid, "stacking set");
+            copy.SetTransform(new double[] { 0, -1, 0, 4, 1, 0, 0, 0, 0, 0, 1, 0 });
+            settings.SetInt(Param.Domain, (long)Domain.Atlas);
+            using (Result result = Library.ParameterizeScene(new[] { original, copy }, settings))
+            {
+                Chart[] charts = result.GetCharts();
+                for (int c = 0; c < charts.Length; c++)
+                {
+                    bool stacked = (charts[c].Flags & Native.RAPS_CHART_STACKED) != 0;
+                    Expect(stacked == (charts[c].Mesh == 1), "the copy's charts are stacked");
+                    Expect((charts[c].StackedOn != c) == stacked, "stacked_on names the place");
+                }
+                double[] uv = result.GetUvsDouble();
+                uint[] indices = result.GetIndices();
+                MeshRange first = result.GetMeshRange(0), second = result.GetMeshRange(1);
+                for (int i = 0; i < 18; i++)
+                {
+                    ulong a = first.FirstVertex + indices[i];
+                    ulong b = second.FirstVertex + indices[18 + i];
+                    Expect(uv[2 * a] == uv[2 * b] && uv[2 * a + 1] == uv[2 * b + 1],
+                           "corner " + i + " has its original's uv");
+                }
+            }
+        }
+    }
+
     static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -1017,6 +1124,9 @@ static class RapsTests
                                              LayoutAndVersionMatchTheLibrary),
             new KeyValuePair<string, Action>("scene of several meshes", SceneOfSeveralMeshes),
             new KeyValuePair<string, Action>("groups and seam edges", GroupsAndSeamEdges),
+            new KeyValuePair<string, Action>("repack keeps the uv islands", RepackKeepsIslands),
+            new KeyValuePair<string, Action>("a repeated mesh shares its original's texels",
+                                             RepeatedMeshSharesTexels),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

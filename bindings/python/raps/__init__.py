@@ -17,6 +17,10 @@ A thin, safe layer over libraps's C ABI (include/raps.h is the reference):
     first = scene.mesh_range(0)                      # its output vertices and indices
     charts = scene.charts()                          # mesh, page, texel rectangle, ... per chart
 
+    # Existing uvs repacked: one (u, v) per triangle corner, the islands kept as they are.
+    mesh.set_corner_uvs(corner_uvs)
+    repacked = raps.parameterize(mesh, raps.Settings(domain="atlas", atlas_repack=1))
+
 Handles (Mesh, Settings, Result) own their native object: close() or a `with` block frees it at
 once, and garbage collection frees it otherwise; either way exactly once. Errors raise
 raps.Error with the status, its name and the library's message.
@@ -46,6 +50,7 @@ except ImportError:  # plain sequences in, lists out
 __all__ = [
     "Boundary", "Chart", "Domain", "Error", "IterationMode", "Mesh", "MeshRange", "Monitor",
     "Param", "ParamInfo", "Phase", "Result", "Rotation", "Settings", "SphereMethod", "SphereUv",
+    "Stacking",
     "Stats", "Status", "Weights", "parameterize", "parameterize_scene", "version",
     "version_string", "library_path",
 ]
@@ -125,6 +130,7 @@ SphereUv = _enum("SphereUv", "RAPS_SPHERE_UV_")
 SphereMethod = _enum("SphereMethod", "RAPS_SPHERE_",
                      skip=[name for name in vars(_native) if name.startswith("RAPS_SPHERE_UV_")])
 Rotation = _enum("Rotation", "RAPS_ROTATION_")
+Stacking = _enum("Stacking", "RAPS_STACK_")
 # RAPS_PHASE_COUNT is the number of phases, not a phase.
 Phase = _enum("Phase", "RAPS_PHASE_", skip=("RAPS_PHASE_COUNT",))
 
@@ -138,6 +144,7 @@ _PARAM_VALUES = {
     Param.SPHERE_METHOD: SphereMethod,
     Param.SPHERE_UV: SphereUv,
     Param.ATLAS_ROTATION: Rotation,
+    Param.ATLAS_STACK: Stacking,
 }
 
 
@@ -358,6 +365,40 @@ class Mesh(_Handle):
             self._ptr(), (ctypes.c_uint32 * len(flat))(*flat) if flat else None, len(flat) // 2)
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
+    def set_corner_uvs(self, uvs):
+        """Atlas domain with atlas_repack=1: the mesh's own uvs, one per triangle corner (corner
+        3t + k is corner k of triangle t): an (3t, 2) float32 or float64 numpy array (rows may
+        be strided; other dtypes are converted to float64), or 3t (u, v) sequences, or 6t
+        numbers. None removes them. A non-finite uv raises Error(Status.NON_FINITE_UV); a count
+        that is not three per triangle raises Error(Status.UV_COUNT) when the mesh is repacked."""
+        if uvs is None:
+            status = _lib.raps_mesh_set_corner_uvs_f64(self._ptr(), None, 0, 0)
+        elif _is_ndarray(uvs):
+            array = uvs
+            if array.dtype not in (numpy.float32, numpy.float64):
+                array = array.astype(numpy.float64)
+            if array.ndim == 1:
+                if array.size % 2:
+                    raise ValueError("raps: %d uv values are not a multiple of 2" % array.size)
+                array = array.reshape(-1, 2)
+            if array.ndim != 2 or array.shape[1] != 2:
+                raise ValueError("raps: corner uvs must have shape (n, 2), not %s"
+                                 % (array.shape,))
+            # As for positions: rows stride_bytes apart, each two packed values.
+            if array.strides[1] != array.itemsize or array.strides[0] < 2 * array.itemsize:
+                array = numpy.ascontiguousarray(array)
+            if array.dtype == numpy.float32:
+                setter, ctype = _lib.raps_mesh_set_corner_uvs_f32, ctypes.c_float
+            else:
+                setter, ctype = _lib.raps_mesh_set_corner_uvs_f64, ctypes.c_double
+            status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)),
+                            array.shape[0], array.strides[0])
+        else:
+            flat = [float(value) for value in _flatten(uvs, 2, "corner uvs")]
+            buffer = (ctypes.c_double * len(flat))(*flat) if flat else None
+            status = _lib.raps_mesh_set_corner_uvs_f64(self._ptr(), buffer, len(flat) // 2, 0)
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
     @property
     def vertex_count(self):
         return _lib.raps_mesh_vertex_count(self._ptr())
@@ -460,7 +501,7 @@ Stats = collections.namedtuple(
 # One chart of an atlas (raps_chart in raps.h), scaled_down for its RAPS_CHART_SCALED_DOWN flag.
 Chart = collections.namedtuple(
     "Chart", [name for name, _ in _native.raps_chart._fields_
-              if name not in ("struct_size", "flags")] + ["scaled_down"])
+              if name not in ("struct_size", "flags", "reserved")] + ["scaled_down", "stacked"])
 
 # Where one input mesh lies in a result's output.
 MeshRange = collections.namedtuple("MeshRange",
@@ -594,15 +635,17 @@ class Result(_Handle):
 
     def charts(self):
         """Atlas domain: a Chart per chart id (its mesh, page, texel rectangle, rotation,
-        triangles, areas, L2 stretch, whether it was shrunk to fit a page)."""
+        triangles, areas, L2 stretch, the chart whose texels it shares (stacked_on, itself when
+        none), whether it was shrunk to fit a page, whether it is stacked)."""
         charts = []
         for index in range(self.stats().chart_count):
             native = _native.raps_chart()
             native.struct_size = ctypes.sizeof(native)
             _check(_lib.raps_result_get_chart(self._ptr(), index, ctypes.byref(native)),
                    _lib.raps_result_last_error, self._pointer)
-            fields = [getattr(native, name) for name in Chart._fields[:-1]]
-            charts.append(Chart(*fields, bool(native.flags & _native.RAPS_CHART_SCALED_DOWN)))
+            fields = [getattr(native, name) for name in Chart._fields[:-2]]
+            charts.append(Chart(*fields, bool(native.flags & _native.RAPS_CHART_SCALED_DOWN),
+                                bool(native.flags & _native.RAPS_CHART_STACKED)))
         return charts
 
 

@@ -73,6 +73,16 @@ RAPS_ERROR_GROUP_COUNT = 24
 #   Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
 #   joins by an edge (the message names the pair).
 RAPS_ERROR_SEAM_NOT_AN_EDGE = 25
+#   Atlas domain with RAPS_PARAM_ATLAS_REPACK: the mesh's corner uvs
+#   (raps_mesh_set_corner_uvs_f32/f64) are not three per triangle (never set, the indices
+#   changed since, or the count was wrong).
+RAPS_ERROR_UV_COUNT = 26
+#   raps_mesh_set_corner_uvs_f32/f64: a uv coordinate is NaN, infinite or beyond +-1e30.
+RAPS_ERROR_NON_FINITE_UV = 27
+#   Atlas domain with RAPS_PARAM_ATLAS_REPACK: a uv chart of the input has 3D area but
+#   (numerically) no uv area (below 1e-12 times its uv bounding box's squared diagonal): it
+#   has no shape to keep. The message names its first triangle.
+RAPS_ERROR_DEGENERATE_UV_CHART = 28
 
 #   int. The parameter domain. Default RAPS_DOMAIN_DISK.
 RAPS_PARAM_DOMAIN = 1
@@ -187,6 +197,53 @@ RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45
 #   different input vertices as a chart boundary: the seams of the input's existing uvs,
 #   when those are expressed, as usual, by split vertices.
 RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
+#   int, 0 or 1. 1 repacks the mesh's own uvs (raps_mesh_set_corner_uvs_f32/f64) instead of
+#   mapping it again: the charts are the uv islands (triangles sharing an edge, whose two
+#   vertices are welded by position as RAPS_PARAM_WELD_TOLERANCE says, are in one chart when
+#   their corner uvs at both ends are equal, bit for bit), each scaled uniformly to the
+#   atlas's one texel density (its uv area in texels is its 3D area in world units times the
+#   density squared) and packed like mapped charts, by every packing setting (resolution or
+#   density, pages, padding, margin, block alignment, rotation, mesh per page, whole texels).
+#   A chart's uvs are only moved, turned (as RAPS_PARAM_ATLAS_ROTATION allows) and uniformly
+#   scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
+#   triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
+#   raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
+#   area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
+#   stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
+#   used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
+#   chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
+#   islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
+RAPS_PARAM_ATLAS_REPACK = 47
+#   int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
+#   or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
+#   one mesh in one mesh) then costs no extra texels. Two charts stack when they are the same
+#   triangles over the same chart vertices (as copies with the same vertex and triangle order
+#   give) and their 3D vertices agree, vertex for vertex, up to a rigid motion (or a mirror,
+#   with RAPS_STACK_MIRRORED) within RAPS_PARAM_ATLAS_STACK_TOLERANCE; when repacking, their
+#   own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
+#   chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
+#   RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
+#   texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
+#   that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
+#   seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
+#   of its own, each then stacked on its original. A copy drawn mirrored (a transform with
+#   det < 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
+#   counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
+#   stack. A lightmap needs every chart its own texels: leave this off for one. Default
+#   NONE.
+RAPS_PARAM_ATLAS_STACK = 48
+#   float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
+#   farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
+#   puts the chart it shares. Default 1e-4.
+RAPS_PARAM_ATLAS_STACK_TOLERANCE = 49
+
+# RAPS_PARAM_ATLAS_STACK values
+#   every chart its own texels
+RAPS_STACK_NONE = 0
+#   congruent up to a rigid motion: one place
+RAPS_STACK_RIGID = 1
+#   also congruent up to a mirror (the texture appears mirrored)
+RAPS_STACK_MIRRORED = 2
 
 # RAPS_PARAM_ATLAS_ROTATION values
 #   Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
@@ -302,6 +359,8 @@ RAPS_PHASE_COUNT = 7
 #   The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
 #   texels per world unit are below raps_stats.texels_per_unit).
 RAPS_CHART_SCALED_DOWN = 1
+#   The chart shares the texels of an earlier, congruent chart (raps_chart.stacked_on).
+RAPS_CHART_STACKED = 2
 
 raps_status = ctypes.c_int32
 raps_param = ctypes.c_int32
@@ -417,6 +476,10 @@ class raps_chart(ctypes.Structure):
         # Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
         # that gathers degenerate triangles with no chart beside them.
         ('stretch_l2', ctypes.c_double),
+        # The chart whose texels it shares (RAPS_PARAM_ATLAS_STACK; RAPS_CHART_STACKED is set);
+        # its own index when it shares none.
+        ('stacked_on', ctypes.c_uint32),
+        ('reserved', ctypes.c_uint32),
     ]
 
 
@@ -452,6 +515,8 @@ FUNCTIONS = {
     'raps_mesh_set_transform': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double)]),
     'raps_mesh_set_triangle_groups': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_seam_edges': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_mesh_set_corner_uvs_f32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_float), ctypes.c_size_t, ctypes.c_size_t]),
+    'raps_mesh_set_corner_uvs_f64': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_mesh_vertex_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_triangle_count': (ctypes.c_size_t, [ctypes.POINTER(raps_mesh)]),
     'raps_mesh_last_error': (ctypes.c_char_p, [ctypes.POINTER(raps_mesh)]),

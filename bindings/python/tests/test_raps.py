@@ -470,6 +470,93 @@ class Seams(unittest.TestCase):
             self.assertEqual(settings.atlas_keep_input_seams, 1)
 
 
+class Repack(unittest.TestCase):
+    """Existing uvs repacked (atlas_repack): the islands of a hexagonal cap's corner uvs come
+    back as charts, each only moved, turned and uniformly scaled; bad uvs are refused."""
+
+    def corner_uvs(self):
+        # Two islands: triangles 0-2 as the cap lies (x, y), triangles 3-5 mirrored and moved.
+        positions, indices = fan_disk()
+        corners = []
+        for t, triangle in enumerate(indices):
+            for v in triangle:
+                x, y = positions[v][0], positions[v][1]
+                corners.append((x, y) if t < 3 else (5.0 - 2.0 * x, 2.0 * y))
+        return corners
+
+    def test_islands_keep_their_shape(self):
+        corners = self.corner_uvs()
+        source = numpy.array(corners, dtype=numpy.float32) if numpy is not None else corners
+        with raps.Mesh(*fan_disk()) as cap, \
+                raps.Settings(domain="atlas", atlas_repack=1, threads=1) as settings:
+            cap.set_corner_uvs(source)
+            self.assertEqual(settings.atlas_repack, 1)
+            result = raps.parameterize(cap, settings)
+            stats = result.stats()
+            self.assertEqual((stats.chart_count, stats.flipped_triangles), (2, 3))
+            uv = [tuple(p) for p in result.uvs()]
+            texel = [complex(u * stats.atlas_width, v * stats.atlas_height) for u, v in uv]
+            ids = list(result.chart_ids())
+            indices = [tuple(t) for t in result.indices()]
+            for chart in set(ids):
+                pairs = [(complex(*corners[3 * t + k]), texel[indices[t][k]])
+                         for t in range(6) if ids[t] == chart for k in range(3)]
+                a0, b0 = pairs[0]
+                a1, b1 = max(pairs, key=lambda p: abs(p[0] - a0))
+                z = (b1 - b0) / (a1 - a0)
+                for a, b in pairs:
+                    self.assertLess(abs(b - (b0 + z * (a - a0))), 1e-3 * abs(b1 - b0))
+            densities = [c.area_texels / c.area_3d for c in result.charts()]
+            self.assertAlmostEqual(densities[0] / densities[1], 1.0, places=6)
+
+    def test_bad_uvs_are_refused(self):
+        with raps.Mesh(*fan_disk()) as cap, raps.Settings(domain="atlas", atlas_repack=1) as s:
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, s)
+            self.assertEqual(caught.exception.status, raps.Status.UV_COUNT)
+            corners = self.corner_uvs()
+            corners[4] = (float("nan"), 0.0)
+            with self.assertRaises(raps.Error) as caught:
+                cap.set_corner_uvs(corners)
+            self.assertEqual(caught.exception.status, raps.Status.NON_FINITE_UV)
+            self.assertIn("corner 4", str(caught.exception))
+            flat = [(0.0, 0.0)] * 18  # every island a point: no uv area
+            cap.set_corner_uvs(flat)
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, s)
+            self.assertEqual(caught.exception.status, raps.Status.DEGENERATE_UV_CHART)
+            cap.set_corner_uvs(None)
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, s)
+            self.assertEqual(caught.exception.status, raps.Status.UV_COUNT)
+
+
+class Stack(unittest.TestCase):
+    """Stacking: the cap given twice to a scene (the copy moved) costs no texels: every chart of
+    the copy is stacked on the original's and has its uvs, corner for corner."""
+
+    def test_a_repeated_mesh_shares_its_originals_texels(self):
+        with raps.Mesh(*fan_disk()) as cap, raps.Mesh(*fan_disk()) as copy, \
+                raps.Settings(domain="atlas", atlas_stack="rigid") as settings:
+            self.assertEqual(settings.atlas_stack, raps.Stacking.RIGID)
+            copy.set_transform([[0, -1, 0, 4], [1, 0, 0, 0], [0, 0, 1, 0]])
+            scene = raps.parameterize_scene([cap, copy], settings)
+            charts = scene.charts()
+            self.assertEqual(sum(1 for c in charts if c.stacked), len(charts) // 2)
+            for index, chart in enumerate(charts):
+                self.assertEqual(chart.stacked, chart.mesh == 1)
+                self.assertEqual(chart.stacked_on != index, chart.stacked)
+            uv = [tuple(p) for p in scene.uvs()]
+            first, second = scene.mesh_range(0), scene.mesh_range(1)
+            indices = [v for t in scene.indices() for v in t]
+            own = [uv[first.first_vertex + v] for v in indices[:18]]
+            copied = [uv[second.first_vertex + v] for v in indices[18:]]
+            self.assertEqual(own, copied)
+            settings.atlas_stack = raps.Stacking.MIRRORED
+            settings.atlas_stack_tolerance = 0.01
+            self.assertEqual(settings.atlas_stack_tolerance, 0.01)
+
+
 class Sphere(unittest.TestCase):
     """The sphere domain on a built icosahedron and on bunny.off, closed genus-0 meshes."""
 

@@ -76,6 +76,16 @@ pub const RAPS_ERROR_GROUP_COUNT: i32 = 24;
 /// Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
 /// joins by an edge (the message names the pair).
 pub const RAPS_ERROR_SEAM_NOT_AN_EDGE: i32 = 25;
+/// Atlas domain with RAPS_PARAM_ATLAS_REPACK: the mesh's corner uvs
+/// (raps_mesh_set_corner_uvs_f32/f64) are not three per triangle (never set, the indices
+/// changed since, or the count was wrong).
+pub const RAPS_ERROR_UV_COUNT: i32 = 26;
+/// raps_mesh_set_corner_uvs_f32/f64: a uv coordinate is NaN, infinite or beyond +-1e30.
+pub const RAPS_ERROR_NON_FINITE_UV: i32 = 27;
+/// Atlas domain with RAPS_PARAM_ATLAS_REPACK: a uv chart of the input has 3D area but
+/// (numerically) no uv area (below 1e-12 times its uv bounding box's squared diagonal): it
+/// has no shape to keep. The message names its first triangle.
+pub const RAPS_ERROR_DEGENERATE_UV_CHART: i32 = 28;
 
 /// int. The parameter domain. Default RAPS_DOMAIN_DISK.
 pub const RAPS_PARAM_DOMAIN: i32 = 1;
@@ -190,6 +200,53 @@ pub const RAPS_PARAM_ATLAS_WHOLE_TEXELS: i32 = 45;
 /// different input vertices as a chart boundary: the seams of the input's existing uvs,
 /// when those are expressed, as usual, by split vertices.
 pub const RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS: i32 = 46;
+/// int, 0 or 1. 1 repacks the mesh's own uvs (raps_mesh_set_corner_uvs_f32/f64) instead of
+/// mapping it again: the charts are the uv islands (triangles sharing an edge, whose two
+/// vertices are welded by position as RAPS_PARAM_WELD_TOLERANCE says, are in one chart when
+/// their corner uvs at both ends are equal, bit for bit), each scaled uniformly to the
+/// atlas's one texel density (its uv area in texels is its 3D area in world units times the
+/// density squared) and packed like mapped charts, by every packing setting (resolution or
+/// density, pages, padding, margin, block alignment, rotation, mesh per page, whole texels).
+/// A chart's uvs are only moved, turned (as RAPS_PARAM_ATLAS_ROTATION allows) and uniformly
+/// scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
+/// triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
+/// raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
+/// area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
+/// stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
+/// used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
+/// chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
+/// islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
+pub const RAPS_PARAM_ATLAS_REPACK: i32 = 47;
+/// int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
+/// or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
+/// one mesh in one mesh) then costs no extra texels. Two charts stack when they are the same
+/// triangles over the same chart vertices (as copies with the same vertex and triangle order
+/// give) and their 3D vertices agree, vertex for vertex, up to a rigid motion (or a mirror,
+/// with RAPS_STACK_MIRRORED) within RAPS_PARAM_ATLAS_STACK_TOLERANCE; when repacking, their
+/// own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
+/// chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
+/// RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
+/// texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
+/// that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
+/// seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
+/// of its own, each then stacked on its original. A copy drawn mirrored (a transform with
+/// det < 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
+/// counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
+/// stack. A lightmap needs every chart its own texels: leave this off for one. Default
+/// NONE.
+pub const RAPS_PARAM_ATLAS_STACK: i32 = 48;
+/// float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
+/// farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
+/// puts the chart it shares. Default 1e-4.
+pub const RAPS_PARAM_ATLAS_STACK_TOLERANCE: i32 = 49;
+
+// RAPS_PARAM_ATLAS_STACK values
+/// every chart its own texels
+pub const RAPS_STACK_NONE: i32 = 0;
+/// congruent up to a rigid motion: one place
+pub const RAPS_STACK_RIGID: i32 = 1;
+/// also congruent up to a mirror (the texture appears mirrored)
+pub const RAPS_STACK_MIRRORED: i32 = 2;
 
 // RAPS_PARAM_ATLAS_ROTATION values
 /// Any angle: each chart is turned to its smallest bounding box, then by the quarter turn
@@ -305,6 +362,8 @@ pub const RAPS_PHASE_COUNT: i32 = 7;
 /// The chart, at the atlas's density, was larger than a page: it was shrunk to fit (its
 /// texels per world unit are below raps_stats.texels_per_unit).
 pub const RAPS_CHART_SCALED_DOWN: i32 = 1;
+/// The chart shares the texels of an earlier, congruent chart (raps_chart.stacked_on).
+pub const RAPS_CHART_STACKED: i32 = 2;
 
 pub type raps_status = i32;
 pub type raps_param = i32;
@@ -426,6 +485,10 @@ pub struct raps_chart {
     /// Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
     /// that gathers degenerate triangles with no chart beside them.
     pub stretch_l2: f64,
+    /// The chart whose texels it shares (RAPS_PARAM_ATLAS_STACK; RAPS_CHART_STACKED is set);
+    /// its own index when it shares none.
+    pub stacked_on: u32,
+    pub reserved: u32,
 }
 
 /// Progress callback: called with the phase and the fraction of it done, in [0, 1]. Every phase
@@ -538,6 +601,40 @@ extern "C" {
     /// the first such pair.
     pub fn raps_mesh_set_seam_edges(mesh: *mut raps_mesh, vertex_pairs: *const u32, edge_count: usize) -> raps_status;
 
+    /// The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+    /// ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+    /// pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+    /// pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+    /// f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+    /// are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+    /// Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+    /// removes them (the default: none). The data is copied; the pointer need not be aligned. The
+    /// count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+    /// set in either order.
+    /// Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+    /// smaller than one pair, or so large that the pairs would span more bytes than an address
+    /// reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+    /// +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+    /// failure. When repacked: UV_COUNT (not three per triangle).
+    pub fn raps_mesh_set_corner_uvs_f32(mesh: *mut raps_mesh, uv: *const f32, corner_count: usize, stride_bytes: usize) -> raps_status;
+
+    /// The mesh's existing uvs, read only when RAPS_PARAM_ATLAS_REPACK repacks them (every other call
+    /// ignores them). Sets (replaces) one uv per triangle corner: corner_count = 3 * triangle count
+    /// pairs u, v; corner 3t + k is corner k of triangle t, in the order of the indices; the first
+    /// pair at uv, each next one stride_bytes further (0 = tightly packed: 8 bytes for f32, 16 for
+    /// f64). Per corner rather than per vertex, so that an OBJ's `vt` or any uv seams come as they
+    /// are; uvs of a vertex-indexed format (glTF) are given by repeating each corner's vertex's uv.
+    /// Any range and orientation is taken (they need not lie in [0,1]^2). NULL with corner_count 0
+    /// removes them (the default: none). The data is copied; the pointer need not be aligned. The
+    /// count is checked against the triangles when the mesh is repacked, so uvs and indices may be
+    /// set in either order.
+    /// Errors: INVALID_ARGUMENT (mesh NULL, uv NULL with a nonzero count, stride_bytes nonzero and
+    /// smaller than one pair, or so large that the pairs would span more bytes than an address
+    /// reaches), TOO_LARGE (more than 3 * 2^28 corners), NON_FINITE_UV (NaN, infinite or beyond
+    /// +-1e30; the message names the first such corner), OUT_OF_MEMORY; the mesh keeps its uvs on
+    /// failure. When repacked: UV_COUNT (not three per triangle).
+    pub fn raps_mesh_set_corner_uvs_f64(mesh: *mut raps_mesh, uv: *const f64, corner_count: usize, stride_bytes: usize) -> raps_status;
+
     /// Counts as set; 0 for NULL or when not set yet. Read-only, thread-safe with other readers.
     pub fn raps_mesh_vertex_count(mesh: *const raps_mesh) -> usize;
 
@@ -610,14 +707,16 @@ extern "C" {
     /// INCONSISTENT_ORIENTATION, ISOLATED_VERTEX, MULTIPLE_COMPONENTS, NO_BOUNDARY,
     /// MULTIPLE_BOUNDARIES, NONZERO_GENUS, OPEN_MESH, CANCELLED, SOLVER_FAILED, OUT_OF_MEMORY,
     /// INTERNAL; atlas domain: GROUP_COUNT, SEAM_NOT_AN_EDGE and INDEX_OUT_OF_RANGE for the artist's
-    /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges).
+    /// seams (raps_mesh_set_triangle_groups, raps_mesh_set_seam_edges); UV_COUNT and
+    /// DEGENERATE_UV_CHART when repacking (RAPS_PARAM_ATLAS_REPACK).
     pub fn raps_parameterize(mesh: *const raps_mesh, settings: *const raps_settings, result: *mut raps_result) -> raps_status;
 
     /// Parameterizes several meshes into one atlas (settings must set RAPS_PARAM_DOMAIN to
     /// RAPS_DOMAIN_ATLAS): each mesh is placed in world units by its transform
     /// (raps_mesh_set_transform), cut into charts of its own (no chart joins two meshes, even where
     /// they touch) and every chart is packed at one texel density. The same mesh handle may appear
-    /// more than once (it is then packed once per appearance). meshes and settings are only read,
+    /// more than once (it is then packed once per appearance, or shares its first appearance's
+    /// texels with RAPS_PARAM_ATLAS_STACK). meshes and settings are only read,
     /// as for raps_parameterize; the result is replaced.
     /// The result holds the meshes' outputs one after another, in the order given:
     /// raps_result_mesh_range gives each mesh's output vertices and indices, and within a mesh's

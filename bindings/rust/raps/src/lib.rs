@@ -107,6 +107,13 @@ int_values! {
         GROUP_COUNT = sys::RAPS_ERROR_GROUP_COUNT,
         /// Atlas domain: a seam edge ([`Mesh::set_seam_edges`]) is not an edge of the mesh.
         SEAM_NOT_AN_EDGE = sys::RAPS_ERROR_SEAM_NOT_AN_EDGE,
+        /// Repacking ([`Settings::set_atlas_repack`]): the corner uvs
+        /// ([`Mesh::set_corner_uvs_f32`]) are not three per triangle.
+        UV_COUNT = sys::RAPS_ERROR_UV_COUNT,
+        /// [`Mesh::set_corner_uvs_f32`]: a uv is NaN, infinite or beyond 1e30.
+        NON_FINITE_UV = sys::RAPS_ERROR_NON_FINITE_UV,
+        /// Repacking: a uv chart has 3D area but no uv area.
+        DEGENERATE_UV_CHART = sys::RAPS_ERROR_DEGENERATE_UV_CHART,
     }
 }
 
@@ -144,6 +151,9 @@ int_values! {
         ATLAS_MESH_PER_PAGE = sys::RAPS_PARAM_ATLAS_MESH_PER_PAGE,
         ATLAS_WHOLE_TEXELS = sys::RAPS_PARAM_ATLAS_WHOLE_TEXELS,
         ATLAS_KEEP_INPUT_SEAMS = sys::RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
+        ATLAS_REPACK = sys::RAPS_PARAM_ATLAS_REPACK,
+        ATLAS_STACK = sys::RAPS_PARAM_ATLAS_STACK,
+        ATLAS_STACK_TOLERANCE = sys::RAPS_PARAM_ATLAS_STACK_TOLERANCE,
     }
 }
 
@@ -157,6 +167,19 @@ int_values! {
         QUARTER = sys::RAPS_ROTATION_QUARTER,
         /// None: each chart keeps its map's orientation.
         NONE = sys::RAPS_ROTATION_NONE,
+    }
+}
+
+int_values! {
+    /// Whether congruent charts share one place in the atlas (`RAPS_STACK_*`), the value of
+    /// [`Param::ATLAS_STACK`].
+    Stacking {
+        /// Every chart its own texels (the default).
+        NONE = sys::RAPS_STACK_NONE,
+        /// Charts congruent up to a rigid motion share one place.
+        RIGID = sys::RAPS_STACK_RIGID,
+        /// Also charts congruent only up to a mirror (their texture appears mirrored).
+        MIRRORED = sys::RAPS_STACK_MIRRORED,
     }
 }
 
@@ -538,6 +561,37 @@ impl Mesh {
         check(status, || self.last_error())
     }
 
+    /// The mesh's own uvs, read when [`Settings::set_atlas_repack`] repacks them: packed u, v
+    /// per triangle corner (corner `3 t + k` is corner k of triangle t). An empty slice removes
+    /// them. A non-finite uv is refused with [`Status::NON_FINITE_UV`]; a count other than
+    /// three per triangle with [`Status::UV_COUNT`] when the mesh is repacked.
+    pub fn set_corner_uvs_f32(&mut self, uv: &[f32]) -> Result<()> {
+        let count = pair_count(uv.len())?;
+        let data = if uv.is_empty() {
+            ptr::null()
+        } else {
+            uv.as_ptr()
+        };
+        // SAFETY: NULL with 0, or `count` packed pairs within `uv`, only read.
+        let status =
+            unsafe { sys::raps_mesh_set_corner_uvs_f32(self.raw.as_ptr(), data, count, 0) };
+        check(status, || self.last_error())
+    }
+
+    /// Like [`Mesh::set_corner_uvs_f32`], with double-precision uvs.
+    pub fn set_corner_uvs_f64(&mut self, uv: &[f64]) -> Result<()> {
+        let count = pair_count(uv.len())?;
+        let data = if uv.is_empty() {
+            ptr::null()
+        } else {
+            uv.as_ptr()
+        };
+        // SAFETY: NULL with 0, or `count` packed pairs within `uv`, only read.
+        let status =
+            unsafe { sys::raps_mesh_set_corner_uvs_f64(self.raw.as_ptr(), data, count, 0) };
+        check(status, || self.last_error())
+    }
+
     /// The number of vertices set (0 before positions are set).
     pub fn vertex_count(&self) -> usize {
         // SAFETY: a live handle, read-only.
@@ -554,6 +608,17 @@ impl Mesh {
     pub fn as_ptr(&self) -> *const sys::raps_mesh {
         self.raw.as_ptr()
     }
+}
+
+/// How many u, v pairs `len` packed values hold; an odd count is refused.
+fn pair_count(len: usize) -> Result<usize> {
+    if len % 2 != 0 {
+        return Err(Error::new(
+            sys::RAPS_ERROR_INVALID_ARGUMENT,
+            format!("{} uv values are not a multiple of 2", len),
+        ));
+    }
+    Ok(len / 2)
 }
 
 /// How many whole points of three values `stride` apart a buffer of `len` values holds.
@@ -800,6 +865,24 @@ impl Settings {
     /// Atlas: no chart keeps a triangle stretched more than this (Linf stretch).
     pub fn set_atlas_max_linf_stretch(&mut self, stretch: f64) -> Result<&mut Self> {
         self.set_float(Param::ATLAS_MAX_LINF_STRETCH, stretch)
+    }
+
+    /// Atlas: `true` repacks the mesh's own uvs ([`Mesh::set_corner_uvs_f32`]) instead of
+    /// mapping it: the uv islands are the charts, each only moved, turned and uniformly scaled
+    /// to the one texel density.
+    pub fn set_atlas_repack(&mut self, repack: bool) -> Result<&mut Self> {
+        self.set_int(Param::ATLAS_REPACK, repack.into())
+    }
+    pub fn atlas_repack(&self) -> Result<bool> {
+        self.int(Param::ATLAS_REPACK).map(|v| v != 0)
+    }
+    /// Atlas: whether congruent charts share one place ([`Stacking::NONE`] by default); a
+    /// stacked chart's [`Chart`] has `stacked_on`, the chart whose texels it takes.
+    pub fn set_atlas_stack(&mut self, stacking: Stacking) -> Result<&mut Self> {
+        self.set_int(Param::ATLAS_STACK, stacking.0.into())
+    }
+    pub fn atlas_stack(&self) -> Result<Stacking> {
+        self.int(Param::ATLAS_STACK).map(|v| Stacking(v as i32))
     }
 
     pub fn domain(&self) -> Result<Domain> {

@@ -135,3 +135,33 @@ fn groups_and_seam_edges_split_charts_and_bad_ones_are_refused() {
         Status::INDEX_OUT_OF_RANGE
     );
 }
+
+#[test]
+fn a_repeated_mesh_shares_its_originals_texels() {
+    let (xyz, indices) = cap();
+    let original = Mesh::from_f64(&xyz, &indices).unwrap();
+    let mut copy = Mesh::from_f64(&xyz, &indices).unwrap();
+    copy.set_transform(Some(&[
+        0.0, -1.0, 0.0, 4.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+    ]))
+    .unwrap();
+    let mut settings = atlas_settings();
+    settings.set_atlas_stack(raps::Stacking::RIGID).unwrap();
+    assert_eq!(settings.atlas_stack().unwrap(), raps::Stacking::RIGID);
+    let scene = raps::parameterize_scene(&[&original, &copy], &settings).unwrap();
+    let charts = scene.charts().unwrap();
+    for (index, chart) in charts.iter().enumerate() {
+        let stacked = chart.flags & (raps::sys::RAPS_CHART_STACKED as u32) != 0;
+        assert_eq!(stacked, chart.mesh == 1);
+        assert_eq!(chart.stacked_on as usize != index, stacked);
+    }
+    let uv = scene.uvs_f64().unwrap();
+    let indices = scene.indices().unwrap();
+    let first = scene.mesh_range(0).unwrap();
+    let second = scene.mesh_range(1).unwrap();
+    for corner in 0..18 {
+        let own = uv[first.first_vertex as usize + indices[corner] as usize];
+        let copied = uv[second.first_vertex as usize + indices[18 + corner] as usize];
+        assert_eq!(own, copied);
+    }
+}
