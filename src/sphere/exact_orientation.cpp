@@ -1,16 +1,26 @@
 #include "sphere/exact_orientation.h"
 
-#include <cmath>
-
 #include <Eigen/Geometry>
 
 namespace raps {
 namespace {
 
-// a * b = hi + lo exactly.
+// a = hi + lo with each half of a's significand (Veltkamp's split, exact below about 1e300).
+void split(double a, double& hi, double& lo) {
+    const double c = 134217729.0 * a;  // 2^27 + 1
+    hi = c - (c - a);
+    lo = a - hi;
+}
+
+// a * b = hi + lo exactly (Dekker's product). Not std::fma: that is a fused multiply-add
+// instruction, which the library never uses (tests/check_libm_free.cmake), or a libm call
+// where the processor has none; both give these same bits, slower or not at all.
 void two_product(double a, double b, double& hi, double& lo) {
     hi = a * b;
-    lo = std::fma(a, b, -hi);
+    double a_hi, a_lo, b_hi, b_lo;
+    split(a, a_hi, a_lo);
+    split(b, b_hi, b_lo);
+    lo = a_lo * b_lo - (((hi - a_hi * b_hi) - a_lo * b_hi) - a_hi * b_lo);
 }
 
 // a + b = hi + lo exactly (Knuth's two-sum).
