@@ -58,7 +58,7 @@ const std::vector<ParameterFlag> kParameterFlags = {
       {"quarter", RAPS_ROTATION_QUARTER},
       {"none", RAPS_ROTATION_NONE}}},
     {"--margin", RAPS_PARAM_ATLAS_MARGIN, true, {}},
-    {"--stack-tolerance", RAPS_PARAM_ATLAS_STACK_TOLERANCE, false, {}},
+    {"--stack-tolerance", RAPS_PARAM_ATLAS_STACK_TOLERANCE, true, {}},
     {"--damping", RAPS_PARAM_SPHERE_DAMPING, false, {}},
     {"--tolerance", RAPS_PARAM_SPHERE_TOLERANCE, false, {}},
     {"--max-sweeps", RAPS_PARAM_SPHERE_MAX_SWEEPS, false, {}},
@@ -150,6 +150,17 @@ std::string apply_lightmap_preset(raps_settings* settings) {
         if (!error.empty()) return error;
     }
     return "";
+}
+
+std::string set_stack(raps_settings* settings, const std::string& flag, bool lightmap) {
+    if (lightmap) {
+        return flag + " and --lightmap exclude each other: a lightmap needs every chart its own "
+                      "texels";
+    }
+    const int64_t mode = flag == "--stack" ? RAPS_STACK_RIGID : RAPS_STACK_MIRRORED;
+    const std::string error =
+        library_error(settings, raps_settings_set_int(settings, RAPS_PARAM_ATLAS_STACK, mode));
+    return error.empty() ? "" : flag + ": " + error;
 }
 
 const char* choice_name(const ParameterFlag& flag, int64_t value) {

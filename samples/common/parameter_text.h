@@ -52,6 +52,10 @@ std::string set_max_size(raps_settings* settings, const std::string& text);
 // override these. Returns "" or the library's message.
 std::string apply_lightmap_preset(raps_settings* settings);
 
+// --stack or --stack-mirrored (`flag`): congruent charts share one place in the atlas. Refused
+// with --lightmap, where every chart needs texels of its own. Returns "" or a usage error.
+std::string set_stack(raps_settings* settings, const std::string& flag, bool lightmap);
+
 // The name of the choice with `value` ("?" when there is none).
 const char* choice_name(const ParameterFlag& flag, int64_t value);
 

@@ -48,6 +48,12 @@ options:
                              beside the asset's own uvs, padding 2, --rotate quarter, each
                              mesh's charts on one page, charts on whole texels at --resolution
                              or at --texels-per-unit (--padding and --rotate given override)
+  --stack, --stack-mirrored  congruent charts (the same triangles and vertex order, up to a
+                             rigid motion; with --stack-mirrored a mirror too) share one place
+                             in the atlas, so copies of a mesh cost no texels; their charts say
+                             "stacked_on" in the report. Not with --lightmap or a density
+  --stack-tolerance F        how far a stacked chart's vertices may lie from its original's,
+                             as a fraction of the chart's extent, [0, 0.1] (default 1e-4)
   --embed                    .gltf output: the buffer as a data uri instead of OUT.<hash>.bin
   --report FILE              also write the JSON to FILE
   --preview FILE.png         write a picture: the uv layout with chart outlines beside the model
@@ -144,6 +150,9 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
             const std::string error = raps_samples::set_max_size(settings, value());
             if (!error.empty()) throw UsageError(error);
             given.max_size = true;
+        } else if (arg == "--stack" || arg == "--stack-mirrored") {
+            const std::string error = raps_samples::set_stack(settings, arg, given.lightmap);
+            if (!error.empty()) throw UsageError(error);
         } else if (arg == "--uv-format") {
             const std::string f = value();
             if (f != "float" && f != "unorm16") throw UsageError("--uv-format is float or unorm16");
@@ -204,6 +213,14 @@ void check_atlas_flags(const GivenFlags& given, const raps_settings* settings) {
         throw UsageError(
             "--resolution and --texels-per-unit exclude each other: a density sizes "
             "the pages itself (bounded by --max-size)");
+    }
+    int64_t stack = 0;
+    raps_settings_get_int(settings, RAPS_PARAM_ATLAS_STACK, &stack);
+    if (density > 0 && stack != RAPS_STACK_NONE) {
+        throw UsageError(
+            "--stack and --texels-per-unit exclude each other: with a density each mesh keeps "
+            "its charts on its own page (one texture per primitive), so no chart could share "
+            "another mesh's texels; give --resolution");
     }
     if (density == 0 && given.max_size) {
         throw UsageError(

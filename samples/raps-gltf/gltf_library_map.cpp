@@ -41,12 +41,16 @@ int32_t forward_progress(void* user, raps_phase phase, double fraction) {
 }
 
 // The settings of a run: the user's, in the atlas domain. With a density every mesh keeps its
-// charts on one page: a primitive's uvs address one texture.
+// charts on one page: a primitive's uvs address one texture. (A resolution makes one page, and
+// there the setting would only keep --stack from sharing charts between meshes.)
 void prepare_run(const BakeOptions& options, ProgressContext* progress, RunHandles* h) {
+    double density = 0;
+    raps_settings_get_float(options.settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, &density);
     if (raps_result_create(&h->result) != RAPS_OK ||
         raps_settings_clone(options.settings, &h->settings) != RAPS_OK ||
         raps_settings_set_int(h->settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS) != RAPS_OK ||
-        raps_settings_set_int(h->settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, 1) != RAPS_OK) {
+        (density > 0 &&
+         raps_settings_set_int(h->settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, 1) != RAPS_OK)) {
         throw GltfError("raps", "cannot create the library's handles");
     }
     if (options.progress) raps_settings_set_progress(h->settings, &forward_progress, progress);

@@ -40,6 +40,7 @@ Json chart_json(const raps_chart& c, const SceneReport& scene) {
     j["area_texels"] = json_number(c.area_texels);
     j["stretch_l2"] = json_number(c.stretch_l2);
     j["scaled_down"] = (c.flags & RAPS_CHART_SCALED_DOWN) != 0;
+    if (c.flags & RAPS_CHART_STACKED) j["stacked_on"] = c.stacked_on;
     return j;
 }
 
@@ -50,7 +51,8 @@ Json pages_json(const SceneReport& scene) {
     std::vector<uint64_t> charts(s.page_count, 0);
     for (const raps_chart& c : scene.charts) {
         if (c.page >= covered.size()) continue;
-        covered[c.page] += c.area_texels;
+        // A stacked chart's texels are its original's: a page counts them once.
+        if (!(c.flags & RAPS_CHART_STACKED)) covered[c.page] += c.area_texels;
         ++charts[c.page];
     }
     Json pages = Json::array();
@@ -131,7 +133,9 @@ Json settings_json(const raps_settings* settings, const BakeOptions& options) {
                                   RAPS_PARAM_ATLAS_MARGIN,
                                   RAPS_PARAM_ATLAS_BLOCK_ALIGN,
                                   RAPS_PARAM_ATLAS_WHOLE_TEXELS,
-                                  RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS};
+                                  RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
+                                  RAPS_PARAM_ATLAS_STACK,
+                                  RAPS_PARAM_ATLAS_STACK_TOLERANCE};
     for (raps_param p : choices) {
         const char* name = nullptr;
         raps_param_info(p, &name, nullptr, nullptr, nullptr, nullptr);

@@ -271,13 +271,8 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
                   [&] { return raps_settings_last_error(settings); });
             options.repack = true;
         } else if (arg == "--stack" || arg == "--stack-mirrored") {
-            if (lightmap)
-                throw UsageError(arg +
-                                 " and --lightmap exclude each other: a lightmap "
-                                 "needs every chart its own texels");
-            check(raps_settings_set_int(settings, RAPS_PARAM_ATLAS_STACK,
-                                        arg == "--stack" ? RAPS_STACK_RIGID : RAPS_STACK_MIRRORED),
-                  [&] { return raps_settings_last_error(settings); });
+            const std::string error = raps_samples::set_stack(settings, arg, lightmap);
+            if (!error.empty()) throw UsageError(error);
         } else if (arg == "--obj-groups") {
             options.obj_groups = true;
         } else if (const raps_samples::ParameterFlag* flag =

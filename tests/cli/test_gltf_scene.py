@@ -6,7 +6,8 @@ large for a page are shrunk, flagged and noted; --lightmap keeps TEXCOORD_0 and 
 TEXCOORD_1; with --keep-uv-seams every seam of TEXCOORD_0 is a seam of the new set; unorm16
 texcoords decode into the texels of the float uvs; a mesh drawn at several scales (by nodes or
 by EXT_mesh_gpu_instancing) is packed at its largest and the report says so, and meshes defined
-alike share one place at the larger scale of either; bad flag combinations are refused with
+alike share one place at the larger scale of either; with --stack a congruent copy's charts
+share their original's texels; bad flag combinations are refused with
 exit status 2 and nothing written, a node's malformed transform with status 1, a scene that
 draws nothing is nothing to bake; the Khronos validator finds no error in any output.
 
@@ -270,6 +271,44 @@ class SceneAtlas(unittest.TestCase):
         # Packed once at the larger instance: 20 texels per unit there, 3 x 20 at scale 1.
         self.assertAlmostEqual(density / 60.0, 1.0, delta=0.02)
 
+    def test_stack_shares_the_texels_of_congruent_meshes(self):
+        # A second mesh whose positions are the first's moved 5 units: congruent charts, but
+        # not the same data, so only --stack gives them one place.
+        with open(os.path.join(DATA, 'gltf', 'BoxTextured.gltf')) as fh:
+            doc = json.load(fh)
+        box = Gltf(os.path.join(DATA, 'gltf', 'BoxTextured.gltf'))
+        prim = doc['meshes'][0]['primitives'][0]
+        moved = (box.accessor(prim['attributes']['POSITION']) + [5, 0, 0]).astype(np.float32)
+        doc['buffers'].append({'byteLength': moved.nbytes, 'uri': 'data:application/octet-stream;'
+                               'base64,' + base64.b64encode(moved.tobytes()).decode()})
+        doc['bufferViews'].append({'buffer': len(doc['buffers']) - 1, 'byteLength': moved.nbytes})
+        doc['accessors'].append({'bufferView': len(doc['bufferViews']) - 1, 'componentType': 5126,
+                                 'count': len(moved), 'type': 'VEC3',
+                                 'min': moved.min(axis=0).tolist(),
+                                 'max': moved.max(axis=0).tolist()})
+        doc['meshes'].append({'primitives': [dict(prim, attributes=dict(
+            prim['attributes'], POSITION=len(doc['accessors']) - 1))]})
+        doc['nodes'].append({'mesh': 1})
+        doc['scenes'][0]['nodes'].append(len(doc['nodes']) - 1)
+        source = os.path.join(self.tmp.name, 'two_boxes.gltf')
+        with open(source, 'w') as fh:
+            json.dump(doc, fh)
+        flags = ('--overwrite',)
+        plain_g, plain = self.bake(source, 'two_boxes_uv.glb', *flags)
+        g, stacked = self.bake(source, 'two_boxes_stacked.glb', *flags, '--stack')
+        self.assertFalse(any('stacked_on' in c for c in plain['scene']['chart_list']))
+        copies = [c for c in stacked['scene']['chart_list'] if c['mesh'] == 1]
+        self.assertTrue(copies)
+        originals = stacked['scene']['chart_list']
+        for c in copies:
+            self.assertEqual(originals[c['stacked_on']]['mesh'], 0)
+            self.assertEqual(originals[c['stacked_on']]['rect'], c['rect'])
+        self.assertEqual(stacked['settings']['atlas_stack'], 1)
+        # The copy's uvs are the original's: the same texels. Without --stack they are not.
+        for baked, same in ((g, True), (plain_g, False)):
+            uv = [texcoords(baked, baked.json['meshes'][m]['primitives'][0], 0) for m in (0, 1)]
+            self.assertEqual(np.allclose(uv[0], uv[1], atol=1e-6), same)
+
     def test_keep_uv_seams(self):
         source = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
         g, _ = self.bake(source, 'duck_seams.glb', '--lightmap', '--keep-uv-seams',
@@ -302,7 +341,10 @@ class SceneAtlas(unittest.TestCase):
                 (['--uv-format', 'half'], 'float or unorm16'),
                 (['--group', 'world'], 'mesh, primitive or scene'),
                 (['--texels-per-unit', 'nan'], 'atlas_texels_per_unit'),
-                (['--texels-per-unit', '1', '--max-size', '8'], 'atlas_max_width')]:
+                (['--texels-per-unit', '1', '--max-size', '8'], 'atlas_max_width'),
+                (['--lightmap', '--stack'], 'exclude each other'),
+                (['--texels-per-unit', '10', '--stack'], 'its own page'),
+                (['--stack-tolerance', '0.5'], 'atlas_stack_tolerance')]:
             status, stdout, stderr = run_tool(RAPS_GLTF, source, out, '--overwrite', *flags)
             self.assertEqual(status, 2, flags)
             self.assertIn(message, stderr)
