@@ -6,13 +6,7 @@
 # fails the wheel's build here.
 file(REMOVE_RECURSE ${WORK_DIR})
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed: ${ARGN}\n${out}\n${err}")
-  endif()
-  set(last_output "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../run_step.cmake)
 
 # Nothing from the repository or the build tree may reach the installed package.
 set(clean_env ${CMAKE_COMMAND} -E env --unset=RAPS_LIBRARY --unset=PYTHONPATH

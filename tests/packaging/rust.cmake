@@ -6,13 +6,7 @@
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/crates)
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed: ${ARGN}\n${out}\n${err}")
-  endif()
-  set(last_output "${out}${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../run_step.cmake)
 
 # One crate at a time: raps names raps-sys by version, which no registry offline has, so a
 # patch points it at the sources. Debian bookworm's cargo (1.65) cannot package a workspace's
@@ -50,6 +44,8 @@ endif()
 run(${CMAKE_COMMAND} -E env --unset=RAPS_LIB_DIR --unset=LD_LIBRARY_PATH
     CARGO_TARGET_DIR=${WORK_DIR}/consumer/target NUM_JOBS=${JOBS} "RAPS_CMAKE_ARGS=${cmake_args}"
     ${CARGO} test --offline --jobs ${JOBS} --manifest-path ${WORK_DIR}/consumer/Cargo.toml)
+# cargo prints the test results on stdout and its progress on stderr.
+set(last_output "${last_output}${last_error}")
 message(STATUS "consumer crate: ${last_output}")
 if(NOT last_output MATCHES "test result: ok. 1 passed")
   message(FATAL_ERROR "the consumer crate's test did not run")
