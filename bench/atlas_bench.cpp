@@ -7,19 +7,14 @@
 //                    [--mesh FILE] [--phases]
 // --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
 // each mesh's median time per phase.
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "mesh_io.h"
+#include "bench_support.h"
 #include "parameter_text.h"
 #include "raps.h"
 
@@ -44,8 +39,7 @@ struct Options {
     int threads = 0, resolution = 1024, padding = 1;
 };
 
-Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uint32_t>& triangles,
-                const Options& options) {
+Sample run_once(const raps_bench::TriangleMesh& input, const Options& options) {
     Sample sample{};
     raps_mesh* mesh = nullptr;
     raps_settings* settings = nullptr;
@@ -58,8 +52,8 @@ Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uin
     raps_settings_set_int(settings, RAPS_PARAM_ATLAS_RESOLUTION, options.resolution);
     raps_settings_set_int(settings, RAPS_PARAM_ATLAS_PADDING, options.padding);
     const auto start = std::chrono::steady_clock::now();
-    raps_mesh_set_positions_f64(mesh, polygons.positions.data(), polygons.vertex_count(), 0);
-    raps_mesh_set_indices_u32(mesh, triangles.data(), triangles.size());
+    raps_mesh_set_positions_f64(mesh, input.positions.data(), input.positions.size() / 3, 0);
+    raps_mesh_set_indices_u32(mesh, input.triangles.data(), input.triangles.size());
     if (raps_parameterize(mesh, settings, result) == RAPS_OK) {
         sample.total_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -126,57 +120,34 @@ int main(int argc, char** argv) {
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const char* file : kMeshes) {
         if (!only.empty() && only != file) continue;
-        int fds[2];
-        if (pipe(fds) != 0) return 1;
-        const pid_t pid = fork();
-        if (pid == 0) {
-            close(fds[0]);
-            try {
-                const raps_samples::PolygonMesh mesh =
-                    raps_samples::read_mesh(data + "/meshes/" + file);
-                const std::vector<uint32_t> triangles = mesh.triangles();
-                for (int r = 0; r < runs; ++r) {
-                    const Sample s = run_once(mesh, triangles, options);
-                    if (write(fds[1], &s, sizeof(s)) != static_cast<ssize_t>(sizeof(s))) _exit(3);
-                }
-            } catch (const std::exception& e) {
-                std::fprintf(stderr, "raps-bench-atlas: %s\n", e.what());
-                _exit(2);
-            }
-            _exit(0);
-        }
-        close(fds[1]);
-        std::vector<Sample> samples;
-        Sample s;
-        while (read(fds[0], &s, sizeof(s)) == static_cast<ssize_t>(sizeof(s))) samples.push_back(s);
-        close(fds[0]);
-        int status = 0;
-        struct rusage usage;
-        wait4(pid, &status, 0, &usage);
+        const auto child = raps_bench::run_in_child<Sample>("raps-bench-atlas", [&](auto emit) {
+            const raps_bench::TriangleMesh mesh =
+                raps_bench::load_triangles(data + "/meshes/" + file);
+            for (int r = 0; r < runs; ++r) emit(run_once(mesh, options));
+        });
+        const std::vector<Sample>& samples = child.samples;
         if (samples.empty() || !samples[0].ok) {
             std::printf("| %s | failed |\n", file);
             continue;
         }
         std::vector<double> times;
         for (const Sample& x : samples) times.push_back(x.total_ms);
-        std::sort(times.begin(), times.end());
-        const double ms = times[times.size() / 2];
+        const double ms = raps_bench::median(times);
         const raps_stats& st = samples[0].stats;
         std::printf(
             "| %s | %llu | %.0f | %llu | %.3f | %.4f | %.2f | %.3f | %.2f | %llu | %.0f |\n", file,
             static_cast<unsigned long long>(st.triangle_count), ms,
             static_cast<unsigned long long>(st.chart_count), st.utilization, st.stretch_l2,
             st.stretch_linf, st.area_log_mean, st.angle_mean_deg,
-            static_cast<unsigned long long>(st.flipped_triangles), usage.ru_maxrss / 1024.0);
+            static_cast<unsigned long long>(st.flipped_triangles), child.peak_mb);
         std::fflush(stdout);
         if (phases) {
             phase_lines += std::string("| ") + file;
             for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p) {
                 std::vector<double> phase;
                 for (const Sample& x : samples) phase.push_back(x.phase_ms[p]);
-                std::sort(phase.begin(), phase.end());
                 char cell[64];
-                std::snprintf(cell, sizeof(cell), " | %.1f", phase[phase.size() / 2]);
+                std::snprintf(cell, sizeof(cell), " | %.1f", raps_bench::median(phase));
                 phase_lines += cell;
             }
             phase_lines += " |\n";

@@ -9,19 +9,14 @@
 // Cases: disk and atlas on face.obj subdivided K times (default 2: 827K triangles; 3: 3.3M),
 // sphere on bunny.off subdivided K + 1 times (K = 2: 444K triangles). Each case runs once, in its
 // own child process (peak MB is that process's).
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "mesh_io.h"
+#include "bench_support.h"
 #include "parameter_text.h"
 #include "raps.h"
 
@@ -126,37 +121,12 @@ struct Case {
 
 // Runs the case in a child process; the report and the child's peak resident MB.
 std::pair<Report, double> run_in_child(const std::string& data, const Case& c, int threads) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        close(fds[0]);
-        try {
-            const raps_samples::PolygonMesh mesh =
-                raps_samples::read_mesh(data + "/meshes/" + c.file);
-            std::vector<double> positions = mesh.positions;
-            std::vector<uint32_t> triangles = mesh.triangles();
-            for (int s = 0; s < c.subdivisions; ++s)
-                raps_samples::subdivide_midpoint(positions, triangles);
-            const Report report = run_case(positions, triangles, c.domain, threads);
-            if (write(fds[1], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
-                _exit(3);
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "raps-bench-progress: %s\n", e.what());
-            _exit(2);
-        }
-        _exit(0);
-    }
-    close(fds[1]);
-    Report report;
-    if (read(fds[0], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
-        report.ok = 0;
-    close(fds[0]);
-    int status = 0;
-    struct rusage usage;
-    wait4(pid, &status, 0, &usage);
-    return {report, usage.ru_maxrss / 1024.0};
+    const auto child = raps_bench::run_in_child<Report>("raps-bench-progress", [&](auto emit) {
+        const raps_bench::TriangleMesh mesh =
+            raps_bench::load_triangles(data + "/meshes/" + c.file, c.subdivisions);
+        emit(run_case(mesh.positions, mesh.triangles, c.domain, threads));
+    });
+    return {child.samples.empty() ? Report{} : child.samples[0], child.peak_mb};
 }
 
 void print_case(const Case& c, const Report& r, double peak_mb) {

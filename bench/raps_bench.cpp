@@ -14,8 +14,6 @@
 //
 // Every case runs in its own child process (fork), so the peak resident memory reported is that
 // case's alone. Numbers are printed, never judged: speed targets live here, not in tests.
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,15 +21,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "mesh_io.h"
+#include "bench_support.h"
 #include "raps.h"
 
 namespace {
+
+using raps_bench::median;
 
 struct Case {
     std::string name;
@@ -97,49 +96,14 @@ Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t
     return sample;
 }
 
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 // Runs `runs` samples in one child process (after loading the mesh there, so the parent stays
 // small), returning them and the child's peak resident set in MB.
 std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, const Config& config) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        close(fds[0]);
-        try {
-            const raps_samples::PolygonMesh mesh = raps_samples::read_mesh(c.file);
-            std::vector<double> positions = mesh.positions;
-            std::vector<uint32_t> triangles = mesh.triangles();
-            for (int s = 0; s < c.subdivisions; ++s)
-                raps_samples::subdivide_midpoint(positions, triangles);
-            for (int r = 0; r < runs; ++r) {
-                const Sample sample = run_once(positions, triangles, config);
-                if (write(fds[1], &sample, sizeof(sample)) != static_cast<ssize_t>(sizeof(sample)))
-                    _exit(3);
-            }
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "raps-bench: %s\n", e.what());
-            _exit(2);
-        }
-        _exit(0);
-    }
-    close(fds[1]);
-    std::vector<Sample> samples;
-    Sample sample;
-    while (read(fds[0], &sample, sizeof(sample)) == static_cast<ssize_t>(sizeof(sample))) {
-        samples.push_back(sample);
-    }
-    close(fds[0]);
-    int status = 0;
-    struct rusage usage;
-    wait4(pid, &status, 0, &usage);
-    return {samples, usage.ru_maxrss / 1024.0};
+    auto child = raps_bench::run_in_child<Sample>("raps-bench", [&](auto emit) {
+        const raps_bench::TriangleMesh mesh = raps_bench::load_triangles(c.file, c.subdivisions);
+        for (int r = 0; r < runs; ++r) emit(run_once(mesh.positions, mesh.triangles, config));
+    });
+    return {std::move(child.samples), child.peak_mb};
 }
 
 // The sphere section: per closed genus-0 mesh, the initial map's distortion (one run with no
