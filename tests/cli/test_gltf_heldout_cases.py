@@ -69,6 +69,32 @@ class HeldoutCases(unittest.TestCase):
         self.assertFalse(os.path.exists(self.path('short_out.glb')))
 
 
+    def test_texture_transform_texcoord_decides_the_tangents(self):
+        """KHR_texture_transform's texCoord overrides the normal texture's own: the tangents
+        follow the set the normal map really reads."""
+        b = Builder()
+        prim, pos, _ = b.grid_primitive(extra_attributes={
+            'NORMAL': b.accessor(np.tile(np.float32([0, 0, 1]), (49, 1)), 'VEC3'),
+            'TANGENT': b.accessor(np.tile(np.float32([1, 0, 0, 1]), (49, 1)), 'VEC4'),
+            'TEXCOORD_0': b.accessor(np.zeros((49, 2), np.float32), 'VEC2'),
+            'TEXCOORD_1': b.accessor(np.zeros((49, 2), np.float32), 'VEC2')})
+        prim['material'] = 0
+        b.doc['meshes'].append({'primitives': [prim]})
+        b.doc['extensionsUsed'] = ['KHR_texture_transform']
+        b.doc['materials'] = [{'normalTexture': {
+            'index': 0, 'texCoord': 0,
+            'extensions': {'KHR_texture_transform': {'texCoord': 1, 'scale': [2, 2]}}}}]
+        b.doc['textures'] = [{}]
+        src = self.path('transform.gltf')
+        b.write_gltf(src)
+        g, report = self.bake_clean(src, 'set1.glb', '--texcoord', '1')
+        self.assertEqual(report['primitives'][0]['tangents'], 'dropped')
+        self.assertNotIn('TANGENT', g.json['meshes'][0]['primitives'][0]['attributes'])
+        g, report = self.bake_clean(src, 'set0.glb')
+        self.assertEqual(report['primitives'][0]['tangents'], 'kept')
+        self.assertIn('TANGENT', g.json['meshes'][0]['primitives'][0]['attributes'])
+
+
 if __name__ == '__main__':
     spec.RAPS_GLTF, spec.VALIDATOR, spec.NODE = sys.argv[1], sys.argv[2], sys.argv[3]
     unittest.main(argv=sys.argv[:1], verbosity=2)
