@@ -95,6 +95,74 @@ class HeldoutCases(unittest.TestCase):
         self.assertIn('TANGENT', g.json['meshes'][0]['primitives'][0]['attributes'])
 
 
+    def world_distortion(self, g, report, scale):
+        """Per triangle of the output, the ratio of the larger to the smaller singular value of
+        the map from world space (positions times the node's scale) to texels, and the sign of
+        the triangle's texel area."""
+        prim = g.json['meshes'][0]['primitives'][0]
+        acc = g.json['accessors'][prim['attributes']['POSITION']]
+        xyz = g.accessor(prim['attributes']['POSITION']).astype(np.float64)
+        if acc.get('normalized'):
+            xyz /= 32767.0
+        xyz *= np.asarray(scale, np.float64)
+        uv = g.accessor(prim['attributes']['TEXCOORD_0']).astype(np.float64)
+        uv *= np.asarray(report['groups'][0]['atlas'], np.float64)
+        ratios, signs = [], []
+        for a, b, c in g.triangles(prim):
+            e = np.column_stack([xyz[b] - xyz[a], xyz[c] - xyz[a]])
+            q, r = np.linalg.qr(e)  # the triangle in its own plane
+            f = np.column_stack([uv[b] - uv[a], uv[c] - uv[a]])
+            sv = np.linalg.svd(f @ np.linalg.inv(r), compute_uv=False)
+            ratios.append(sv[0] / sv[1])
+            signs.append(np.sign(np.linalg.det(f)))
+        return np.asarray(ratios), np.asarray(signs)
+
+    def test_mesh_scaled_unevenly_by_its_node_is_mapped_as_drawn(self):
+        """KHR_mesh_quantization stores positions as integers that the node's scale, per axis,
+        turns into the model; a mesh's own space is then stretched, and uvs made there are
+        stretched in the world. --group mesh maps such a mesh as the scene draws it."""
+        pos, tris = spec.grid(8, 8)
+        stretch = np.float64([8, 1, 1])
+        flat = self.path('flat.gltf')
+        b = Builder()
+        b.doc['meshes'].append({'primitives': [{
+            'attributes': {'POSITION': b.accessor(pos, 'VEC3', bounds=True)},
+            'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                  target=34963)}]})
+        b.write_gltf(flat)
+        g, report = self.bake_clean(flat, 'flat.glb')
+        _, local_signs = self.world_distortion(g, report, [1, 1, 1])
+        # The same surface, 8 times longer: integers scaled per axis, and floats under a
+        # mirroring node.
+        unit = (pos * stretch).max(axis=0)
+        quantized = np.round(pos * stretch / unit * 32767).astype(np.int16)
+        b = Builder()
+        b.doc['extensionsUsed'] = b.doc['extensionsRequired'] = ['KHR_mesh_quantization']
+        position = b.accessor(quantized, 'VEC3', component=5122, bounds=True)
+        b.doc['accessors'][position]['normalized'] = True
+        b.doc['meshes'].append({'primitives': [{
+            'attributes': {'POSITION': position},
+            'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                  target=34963)}]})
+        b.doc['nodes'][0]['scale'] = unit.tolist()
+        src = self.path('quantized.gltf')
+        b.write_gltf(src)
+        mirrored = self.path('mirrored.gltf')
+        b = Builder()
+        b.doc['meshes'].append({'primitives': [{
+            'attributes': {'POSITION': b.accessor(pos, 'VEC3', bounds=True)},
+            'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                  target=34963)}]})
+        b.doc['nodes'][0]['scale'] = [8, 1, -1]
+        b.write_gltf(mirrored)
+        for path, scale in ((src, unit), (mirrored, [8, 1, -1])):
+            for flags in ((), ('--texels-per-unit', '4')):
+                g, report = self.bake_clean(path, 'stretched.glb', *flags)
+                ratios, signs = self.world_distortion(g, report, scale)
+                self.assertLess(np.median(ratios), 1.2, (path, flags))
+                self.assertTrue(np.all(signs == local_signs[0]), (path, flags))
+
+
 if __name__ == '__main__':
     spec.RAPS_GLTF, spec.VALIDATOR, spec.NODE = sys.argv[1], sys.argv[2], sys.argv[3]
     unittest.main(argv=sys.argv[:1], verbosity=2)
