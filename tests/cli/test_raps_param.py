@@ -221,6 +221,54 @@ class RapsParamTest(unittest.TestCase):
         self.assertIn('cannot open', err)
         self.assertFalse(os.path.exists(self.out))
 
+    def test_obj_and_off_as_exporters_write_them(self):
+        """The forms real files take read as the plain file does: a byte order mark, comments
+        after a face, line continuations, CRLF, tabs, no final newline, relative indices, vt/vn
+        corners; Geomview's COFF and NOFF (numbers after x y z), and ModelNet's header with the
+        vertex count run into it. 4D and binary OFF are refused by name."""
+        points = ['0 0 0', '1 0 0', '1 1 0.2', '0 1 0', '0.5 0.5 0.1']
+        faces = [(1, 2, 5), (2, 3, 5), (3, 4, 5), (4, 1, 5)]
+        plain = ''.join('v %s\n' % p for p in points) + ''.join('f %d %d %d\n' % f for f in faces)
+        obj_forms = {
+            'bom': '\ufeff' + plain,
+            'comments': plain.replace('f 2 3 5', 'f 2 3 5 # quad half').replace('v 1 0 0', 'v 1 0 0 1'),
+            'continuation': plain.replace('f 3 4 5', 'f 3 \\\n 4 \\\r\n5'),
+            'crlf_tabs': plain.replace('\n', '\r\n').replace(' ', '\t').rstrip(),
+            'relative': ''.join('v %s\n' % p for p in points) +
+                        ''.join('f %d/%d/1 %d//1 -1\n' % (a - 6, a, b) for a, b, _ in faces) +
+                        'vn 0 0 1\n',
+        }
+        off = ['%d %d 0' % (len(points), len(faces))] + points + \
+              ['3 %d %d %d' % tuple(i - 1 for i in f) for f in faces]
+        off_forms = {
+            'coff': 'COFF\n' + '\n'.join(off[:1] + [p + ' 255 0 0 255' for p in points] + off[6:]),
+            'noff': 'NOFF\n' + '\n'.join(off[:1] + [p + ' 0 0 1' for p in points] + off[6:]),
+            'modelnet': 'OFF' + '\n'.join(off) + '\n',
+            'crlf': 'OFF\r\n' + '\r\n'.join(off),
+        }
+        expected = None
+        for name, text in [('plain.obj', plain)] + [(k + '.obj', v) for k, v in obj_forms.items()] + \
+                [(k + '.off', v) for k, v in off_forms.items()]:
+            src = os.path.join(self.dir.name, name)
+            with open(src, 'w', encoding='utf-8', newline='') as fh:
+                fh.write(text)
+            rc, out, err = run(src, '-o', self.out)
+            self.assertEqual(rc, 0, name + ': ' + err)
+            v, _, f = obj_records(self.out)
+            got = (v, [[c[0] for c in face] for face in f])
+            expected = expected or got
+            self.assertEqual(got, expected, name)
+        os.remove(self.out)
+        for name, text in (('four.off', '4OFF\n1 0 0\n0 0 0 0\n'),
+                           ('binary.off', 'OFF BINARY\n')):
+            src = os.path.join(self.dir.name, name)
+            with open(src, 'w') as fh:
+                fh.write(text)
+            rc, out, err = run(src, '-o', self.out)
+            self.assertEqual(rc, 1)
+            self.assertIn('4OFF' if name == 'four.off' else 'binary OFF', err)
+            self.assertFalse(os.path.exists(self.out))
+
     def test_usage_errors_exit_2(self):
         for args in ([], [self.mesh('lion.off')], [self.mesh('lion.off'), '-o', self.out, '--monitor', 'bogus'],
                      [self.mesh('lion.off'), '-o', self.out, '--alpha', '-1'],
