@@ -1,5 +1,7 @@
 #include "mesh_io.h"
 
+#include "ply_reader.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -161,8 +163,7 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
                 const long long resolved =
                     index > 0 ? index - 1 : static_cast<long long>(mesh.vertex_count()) + index;
                 if (index == 0 || resolved < 0 || resolved > 0xffffffffLL) {
-                    fail(path, first_line,
-                         "vertex index " + std::to_string(index) + " is invalid");
+                    fail(path, first_line, "vertex index " + std::to_string(index) + " is invalid");
                 }
                 mesh.corners.push_back(static_cast<uint32_t>(resolved));
                 mesh.texcoord_corners.push_back(texcoord_of(corner, texcoord_count));
@@ -345,11 +346,12 @@ PolygonMesh PolygonMesh::split_at_texcoord_seams() const {
 
 PolygonMesh read_mesh(const std::string& path) {
     const std::string ext = lower_extension(path);
-    if (ext != "obj" && ext != "off") {
-        throw std::runtime_error(path + ": unknown mesh format (expected .obj or .off)");
+    if (ext != "obj" && ext != "off" && ext != "ply") {
+        throw std::runtime_error(path + ": unknown mesh format (expected .obj, .off or .ply)");
     }
     std::string text = read_all(path);
     if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // a UTF-8 byte order mark
+    if (ext == "ply") return read_ply(path, text);
     return ext == "obj" ? read_obj(path, text) : read_off(path, text);
 }
 

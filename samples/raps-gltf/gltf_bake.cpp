@@ -206,8 +206,8 @@ bool group_shape(const SceneInstances& instances, int mesh, const GroupGeometry&
     const std::vector<Linear3>& distinct = instances.meshes[mesh].distinct;
     if (distinct.empty() || std::any_of(distinct.begin(), distinct.end(), is_similarity))
         return false;
-    const ChosenInstance chosen = choose_instance(
-        distinct, [&](const Linear3& t) { return surface_area(geometry, t); });
+    const ChosenInstance chosen =
+        choose_instance(distinct, [&](const Linear3& t) { return surface_area(geometry, t); });
     if (!(chosen.scale > 0) || !std::isfinite(chosen.scale)) return false;
     for (int i = 0; i < 9; ++i) (*shape)[i] = chosen.transform[i] / chosen.scale;
     return true;

@@ -38,8 +38,9 @@ const Json* texture_info(const Json& object, const char* key) {
 // textureInfo's own.
 int texcoord_of(const Json& info) {
     const Json* extensions = member(info, "extensions");
-    const Json* transform =
-        extensions && extensions->is_object() ? member(*extensions, "KHR_texture_transform") : nullptr;
+    const Json* transform = extensions && extensions->is_object()
+                                ? member(*extensions, "KHR_texture_transform")
+                                : nullptr;
     if (transform && transform->is_object()) {
         const auto set = transform->find("texCoord");
         if (set != transform->end() && set->is_number_unsigned()) return set->get<int>();
