@@ -165,6 +165,22 @@ std::vector<double> texcoord0(const Asset& asset, const PrimitiveInput& p) {
     return uv;
 }
 
+// The geometry under a linear map (raps_parameterize ignores a mesh's transform). A mirroring
+// map is mirrored back, so that triangles keep the winding, and uvs the side, they had.
+GroupGeometry shaped(const GroupGeometry& g, const Linear3& m) {
+    const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                       m[2] * (m[3] * m[7] - m[4] * m[6]);
+    const double flip = det < 0 ? -1 : 1;
+    GroupGeometry out = g;
+    for (size_t v = 0; v + 2 < g.xyz.size(); v += 3) {
+        const double* p = &g.xyz[v];
+        out.xyz[v] = flip * (m[0] * p[0] + m[1] * p[1] + m[2] * p[2]);
+        out.xyz[v + 1] = m[3] * p[0] + m[4] * p[1] + m[5] * p[2];
+        out.xyz[v + 2] = m[6] * p[0] + m[7] * p[1] + m[8] * p[2];
+    }
+    return out;
+}
+
 }  // namespace
 
 GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInput>& group,
@@ -219,13 +235,13 @@ double surface_area(const GroupGeometry& g, const Linear3& m) {
     return area;
 }
 
-GroupMap map_group(const GroupGeometry& geometry, const BakeOptions& options,
+GroupMap map_group(const GroupGeometry& geometry, const Linear3* shape, const BakeOptions& options,
                    const std::string& label, GroupReport* report) {
     RunHandles h;
     ProgressContext progress{&options, label};
     prepare_run(options, &progress, &h);
     MeshHandle mesh;
-    load_mesh(geometry, nullptr, label, &mesh);
+    load_mesh(shape ? shaped(geometry, *shape) : geometry, nullptr, label, &mesh);
     report->input_vertices = geometry.input_vertices;
     report->triangles = geometry.indices.size() / 3;
     const auto start = std::chrono::steady_clock::now();

@@ -34,7 +34,17 @@ const Json* texture_info(const Json& object, const char* key) {
     return it != object.end() && it->is_object() ? &*it : nullptr;
 }
 
+// The set a texture reads: KHR_texture_transform's texCoord, when given, overrides the
+// textureInfo's own.
 int texcoord_of(const Json& info) {
+    const Json* extensions = member(info, "extensions");
+    const Json* transform = extensions && extensions->is_object()
+                                ? member(*extensions, "KHR_texture_transform")
+                                : nullptr;
+    if (transform && transform->is_object()) {
+        const auto set = transform->find("texCoord");
+        if (set != transform->end() && set->is_number_unsigned()) return set->get<int>();
+    }
     const auto set = info.find("texCoord");
     return set != info.end() && set->is_number_unsigned() ? set->get<int>() : 0;
 }
