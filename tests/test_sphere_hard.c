@@ -388,34 +388,47 @@ static void assert_area_lowered(const char* name, const test_mesh* mesh, double 
 
 /* ---- the cases ----------------------------------------------------------------------------- */
 
-/* Capsules: the conformal initial map squeezes each end by about e^-aspect. Aspect 10 to 30
- * map bijectively; aspect 50, whose ends would need 1e-22 of the sphere where doubles resolve
- * 1e-16, is refused with its status (the pathological set of docs/sphere-status.md). The area
- * monitor lowers the area distortion by at least 40 % (measured 70 %, 62 % and 52 %). */
-static void capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused(void** state) {
+/* Capsules: the conformal initial map squeezes each end by about e^-aspect. Up to aspect 30 the
+ * one-puncture map resolves that; from aspect 40 its plane loses the far end in rounding, and the
+ * two-puncture cylinder map (src/sphere/cylinder_initial_map.h) puts both ends at the poles,
+ * where it is resolved (before: aspect 40 and 50 refused). The area monitor lowers the area
+ * distortion by at least 40 % to aspect 40 (measured 70 %, 62 %, 56 % and 43 %); at aspect 50
+ * (measured 18 %) it must not make it worse. Under the sanitizers (RAPS_TEST_SANITIZER) aspect 50
+ * is left out (the same paths as 40). */
+static void capsules_map_bijectively_to_aspect_50(void** state) {
     (void)state;
-    const double aspects[] = {10, 20, 30, 50};
-    for (int k = 0; k < 4; ++k) {
+    const double aspects[] = {10, 20, 30, 40, 50};
+    const int count = getenv("RAPS_TEST_SANITIZER") != NULL ? 4 : 5;
+    for (int k = 0; k < count; ++k) {
         test_mesh m = make_capsule(aspects[k], 24);
         char name[64];
         snprintf(name, sizeof(name), "capsule aspect %.0f", aspects[k]);
-        if (aspects[k] <= 30) assert_area_lowered(name, &m, 0.6);
-        if (aspects[k] >= 50) {
-            assert_status(map_or_refuse(name, &m, RAPS_MONITOR_AREA).status,
-                          RAPS_ERROR_SOLVER_FAILED);
-        }
+        assert_area_lowered(name, &m, aspects[k] <= 40 ? 0.6 : 1.0);
         test_mesh_free(&m);
     }
 }
 
+/* Necks of 0.2 and 0.05 (48 sectors): the area monitor lowers the area distortion by 40 %. A neck
+ * of 0.02 (24 sectors; 48 were refused before the cylinder map) maps, not worse adapted than
+ * initially (measured 53.1 -> 45.1). A neck of 0.01 squeezes each ball by about e^-100 against
+ * the other: it maps or is refused with its status, never folded with RAPS_OK (measured: the
+ * initial map refused, 16 folds; the adapted one maps). Under the sanitizers only the first
+ * two. */
 static void dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
-    const double necks[] = {0.2, 0.05};
-    for (int k = 0; k < 2; ++k) {
-        test_mesh m = make_dumbbell(necks[k], 48);
+    const double necks[] = {0.2, 0.05, 0.02, 0.01};
+    const int sectors[] = {48, 48, 24, 24};
+    const int count = getenv("RAPS_TEST_SANITIZER") != NULL ? 2 : 4;
+    for (int k = 0; k < count; ++k) {
+        test_mesh m = make_dumbbell(necks[k], sectors[k]);
         char name[64];
         snprintf(name, sizeof(name), "dumbbell neck %.2f", necks[k]);
-        assert_area_lowered(name, &m, 0.6);
+        if (k < 2) assert_area_lowered(name, &m, 0.6);
+        if (k == 2) assert_area_lowered(name, &m, 1.0);
+        if (k == 3) {
+            map_or_refuse(name, &m, RAPS_MONITOR_NONE);
+            map_or_refuse(name, &m, RAPS_MONITOR_AREA);
+        }
         test_mesh_free(&m);
     }
 }
@@ -488,7 +501,7 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused),
+        cmocka_unit_test(capsules_map_bijectively_to_aspect_50),
         cmocka_unit_test(dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted),
         cmocka_unit_test(starfish_with_five_long_arms_maps_bijectively_and_area_adapted),
         cmocka_unit_test(noisy_scan_like_sphere_maps_bijectively_and_area_adapted),

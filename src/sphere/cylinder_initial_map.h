@@ -1,0 +1,48 @@
+// A second initial spherical map for meshes whose long parts the one-puncture map cannot resolve:
+// two punctures, a periodic Tutte embedding of the annulus between them into a straight
+// cylinder, and the lift w = e^(H h + i theta) (the exponential coordinates of the cylinder
+// between the two poles; as in Choi, Lam and Lui 2015 and the two-pole maps of Gu, Wang, Chan,
+// Thompson and Yau 2004, the exponential is done last, in the lift):
+//
+//  1. Punctures A and B at the ends of an approximate longest geodesic (double-sweep Dijkstra
+//     over 3D edge lengths). Their stars are removed; the rings bound an annulus.
+//  2. A height h: the Laplace system of paper eq. (1) with the base weights, h = 0 on A's ring
+//     and 1 on B's ring. An angle theta: the same system with a jump of 2 pi across a cut (a
+//     fewest-edges path from A to B), the rings at angles proportional to their 3D corner
+//     angles, and B's ring turned by the twist of least weighted energy; both rings are straight
+//     lines of the cylinder's universal cover, which is convex, so with positive weights the
+//     embedding has no fold (Tutte's theorem for the periodic graph; Gortler, Gotsman and
+//     Thurston 2006 for the torus).
+//  3. The height scaled to the conformal modulus, H = sqrt(E(theta) / E(h)) in the weights'
+//     energy, shifted so that the 3D-area-weighted centre of mass has no height component, and
+//     lifted: A at the south pole, B at the north pole, each ring at e^(-+H c) of the sphere.
+//
+// Why (docs/sphere-status.md, issue 18): a conformal map squeezes a limb of length L and radius r
+// by about e^(-L / r). The one-puncture map computes that squeeze in the plane, where a solve
+// has an absolute error of 1e-16 of the disk: on a capsule of aspect 40 the far end, which
+// belongs 1e-34 from the plane's origin, comes out as a cluster of noise around a point about
+// 1e-17 off it, and 820 planar triangles fold. Here both ends of the longest part are the
+// punctures, the squeeze is in the exponential, and a point near either pole keeps the relative
+// precision of its height and angle: x and y of a unit vector near (0, 0, +-1) are resolved
+// relative to their size.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/progress.h"
+#include "core/settings.h"
+#include "parallel/thread_pool.h"
+#include "sphere/sphere_problem.h"
+
+namespace raps {
+
+// One unit vector per vertex, or none when the mesh has no two vertices 4 edges apart (their
+// stars would touch). Centred along the poles' axis only (not sideways: that would move the
+// squeezed ends off the poles, where a unit vector resolves 1e-16 absolute).
+std::vector<Eigen::Vector3d> cylinder_initial_map(const SphereProblem& problem,
+                                                  WeightScheme weights, ThreadPool& pool,
+                                                  const ProgressSpan& progress);
+
+}  // namespace raps
