@@ -836,6 +836,19 @@ raps_status raps_mesh_set_triangle_groups(raps_mesh* mesh, const uint32_t* group
     });
 }
 
+raps_status raps_mesh_set_triangle_polygons(raps_mesh* mesh, const uint32_t* polygons,
+                                            size_t triangle_count) {
+    return guarded(mesh ? &mesh->last_error : nullptr, [&] {
+        require(mesh != nullptr, "mesh is NULL");
+        require(polygons != nullptr || triangle_count == 0, "polygons is NULL");
+        if (triangle_count > static_cast<size_t>(kMaxTriangles)) {
+            throw Error(ErrorCode::kTooLarge, "triangle_count " + std::to_string(triangle_count) +
+                                                  " is more than raps accepts (2^28)");
+        }
+        mesh->mesh.triangle_polygon.assign(polygons, polygons + triangle_count);
+    });
+}
+
 raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pairs,
                                      size_t edge_count) {
     return guarded(mesh ? &mesh->last_error : nullptr, [&] {

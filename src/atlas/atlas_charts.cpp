@@ -8,6 +8,7 @@
 
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
+#include "atlas/polygon_units.h"
 
 namespace raps {
 namespace {
@@ -54,6 +55,7 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
         const bool to_b = from_b[i] >= 0 && (from_a[i] < 0 || from_b[i] < from_a[i]);
         side[triangles[i]] = to_b ? 1 : 0;
     }
+    keep_polygons_together(surface, triangles, side);
     // Only the chart's own half-edges are read: everything else stays a barrier.
     std::vector<char> barrier(seam.size(), 1);
     for (int32_t t : triangles) {
@@ -64,10 +66,12 @@ std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     }
     smooth_chart_boundaries(surface, barrier, triangles, side, beat);
     for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
-    if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
-        const size_t half = halves.first.size() / 2;
-        halves.second.assign(halves.first.begin() + half, halves.first.end());
-        halves.first.resize(half);
+    if (halves.first.empty() || halves.second.empty()) {
+        // One triangle or polygon, or nothing reachable: halve by polygons in their order.
+        halve_by_polygons(surface, triangles, side);
+        halves.first.clear();
+        halves.second.clear();
+        for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
     }
     return halves;
 }
@@ -112,7 +116,8 @@ bool try_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
         good = chart.map.injective && chart.map.stretch_linf <= limits.max_stretch_linf;
     }
     beat.report(0.0);
-    if (!good && triangles.size() > 1) return false;
+    // A polygon that maps badly stays whole (as a triangle does): its corners need one uv each.
+    if (!good && !is_one_polygon(surface, triangles)) return false;
     if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system, beat);
     unadapted_l2 = chart.map.stretch_l2;
     adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system, beat);
@@ -192,7 +197,8 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
         double worst_excess = 0;
         for (size_t c = 0; c < charts.size(); ++c) {
             const double excess = area[c] * (unadapted_l2[c] * unadapted_l2[c] - 1.0);
-            if (excess > worst_excess && charts[c].disk.surface_triangle.size() > 1) {
+            if (excess > worst_excess &&
+                !is_one_polygon(surface, charts[c].disk.surface_triangle)) {
                 worst = c;
                 worst_excess = excess;
             }

@@ -94,7 +94,9 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
     for (size_t h = 0; h < seam.size(); ++h) {
         progress.at(static_cast<int64_t>(h), static_cast<int64_t>(seam.size()));
         const int32_t o = surface.twin[h];
-        seam[h] = o >= 0 && normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
+        // A polygon's own edges stay inside it, bent or not (its corners get one uv each).
+        seam[h] = o >= 0 && !joins_polygon(surface, static_cast<int32_t>(h)) &&
+                  normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
     }
     return seam;
 }

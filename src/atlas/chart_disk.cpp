@@ -67,18 +67,34 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
     std::vector<std::vector<int32_t>> loops;
     if (!is_disk(disk, halfedges, loops)) {
         // Spanning tree of the triangles (breadth first from triangle 0); every uncut edge it
-        // does not cross is a cut candidate.
+        // does not cross is a cut candidate. It enters each input polygon whole, across the
+        // polygon's own edges, so that no cut runs through a polygon.
         const int32_t corners = static_cast<int32_t>(halfedges.twin.size());
         std::vector<char> crossed(corners, 0), visited(triangles.size(), 0);
-        std::vector<int32_t> frontier = {0};
-        visited[0] = 1;
+        std::vector<int32_t> frontier;
+        auto enter = [&](int32_t first) {
+            visited[first] = 1;
+            const size_t begin = frontier.size();
+            frontier.push_back(first);
+            for (size_t j = begin; j < frontier.size(); ++j) {  // only this polygon's triangles
+                for (int k = 0; k < 3; ++k) {
+                    const int32_t h = 3 * frontier[j] + k, o = halfedges.twin[h];
+                    if (o < 0 || visited[o / 3] ||
+                        !joins_polygon(surface, 3 * triangles[frontier[j]] + k))
+                        continue;
+                    visited[o / 3] = 1;
+                    crossed[h] = crossed[o] = 1;
+                    frontier.push_back(o / 3);
+                }
+            }
+        };
+        enter(0);
         for (size_t i = 0; i < frontier.size(); ++i) {
             for (int k = 0; k < 3; ++k) {
                 const int32_t h = 3 * frontier[i] + k, o = halfedges.twin[h];
                 if (o < 0 || visited[o / 3]) continue;
-                visited[o / 3] = 1;
                 crossed[h] = crossed[o] = 1;
-                frontier.push_back(o / 3);
+                enter(o / 3);
             }
         }
         if (frontier.size() != triangles.size()) return false;  // not connected

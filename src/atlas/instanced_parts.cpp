@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <tuple>
+#include <unordered_map>
 
 #include "atlas/chart_stacking.h"
 #include "core/hash_mix.h"
@@ -10,24 +11,33 @@
 namespace raps {
 namespace {
 
-// A part's triangles relative to its first vertex, its groups and its seam edges (relative
-// too): what an instance must repeat exactly.
+// A part's triangles relative to its first vertex, its groups, its polygons (each triangle's
+// polygon named by its first triangle in the part, as ids are only compared) and its seam
+// edges (relative too): what an instance must repeat exactly.
 struct PartLayout {
     std::vector<Triangle> triangles;
     std::vector<uint32_t> groups;
+    std::vector<int32_t> polygons;
     std::vector<std::array<uint32_t, 2>> seams;
     bool operator==(const PartLayout& o) const {
-        return triangles == o.triangles && groups == o.groups && seams == o.seams;
+        return triangles == o.triangles && groups == o.groups && polygons == o.polygons &&
+               seams == o.seams;
     }
 };
 
 PartLayout layout_of(const TriangleMesh& mesh, const AtlasParts& parts, int32_t p) {
     PartLayout layout;
     const int32_t first = parts.first_vertex[p], last = parts.first_vertex[p + 1];
+    std::unordered_map<uint32_t, int32_t> first_of_polygon;
     for (int32_t t = parts.first_triangle[p]; t < parts.first_triangle[p + 1]; ++t) {
         const Triangle& v = mesh.triangles[t];
         layout.triangles.push_back({v[0] - first, v[1] - first, v[2] - first});
         if (!mesh.triangle_group.empty()) layout.groups.push_back(mesh.triangle_group[t]);
+        if (!mesh.triangle_polygon.empty()) {
+            layout.polygons.push_back(
+                first_of_polygon.emplace(mesh.triangle_polygon[t], t - parts.first_triangle[p])
+                    .first->second);
+        }
     }
     for (const std::array<uint32_t, 2>& pair : mesh.seam_edges) {
         const int64_t a = pair[0];

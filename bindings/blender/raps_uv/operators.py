@@ -208,11 +208,9 @@ def _summary(outcome):
         outcome.name, outcome.charts, outcome.utilization, outcome.stretch_l2, outcome.time_ms)
     if outcome.pages > 1:
         text += ", %d pages (UDIM tiles)" % outcome.pages
-    if outcome.runs > 1:
-        text += ", %d runs to keep faces whole" % outcome.runs
     if outcome.repaired_polygons:
-        text += ", %d faces cut by a chart made islands of their own (fewer texels)" % \
-            outcome.repaired_polygons
+        text += ", %d faces raps could not keep whole made islands of their own (fewer " \
+            "texels)" % outcome.repaired_polygons
     return text
 
 

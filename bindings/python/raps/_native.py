@@ -67,8 +67,9 @@ RAPS_ERROR_OPEN_MESH = 22
 #   raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
 #   (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
 RAPS_ERROR_INVALID_TRANSFORM = 23
-#   Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) are not one per
-#   triangle (the indices changed since, or the count was wrong).
+#   Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) or triangle
+#   polygons (raps_mesh_set_triangle_polygons) are not one per triangle (the indices changed
+#   since, or the count was wrong).
 RAPS_ERROR_GROUP_COUNT = 24
 #   Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
 #   joins by an edge (the message names the pair).
@@ -514,6 +515,7 @@ FUNCTIONS = {
     'raps_mesh_set_indices_u32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_transform': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double)]),
     'raps_mesh_set_triangle_groups': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_mesh_set_triangle_polygons': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_seam_edges': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_corner_uvs_f32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_float), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_mesh_set_corner_uvs_f64': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),

@@ -1,0 +1,78 @@
+#include "atlas/polygon_units.h"
+
+namespace raps {
+namespace {
+
+// Per position in `triangles`, its polygon: 0, 1, ... in order of their first triangle, through
+// the polygons' own edges between triangles inside the chart (side >= 0).
+std::vector<int32_t> polygon_numbers(const AtlasSurface& surface,
+                                     const std::vector<int32_t>& triangles,
+                                     const std::vector<int32_t>& side, int32_t& count) {
+    std::vector<int32_t> position(surface.mesh.triangles.size(), -1);
+    for (size_t i = 0; i < triangles.size(); ++i) position[triangles[i]] = static_cast<int32_t>(i);
+    std::vector<int32_t> number(triangles.size(), -1), stack;
+    count = 0;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        if (number[i] >= 0) continue;
+        number[i] = count;
+        stack.assign(1, triangles[i]);
+        while (!stack.empty()) {
+            const int32_t t = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const int32_t o = surface.twin[3 * t + k];
+                if (!joins_polygon(surface, 3 * t + k) || side[o / 3] < 0 ||
+                    number[position[o / 3]] >= 0)
+                    continue;
+                number[position[o / 3]] = count;
+                stack.push_back(o / 3);
+            }
+        }
+        ++count;
+    }
+    return number;
+}
+
+}  // namespace
+
+bool is_one_polygon(const AtlasSurface& surface, const std::vector<int32_t>& triangles) {
+    if (surface.polygon_inner.empty() || triangles.size() <= 1) return triangles.size() <= 1;
+    // A polygon's triangulation is a tree of its triangles: n triangles joined by n - 1 of its
+    // own edges. The chart's polygons are whole, so these edges all lie inside it.
+    size_t inner = 0;
+    for (int32_t t : triangles) {
+        for (int k = 0; k < 3; ++k) inner += surface.polygon_inner[3 * t + k] != 0;
+    }
+    return inner / 2 + 1 >= triangles.size();
+}
+
+void keep_polygons_together(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                            std::vector<int32_t>& side) {
+    if (surface.polygon_inner.empty()) return;
+    int32_t count = 0;
+    const std::vector<int32_t> number = polygon_numbers(surface, triangles, side, count);
+    std::vector<int32_t> polygon_side(count, -1);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        if (polygon_side[number[i]] < 0) polygon_side[number[i]] = side[triangles[i]];
+        side[triangles[i]] = polygon_side[number[i]];
+    }
+}
+
+void halve_by_polygons(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                       std::vector<int32_t>& side) {
+    int32_t count = static_cast<int32_t>(triangles.size());
+    std::vector<int32_t> number(triangles.size());
+    for (size_t i = 0; i < triangles.size(); ++i) number[i] = static_cast<int32_t>(i);
+    if (!surface.polygon_inner.empty()) {
+        int32_t polygons = 0;
+        std::vector<int32_t> by_polygon = polygon_numbers(surface, triangles, side, polygons);
+        if (polygons > 1) {
+            number = std::move(by_polygon);
+            count = polygons;
+        }
+    }
+    for (size_t i = 0; i < triangles.size(); ++i)
+        side[triangles[i]] = number[i] < count / 2 ? 0 : 1;
+}
+
+}  // namespace raps

@@ -1,0 +1,28 @@
+// The input's polygons in the atlas (raps_mesh_set_triangle_polygons): a quad or n-gon that was
+// triangulated for raps is one unit, so that its corners get one uv each. The surface marks the
+// half-edges that join two triangles of one polygon (AtlasSurface::polygon_inner); charts grow
+// over whole polygons (chart_segmentation.h), are cut open across other edges only
+// (chart_disk.h), and are split between polygons here. A chart that is one polygon is not split.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "atlas/atlas_surface.h"
+
+namespace raps {
+
+// Whether `triangles` (a chart, whose polygons are whole) are one polygon, or one triangle.
+bool is_one_polygon(const AtlasSurface& surface, const std::vector<int32_t>& triangles);
+
+// side[t] for t in `triangles` (a chart; side is per surface triangle, -1 outside the chart):
+// every polygon takes the side of its first triangle in `triangles`.
+void keep_polygons_together(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                            std::vector<int32_t>& side);
+
+// Halves `triangles` by polygons in their order (side 0, then 1) where no distance could; a
+// single polygon by triangles (the only way left to split it).
+void halve_by_polygons(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                       std::vector<int32_t>& side);
+
+}  // namespace raps
