@@ -4,9 +4,10 @@
 // other tool's figures are printed.
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
-//                    [--mesh FILE] [--phases]
+//                    [--mesh FILE] [--phases] [--subdivide K]
 // --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
-// each mesh's median time per phase.
+// each mesh's median time per phase; --subdivide splits every triangle 1-to-4 K times first
+// (the same surface with 4^K times the triangles: how the time grows with the size).
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -41,7 +42,7 @@ struct Sample {
 };
 
 struct Options {
-    int threads = 0, resolution = 1024, padding = 1;
+    int threads = 0, resolution = 1024, padding = 1, subdivide = 0;
 };
 
 Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uint32_t>& triangles,
@@ -96,7 +97,8 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) {
             std::fprintf(stderr,
                          "usage: raps-bench-atlas [--data DIR] [--runs N] [--threads N] "
-                         "[--resolution N] [--padding N] [--mesh FILE] [--phases]\n");
+                         "[--resolution N] [--padding N] [--mesh FILE] [--phases] "
+                         "[--subdivide K]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -112,14 +114,18 @@ int main(int argc, char** argv) {
             options.padding = std::atoi(value.c_str());
         else if (arg == "--mesh")
             only = value;
+        else if (arg == "--subdivide")
+            options.subdivide = std::max(0, std::atoi(value.c_str()));
         else {
             std::fprintf(stderr, "raps-bench-atlas: unknown option %s\n", arg.c_str());
             return 2;
         }
     }
     std::printf(
-        "raps %s atlas, resolution %d, padding %d, threads %d (0 = all); median of %d runs\n\n",
-        raps_version_string(), options.resolution, options.padding, options.threads, runs);
+        "raps %s atlas, resolution %d, padding %d, threads %d (0 = all), subdivided %d times; "
+        "median of %d runs\n\n",
+        raps_version_string(), options.resolution, options.padding, options.threads,
+        options.subdivide, runs);
     std::printf(
         "| mesh | triangles | ms | charts | coverage | L2 | Linf | area mean abs log | "
         "angle mean deg | flips | peak MB |\n");
@@ -132,9 +138,10 @@ int main(int argc, char** argv) {
         if (pid == 0) {
             close(fds[0]);
             try {
-                const raps_samples::PolygonMesh mesh =
-                    raps_samples::read_mesh(data + "/meshes/" + file);
-                const std::vector<uint32_t> triangles = mesh.triangles();
+                raps_samples::PolygonMesh mesh = raps_samples::read_mesh(data + "/meshes/" + file);
+                std::vector<uint32_t> triangles = mesh.triangles();
+                for (int k = 0; k < options.subdivide; ++k)
+                    raps_samples::subdivide_midpoint(mesh.positions, triangles);
                 for (int r = 0; r < runs; ++r) {
                     const Sample s = run_once(mesh, triangles, options);
                     if (write(fds[1], &s, sizeof(s)) != static_cast<ssize_t>(sizeof(s))) _exit(3);
