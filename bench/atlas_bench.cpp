@@ -4,9 +4,10 @@
 // other tool's figures are printed.
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
-//                    [--mesh FILE] [--phases]
+//                    [--mesh FILE] [--phases] [--subdivide K]
 // --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
-// each mesh's median time per phase.
+// each mesh's median time per phase; --subdivide splits every triangle 1-to-4 K times first
+// (the same surface with 4^K times the triangles: how the time grows with the size).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -36,7 +37,7 @@ struct Sample {
 };
 
 struct Options {
-    int threads = 0, resolution = 1024, padding = 1;
+    int threads = 0, resolution = 1024, padding = 1, subdivide = 0;
 };
 
 Sample run_once(const raps_bench::TriangleMesh& input, const Options& options) {
@@ -90,7 +91,8 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) {
             std::fprintf(stderr,
                          "usage: raps-bench-atlas [--data DIR] [--runs N] [--threads N] "
-                         "[--resolution N] [--padding N] [--mesh FILE] [--phases]\n");
+                         "[--resolution N] [--padding N] [--mesh FILE] [--phases] "
+                         "[--subdivide K]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -106,14 +108,18 @@ int main(int argc, char** argv) {
             options.padding = std::atoi(value.c_str());
         else if (arg == "--mesh")
             only = value;
+        else if (arg == "--subdivide")
+            options.subdivide = std::max(0, std::atoi(value.c_str()));
         else {
             std::fprintf(stderr, "raps-bench-atlas: unknown option %s\n", arg.c_str());
             return 2;
         }
     }
     std::printf(
-        "raps %s atlas, resolution %d, padding %d, threads %d (0 = all); median of %d runs\n\n",
-        raps_version_string(), options.resolution, options.padding, options.threads, runs);
+        "raps %s atlas, resolution %d, padding %d, threads %d (0 = all), subdivided %d times; "
+        "median of %d runs\n\n",
+        raps_version_string(), options.resolution, options.padding, options.threads,
+        options.subdivide, runs);
     std::printf(
         "| mesh | triangles | ms | charts | coverage | L2 | Linf | area mean abs log | "
         "angle mean deg | flips | peak MB |\n");
@@ -122,7 +128,7 @@ int main(int argc, char** argv) {
         if (!only.empty() && only != file) continue;
         const auto child = raps_bench::run_in_child<Sample>("raps-bench-atlas", [&](auto emit) {
             const raps_bench::TriangleMesh mesh =
-                raps_bench::load_triangles(data + "/meshes/" + file);
+                raps_bench::load_triangles(data + "/meshes/" + file, options.subdivide);
             for (int r = 0; r < runs; ++r) emit(run_once(mesh, options));
         });
         const std::vector<Sample>& samples = child.samples;
