@@ -161,6 +161,17 @@ class HeldoutCases(unittest.TestCase):
                 ratios, signs = self.world_distortion(g, report, scale)
                 self.assertLess(np.median(ratios), 1.2, (path, flags))
                 self.assertTrue(np.all(signs == local_signs[0]), (path, flags))
+        # A node so uneven that no map exists at double precision as drawn: the mesh's own
+        # space, as before, and a note.
+        b = Builder()
+        b.doc['meshes'].append({'primitives': [{
+            'attributes': {'POSITION': b.accessor(pos, 'VEC3', bounds=True)},
+            'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                  target=34963)}]})
+        b.doc['nodes'][0]['scale'] = [2.0 ** 63, 3, -1]
+        b.write_gltf(mirrored)
+        _, report = self.bake_clean(mirrored, 'own_space.glb')
+        self.assertTrue(any('own space' in n for n in report['notes']), report['notes'])
 
 
 if __name__ == '__main__':
