@@ -174,6 +174,39 @@ class HeldoutCases(unittest.TestCase):
         self.assertTrue(any('own space' in n for n in report['notes']), report['notes'])
 
 
+    def test_coordinates_past_1e30_are_mapped_as_at_unit_scale(self):
+        """Finite positions of any size are valid glTF; the library takes coordinates up to
+        1e30, so raps-gltf hands it the mesh scaled by a power of two. The uvs are those of the
+        same mesh at unit scale, at a resolution, at a density given per the asset's unit, and in a
+        scene's lightmap."""
+        pos, tris = spec.grid(6, 6)
+        outputs = {}
+        for name, factor in (('unit', 1.0), ('huge', 2.0 ** 110)):
+            b = Builder()
+            b.doc['meshes'].append({'primitives': [{
+                'attributes': {'POSITION': b.accessor(pos * np.float32(factor), 'VEC3',
+                                                      bounds=True)},
+                'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                      target=34963)}]})
+            src = self.path(name + '.gltf')
+            b.write_gltf(src)
+            self.assertEqual(spec.error_codes(src), set())
+            density = '%r' % (16 / factor)
+            for k, flags in enumerate(((), ('--texels-per-unit', density),
+                                       ('--group', 'scene', '--lightmap'))):
+                g, report = self.bake_clean(src, name + '.glb', *flags)
+                prim = g.json['meshes'][0]['primitives'][0]
+                atlas = report['scene']['atlas'] if 'scene' in report else \
+                    report['groups'][0]['atlas']
+                outputs[name, k] = (g.accessor(prim['attributes']['TEXCOORD_%d' % (k // 2)]),
+                                    atlas)
+        for k in range(3):
+            uv_unit, atlas_unit = outputs['unit', k]
+            uv_huge, atlas_huge = outputs['huge', k]
+            self.assertEqual(atlas_huge, atlas_unit)
+            np.testing.assert_allclose(uv_huge, uv_unit, atol=1e-5)
+
+
 if __name__ == '__main__':
     spec.RAPS_GLTF, spec.VALIDATOR, spec.NODE = sys.argv[1], sys.argv[2], sys.argv[3]
     unittest.main(argv=sys.argv[:1], verbosity=2)
