@@ -207,6 +207,37 @@ class HeldoutCases(unittest.TestCase):
             np.testing.assert_allclose(uv_huge, uv_unit, atol=1e-5)
 
 
+    def test_accessors_of_zeros_are_not_read_to_find_them_degenerate(self):
+        """An accessor without a bufferView or a sparse substitution is zeros, and a valid file
+        of a few hundred bytes may declare a billion of them: its primitive is left as it is
+        (every triangle degenerate) without reading them, and index checks still come first."""
+        doc = {'asset': {'version': '2.0'}, 'scene': 0, 'scenes': [{'nodes': [0]}],
+               'nodes': [{'mesh': 0}],
+               'meshes': [{'primitives': [{'attributes': {'POSITION': 0, 'NORMAL': 1}}]}],
+               'accessors': [{'componentType': spec.FLOAT, 'count': 10000002, 'type': 'VEC3',
+                              'min': [0, 0, 0], 'max': [0, 0, 0]},
+                             {'componentType': spec.FLOAT, 'count': 10000002, 'type': 'VEC3'}]}
+        src = self.path('zeros.gltf')
+        with open(src, 'w') as fh:
+            json.dump(doc, fh)
+        rc, _, stderr = spec.run(src, self.path('zeros.glb'))
+        self.assertEqual(rc, 3, stderr)
+        self.assertIn('all zeros', stderr)
+        self.assertFalse(os.path.exists(self.path('zeros.glb')))
+        # Indices past the vertex count are still refused when the positions are zeros.
+        b = Builder()
+        b.doc['accessors'].append({'componentType': spec.FLOAT, 'count': 4, 'type': 'VEC3',
+                                   'min': [0, 0, 0], 'max': [0, 0, 0]})
+        indices = b.accessor(np.uint16([0, 1, 4]), 'SCALAR', spec.UINT16, target=34963)
+        b.doc['meshes'].append({'primitives': [{'attributes': {'POSITION': 0},
+                                                'indices': indices}]})
+        src = self.path('oob.gltf')
+        b.write_gltf(src)
+        rc, _, stderr = spec.run(src, self.path('oob.glb'))
+        self.assertEqual(rc, 1, stderr)
+        self.assertIn('past the vertex count', stderr)
+
+
 if __name__ == '__main__':
     spec.RAPS_GLTF, spec.VALIDATOR, spec.NODE = sys.argv[1], sys.argv[2], sys.argv[3]
     unittest.main(argv=sys.argv[:1], verbosity=2)
