@@ -213,6 +213,26 @@ bool group_shape(const SceneInstances& instances, int mesh, const GroupGeometry&
     return true;
 }
 
+// The group mapped in the space group_shape gives. A shape so uneven that the library finds no
+// map at double precision (a node scaling one axis by 1e18) falls back to the mesh's own space,
+// where it mapped before, and a note says so.
+GroupMap map_as_drawn(const GroupGeometry& geometry, const SceneInstances& instances,
+                      const BakeOptions& options, GroupReport* report, BakeResult* result) {
+    const std::string label = group_label(*report);
+    Linear3 shape{};
+    if (!group_shape(instances, report->mesh, geometry, &shape)) {
+        return map_group(geometry, nullptr, options, label, report);
+    }
+    try {
+        return map_group(geometry, &shape, options, label, report);
+    } catch (const GltfError& e) {
+        if (e.kind != "raps") throw;
+        result->notes.push_back(label + ": mapped in its own space: as its node draws it, " +
+                                e.what());
+        return map_group(geometry, nullptr, options, label, report);
+    }
+}
+
 // --group mesh and --group primitive: an atlas per group.
 void bake_groups(const Asset& asset, const BakeOptions& options, AccessorWriter& writer,
                  BakeResult& result) {
@@ -229,10 +249,7 @@ void bake_groups(const Asset& asset, const BakeOptions& options, AccessorWriter&
             continue;
         }
         const GroupGeometry geometry = group_geometry(asset, group, options.keep_uv_seams);
-        Linear3 shape{};
-        const bool shaped = group_shape(instances, selection.group_mesh[g], geometry, &shape);
-        const GroupMap map =
-            map_group(geometry, shaped ? &shape : nullptr, options, group_label(report), &report);
+        const GroupMap map = map_as_drawn(geometry, instances, options, &report, &result);
         done.emplace(key, write_group(asset, options, writer, group, map, report, result));
     }
 }

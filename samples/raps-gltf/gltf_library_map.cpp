@@ -1,10 +1,12 @@
 #include "gltf_library_map.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "gltf_accessors.h"
 #include "gltf_error.h"
@@ -43,11 +45,16 @@ int32_t forward_progress(void* user, raps_phase phase, double fraction) {
 // The settings of a run: the user's, in the atlas domain. With a density every mesh keeps its
 // charts on one page: a primitive's uvs address one texture. (A resolution makes one page, and
 // there the setting would only keep --stack from sharing charts between meshes.)
-void prepare_run(const BakeOptions& options, ProgressContext* progress, RunHandles* h) {
+// `unit` is the length of one of the mesh's units in the library's (see scaled_exponent).
+void prepare_run(const BakeOptions& options, ProgressContext* progress, RunHandles* h,
+                 double unit = 1) {
     double density = 0;
     raps_settings_get_float(options.settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, &density);
     if (raps_result_create(&h->result) != RAPS_OK ||
         raps_settings_clone(options.settings, &h->settings) != RAPS_OK ||
+        (density > 0 && unit != 1 &&
+         raps_settings_set_float(h->settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, density / unit) !=
+             RAPS_OK) ||
         raps_settings_set_int(h->settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS) != RAPS_OK ||
         (density > 0 &&
          raps_settings_set_int(h->settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, 1) != RAPS_OK)) {
@@ -181,6 +188,26 @@ GroupGeometry shaped(const GroupGeometry& g, const Linear3& m) {
     return out;
 }
 
+// The library refuses coordinates past 1e30 (its products of coordinates must stay finite). A
+// map does not depend on the mesh's scale (at a density, once the density follows), so a mesh
+// that large is scaled by 2^-k: exact, every ratio, hence every uv, kept. Returns k (0: none).
+// `reach` bounds how far the mesh's transform moves a coordinate (1 without one).
+double largest_coordinate(const GroupGeometry& g, double reach = 1) {
+    double largest = 0;
+    for (double c : g.xyz) largest = std::max(largest, std::fabs(c));
+    return largest * reach;
+}
+
+int scaled_exponent(double largest) {
+    return largest > 1e24 ? std::ilogb(largest) - 60 : 0;
+}
+
+GroupGeometry scaled(const GroupGeometry& g, int k) {
+    GroupGeometry out = g;
+    for (double& c : out.xyz) c = std::ldexp(c, -k);
+    return out;
+}
+
 }  // namespace
 
 GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInput>& group,
@@ -237,11 +264,15 @@ double surface_area(const GroupGeometry& g, const Linear3& m) {
 
 GroupMap map_group(const GroupGeometry& geometry, const Linear3* shape, const BakeOptions& options,
                    const std::string& label, GroupReport* report) {
+    std::optional<GroupGeometry> moved;
+    if (shape) moved = shaped(geometry, *shape);
+    const int k = scaled_exponent(largest_coordinate(moved ? *moved : geometry));
+    if (k != 0) moved = scaled(moved ? *moved : geometry, k);
     RunHandles h;
     ProgressContext progress{&options, label};
-    prepare_run(options, &progress, &h);
+    prepare_run(options, &progress, &h, std::ldexp(1.0, -k));
     MeshHandle mesh;
-    load_mesh(shape ? shaped(geometry, *shape) : geometry, nullptr, label, &mesh);
+    load_mesh(moved ? *moved : geometry, nullptr, label, &mesh);
     report->input_vertices = geometry.input_vertices;
     report->triangles = geometry.indices.size() / 3;
     const auto start = std::chrono::steady_clock::now();
@@ -250,6 +281,7 @@ GroupMap map_group(const GroupGeometry& geometry, const Linear3* shape, const Ba
     }
     report->total_ms = elapsed_ms(start);
     read_figures(h.result, &report->stats, report->phase_ms);
+    report->stats.texels_per_unit = std::ldexp(report->stats.texels_per_unit, -k);
     GroupMap map = slice(h.result, copy_result(h.result, label), 0, geometry);
     map.page = page_of(h.result, map);
     map.page_width = report->stats.atlas_width;
@@ -260,15 +292,26 @@ GroupMap map_group(const GroupGeometry& geometry, const Linear3* shape, const Ba
 std::vector<GroupMap> map_scene(const std::vector<const GroupGeometry*>& geometries,
                                 const std::vector<Linear3>& transforms, const BakeOptions& options,
                                 SceneReport* report) {
+    // One scale for the whole scene (scaled_exponent), from the farthest world coordinate.
+    double largest = 0;
+    for (size_t i = 0; i < geometries.size(); ++i) {
+        const Linear3& m = transforms[i];
+        double reach = 0;
+        for (int r = 0; r < 3; ++r)
+            reach = std::max(
+                reach, std::fabs(m[3 * r]) + std::fabs(m[3 * r + 1]) + std::fabs(m[3 * r + 2]));
+        largest = std::max(largest, largest_coordinate(*geometries[i], reach));
+    }
+    const int k = scaled_exponent(largest);
     RunHandles h;
     ProgressContext progress{&options, "scene"};
-    prepare_run(options, &progress, &h);
+    prepare_run(options, &progress, &h, std::ldexp(1.0, -k));
     std::vector<std::unique_ptr<MeshHandle>> meshes;
     std::vector<const raps_mesh*> pointers;
     for (size_t i = 0; i < geometries.size(); ++i) {
         meshes.push_back(std::make_unique<MeshHandle>());
-        load_mesh(*geometries[i], &transforms[i], "scene mesh " + std::to_string(i),
-                  meshes.back().get());
+        load_mesh(k ? scaled(*geometries[i], k) : *geometries[i], &transforms[i],
+                  "scene mesh " + std::to_string(i), meshes.back().get());
         pointers.push_back(meshes.back()->mesh);
     }
     const auto start = std::chrono::steady_clock::now();
@@ -278,10 +321,12 @@ std::vector<GroupMap> map_scene(const std::vector<const GroupGeometry*>& geometr
     }
     report->total_ms = elapsed_ms(start);
     read_figures(h.result, &report->stats, report->phase_ms);
+    report->stats.texels_per_unit = std::ldexp(report->stats.texels_per_unit, -k);
     report->charts.resize(report->stats.chart_count);
     for (size_t c = 0; c < report->charts.size(); ++c) {
         report->charts[c].struct_size = sizeof(raps_chart);
         raps_result_get_chart(h.result, c, &report->charts[c]);
+        report->charts[c].area_3d = std::ldexp(report->charts[c].area_3d, 2 * k);
     }
     const WholeResult whole = copy_result(h.result, "scene");
     std::vector<GroupMap> maps;

@@ -151,6 +151,29 @@ std::string missing_data(const Asset& asset, const Json& prim) {
     return "";
 }
 
+// An accessor without a bufferView or a sparse substitution holds zeros (glTF 2.0, 3.6.2.3):
+// every vertex at the origin, or every index 0. Known without reading what may be a billion of
+// them (a 300-byte file once took 4 GB to find its triangles degenerate).
+bool all_zeros(const Asset& asset, int accessor) {
+    const AccessorLayout a = accessor_layout(asset.doc, accessor);
+    return a.view < 0 && !a.sparse;
+}
+
+// The primitive's indices, checked; false when they are all zeros (without reading them).
+bool read_checked_indices(const Asset& asset, int accessor, uint64_t vertex_count,
+                          const std::string& where, std::vector<uint32_t>* vertices) {
+    const AccessorLayout a = accessor_layout(asset.doc, accessor);
+    if (a.type != "SCALAR" ||
+        (a.component_type != kUnsignedByte && a.component_type != kUnsignedShort &&
+         a.component_type != kUnsignedInt)) {
+        throw GltfError("accessor", where + ": indices must be an unsigned SCALAR accessor");
+    }
+    if (all_zeros(asset, accessor)) return false;
+    *vertices = read_indices(asset, accessor);
+    check_indices(*vertices, a.component_type, vertex_count, where);
+    return true;
+}
+
 // One primitive: its triangles, or the reason it is left as it is (returned; "" when baked).
 std::string read_primitive(const Asset& asset, const BakeOptions& options, const Json& prim,
                            const std::string& where, PrimitiveInput* input) {
@@ -179,20 +202,17 @@ std::string read_primitive(const Asset& asset, const BakeOptions& options, const
     input->mode = mode;
     input->vertex_count = pa.count;
     std::vector<uint32_t> vertices;
+    const char* zeros =
+        "every triangle is degenerate (POSITION or indices all zeros: no "
+        "bufferView, no sparse substitution): nothing to map";
     if (prim.contains("indices")) {
-        const int ia = prim["indices"].get<int>();
-        const AccessorLayout a = accessor_layout(asset.doc, ia);
-        if (a.type != "SCALAR" ||
-            (a.component_type != kUnsignedByte && a.component_type != kUnsignedShort &&
-             a.component_type != kUnsignedInt)) {
-            throw GltfError("accessor", where + ": indices must be an unsigned SCALAR accessor");
-        }
-        vertices = read_indices(asset, ia);
-        check_indices(vertices, a.component_type, input->vertex_count, where);
-    } else {
+        if (!read_checked_indices(asset, prim["indices"].get<int>(), pa.count, where, &vertices))
+            return zeros;
+    } else if (!all_zeros(asset, position)) {
         vertices.resize(input->vertex_count);
         for (uint32_t i = 0; i < vertices.size(); ++i) vertices[i] = i;
     }
+    if (all_zeros(asset, position)) return zeros;
     input->triangles = triangle_list(mode, vertices);
     if (input->triangles.empty()) return "no complete triangle";
     if (!any_triangle_has_area(input->triangles, read_positions(asset, position, where))) {

@@ -161,6 +161,81 @@ class HeldoutCases(unittest.TestCase):
                 ratios, signs = self.world_distortion(g, report, scale)
                 self.assertLess(np.median(ratios), 1.2, (path, flags))
                 self.assertTrue(np.all(signs == local_signs[0]), (path, flags))
+        # A node so uneven that no map exists at double precision as drawn: the mesh's own
+        # space, as before, and a note.
+        b = Builder()
+        b.doc['meshes'].append({'primitives': [{
+            'attributes': {'POSITION': b.accessor(pos, 'VEC3', bounds=True)},
+            'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                  target=34963)}]})
+        b.doc['nodes'][0]['scale'] = [2.0 ** 63, 3, -1]
+        b.write_gltf(mirrored)
+        _, report = self.bake_clean(mirrored, 'own_space.glb')
+        self.assertTrue(any('own space' in n for n in report['notes']), report['notes'])
+
+
+    def test_coordinates_past_1e30_are_mapped_as_at_unit_scale(self):
+        """Finite positions of any size are valid glTF; the library takes coordinates up to
+        1e30, so raps-gltf hands it the mesh scaled by a power of two. The uvs are those of the
+        same mesh at unit scale, at a resolution, at a density given per the asset's unit, and in a
+        scene's lightmap."""
+        pos, tris = spec.grid(6, 6)
+        outputs = {}
+        for name, factor in (('unit', 1.0), ('huge', 2.0 ** 110)):
+            b = Builder()
+            b.doc['meshes'].append({'primitives': [{
+                'attributes': {'POSITION': b.accessor(pos * np.float32(factor), 'VEC3',
+                                                      bounds=True)},
+                'indices': b.accessor(np.asarray(tris, np.uint16), 'SCALAR', spec.UINT16,
+                                      target=34963)}]})
+            src = self.path(name + '.gltf')
+            b.write_gltf(src)
+            self.assertEqual(spec.error_codes(src), set())
+            density = '%r' % (16 / factor)
+            for k, flags in enumerate(((), ('--texels-per-unit', density),
+                                       ('--group', 'scene', '--lightmap'))):
+                g, report = self.bake_clean(src, name + '.glb', *flags)
+                prim = g.json['meshes'][0]['primitives'][0]
+                atlas = report['scene']['atlas'] if 'scene' in report else \
+                    report['groups'][0]['atlas']
+                outputs[name, k] = (g.accessor(prim['attributes']['TEXCOORD_%d' % (k // 2)]),
+                                    atlas)
+        for k in range(3):
+            uv_unit, atlas_unit = outputs['unit', k]
+            uv_huge, atlas_huge = outputs['huge', k]
+            self.assertEqual(atlas_huge, atlas_unit)
+            np.testing.assert_allclose(uv_huge, uv_unit, atol=1e-5)
+
+
+    def test_accessors_of_zeros_are_not_read_to_find_them_degenerate(self):
+        """An accessor without a bufferView or a sparse substitution is zeros, and a valid file
+        of a few hundred bytes may declare a billion of them: its primitive is left as it is
+        (every triangle degenerate) without reading them, and index checks still come first."""
+        doc = {'asset': {'version': '2.0'}, 'scene': 0, 'scenes': [{'nodes': [0]}],
+               'nodes': [{'mesh': 0}],
+               'meshes': [{'primitives': [{'attributes': {'POSITION': 0, 'NORMAL': 1}}]}],
+               'accessors': [{'componentType': spec.FLOAT, 'count': 10000002, 'type': 'VEC3',
+                              'min': [0, 0, 0], 'max': [0, 0, 0]},
+                             {'componentType': spec.FLOAT, 'count': 10000002, 'type': 'VEC3'}]}
+        src = self.path('zeros.gltf')
+        with open(src, 'w') as fh:
+            json.dump(doc, fh)
+        rc, _, stderr = spec.run(src, self.path('zeros.glb'))
+        self.assertEqual(rc, 3, stderr)
+        self.assertIn('all zeros', stderr)
+        self.assertFalse(os.path.exists(self.path('zeros.glb')))
+        # Indices past the vertex count are still refused when the positions are zeros.
+        b = Builder()
+        b.doc['accessors'].append({'componentType': spec.FLOAT, 'count': 4, 'type': 'VEC3',
+                                   'min': [0, 0, 0], 'max': [0, 0, 0]})
+        indices = b.accessor(np.uint16([0, 1, 4]), 'SCALAR', spec.UINT16, target=34963)
+        b.doc['meshes'].append({'primitives': [{'attributes': {'POSITION': 0},
+                                                'indices': indices}]})
+        src = self.path('oob.gltf')
+        b.write_gltf(src)
+        rc, _, stderr = spec.run(src, self.path('oob.glb'))
+        self.assertEqual(rc, 1, stderr)
+        self.assertIn('past the vertex count', stderr)
 
 
 if __name__ == '__main__':
