@@ -108,9 +108,10 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& prob
     // A planar fold is rounding (the exact solution is an embedding): a long part squeezed below
     // the solve's absolute error. Then the two-puncture map, where it folds fewer triangles.
     if (count_planar_folds(mesh, plane, pole) > 0) {
-        std::vector<Eigen::Vector3d> cylinder =
-            cylinder_initial_map(problem, weights, pool, progress.part(0.96, 0.98));
-        if (!cylinder.empty()) {
+        const std::optional<CylinderCoordinates> coordinates =
+            cylinder_coordinates(problem, weights, progress.part(0.96, 0.98));
+        if (coordinates) {
+            std::vector<Eigen::Vector3d> cylinder = conformal_cylinder_map(problem, *coordinates);
             mobius_centre(problem, cylinder, pool, 1e-4, 100, progress.part(0.98, 1.0));
             if (count_folds(mesh, cylinder).folded < count_folds(mesh, points).folded) {
                 points.swap(cylinder);
