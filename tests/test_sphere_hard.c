@@ -310,11 +310,13 @@ static sphere_check check_sphere_map(const test_mesh* mesh, const double* u) {
     return c;
 }
 
-static raps_settings* sphere_settings(int32_t monitor) {
+/* max_sweeps: RAPS_PARAM_SPHERE_MAX_SWEEPS (0: the method's own). */
+static raps_settings* sphere_settings(int32_t monitor, int64_t max_sweeps) {
     raps_settings* s = NULL;
     assert_status(raps_settings_create(&s), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_SPHERE), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_MONITOR, monitor), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_SPHERE_MAX_SWEEPS, max_sweeps), RAPS_OK);
     return s;
 }
 
@@ -327,9 +329,10 @@ typedef struct outcome {
 /* Runs the robust method with `monitor`; on RAPS_OK the map must be a bijection of the unit
  * sphere and centred (the 3D-area-weighted centre of mass within 0.05 of the origin), otherwise the
  * refusal must be SOLVER_FAILED with a message about folds. Prints the figures either way. */
-static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t monitor) {
+static outcome map_or_refuse_with(const char* name, const test_mesh* mesh, int32_t monitor,
+                                  int64_t max_sweeps) {
     raps_mesh* handle = to_raps_mesh(mesh);
-    raps_settings* settings = sphere_settings(monitor);
+    raps_settings* settings = sphere_settings(monitor, max_sweeps);
     raps_result* result = NULL;
     assert_status(raps_result_create(&result), RAPS_OK);
     outcome o;
@@ -373,17 +376,27 @@ static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t mo
     return o;
 }
 
-/* Maps `mesh` twice, initial and area-adapted: both must come back, and the area monitor must
- * lower the area distortion to at most `fraction` of the initial map's (0.6: issue 18's 40 %). */
-static void assert_area_lowered(const char* name, const test_mesh* mesh, double fraction) {
-    const outcome initial = map_or_refuse(name, mesh, RAPS_MONITOR_NONE);
-    const outcome adapted = map_or_refuse(name, mesh, RAPS_MONITOR_AREA);
+static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t monitor) {
+    return map_or_refuse_with(name, mesh, monitor, 0);
+}
+
+/* Maps `mesh` twice, initial and area-adapted, with at most `max_sweeps` per relaxation (0: the
+ * method's own): both must come back, and the area monitor must lower the area distortion to at
+ * most `fraction` of the initial map's (0.6: issue 18's 40 %). */
+static void assert_area_lowered_with(const char* name, const test_mesh* mesh, double fraction,
+                                     int64_t max_sweeps) {
+    const outcome initial = map_or_refuse_with(name, mesh, RAPS_MONITOR_NONE, max_sweeps);
+    const outcome adapted = map_or_refuse_with(name, mesh, RAPS_MONITOR_AREA, max_sweeps);
     assert_status(initial.status, RAPS_OK);
     assert_status(adapted.status, RAPS_OK);
     if (!(adapted.area_log_mean <= fraction * initial.area_log_mean)) {
         fail_msg("%s: area distortion %.3f -> %.3f, above %.2f of the initial map's", name,
                  initial.area_log_mean, adapted.area_log_mean, fraction);
     }
+}
+
+static void assert_area_lowered(const char* name, const test_mesh* mesh, double fraction) {
+    assert_area_lowered_with(name, mesh, fraction, 0);
 }
 
 /* ---- the cases ----------------------------------------------------------------------------- */
@@ -499,6 +512,18 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
     }
 }
 
+/* A relaxation cut short: 4 sweeps per relaxation on spot (5.8K triangles), the way every
+ * relaxation of a mesh of several 100K triangles stops far from its fixed point at the default
+ * sweeps (bunny subdivided to 446K: 27 % lower before). Where the continuation ends less than 40 %
+ * below the initial map, the equal-area cylinder map competes as the result (measured: spot
+ * 1.735 -> 0.615 with 4 sweeps; bunny x64 1.645 -> 0.505 at the defaults). */
+static void sweep_limited_relaxation_still_lowers_the_area_by_40_percent(void** state) {
+    (void)state;
+    test_mesh m = load_shared_mesh("spot.obj");
+    assert_area_lowered_with("spot.obj, 4 sweeps", &m, 0.6, 4);
+    test_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(capsules_map_bijectively_to_aspect_50),
@@ -508,6 +533,7 @@ int main(void) {
         cmocka_unit_test(pancake_maps_bijectively_and_area_adapted),
         cmocka_unit_test(high_degree_vertices_and_needles_map_bijectively_and_centred),
         cmocka_unit_test(subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred),
+        cmocka_unit_test(sweep_limited_relaxation_still_lowers_the_area_by_40_percent),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
