@@ -44,9 +44,12 @@ constexpr double kStartBelow = 0.6;
 // along the axis between the punctures at once (41.8 -> 0.45), and the relaxation goes on from
 // there. Where the mesh is not close to symmetric about that axis the latitudes fold triangles
 // (cow, horse_quad, decimated-knight: 9 to 52 even blended half way), and nothing changes.
+// `progress` gets the factorization's progress (it may throw to cancel).
 bool equal_area_start(const SphereProblem& problem, WeightScheme weights, ThreadPool& pool,
-                      std::vector<Eigen::Vector3d>& points, SphereMapScore& score) {
-    const std::optional<CylinderCoordinates> coordinates = cylinder_coordinates(problem, weights);
+                      std::vector<Eigen::Vector3d>& points, SphereMapScore& score,
+                      const ProgressSpan& progress) {
+    const std::optional<CylinderCoordinates> coordinates =
+        cylinder_coordinates(problem, weights, progress);
     if (!coordinates) return false;
     for (double share : {1.0, 0.75, 0.5, 0.25}) {
         std::vector<Eigen::Vector3d> start = equal_area_cylinder_map(problem, *coordinates, share);
@@ -157,7 +160,8 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
             acceptable = best_score.folded == 0 && best_score.centre <= kCentredEnough;
             if (by_area && acceptable && best_score.area_log > kSqueezedArea) {
                 start_tried = true;
-                if (equal_area_start(problem, settings.weights, pool, points, best_score)) {
+                if (equal_area_start(problem, settings.weights, pool, points, best_score,
+                                     relaxations.part(0.0, 0.0))) {
                     best = points;
                 }
             }
@@ -216,7 +220,8 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
             !(best_score.area_log <= kStartBelow * initial_score.area_log)) {
             std::vector<Eigen::Vector3d> candidate;
             SphereMapScore candidate_score = initial_score;
-            if (equal_area_start(problem, settings.weights, pool, candidate, candidate_score) &&
+            if (equal_area_start(problem, settings.weights, pool, candidate, candidate_score,
+                                 relaxations.part(1.0, 1.0)) &&
                 better_sphere_map(candidate_score, best_score, by_area)) {
                 best.swap(candidate);
                 best_score = candidate_score;
