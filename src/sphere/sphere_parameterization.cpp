@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/error.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/mesh_validation.h"
 #include "mesh/vertex_order.h"
@@ -48,8 +49,13 @@ constexpr double kStartBelow = 0.6;
 bool equal_area_start(const SphereProblem& problem, WeightScheme weights, ThreadPool& pool,
                       std::vector<Eigen::Vector3d>& points, SphereMapScore& score,
                       const ProgressSpan& progress) {
-    const std::optional<CylinderCoordinates> coordinates =
-        cylinder_coordinates(problem, weights, progress);
+    std::optional<CylinderCoordinates> coordinates;
+    try {
+        coordinates = cylinder_coordinates(problem, weights, progress);
+    } catch (const Error& e) {
+        // A singular system is no start, not a failure of a map already found; a cancel is.
+        if (e.code() != ErrorCode::kSolverFailed) throw;
+    }
     if (!coordinates) return false;
     for (double share : {1.0, 0.75, 0.5, 0.25}) {
         std::vector<Eigen::Vector3d> start = equal_area_cylinder_map(problem, *coordinates, share);
