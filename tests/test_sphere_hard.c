@@ -421,12 +421,13 @@ static void capsules_map_bijectively_to_aspect_50(void** state) {
     }
 }
 
-/* Necks of 0.2 and 0.05 (48 sectors): the area monitor lowers the area distortion by 40 %. A neck
- * of 0.02 (24 sectors; 48 were refused before the cylinder map) maps, not worse adapted than
- * initially (measured 53.1 -> 45.1). A neck of 0.01 squeezes each ball by about e^-100 against
- * the other: it maps or is refused with its status, never folded with RAPS_OK (measured: the
- * initial map refused, 16 folds; the adapted one maps). Under the sanitizers only the first
- * two. */
+/* Necks of 0.2 and 0.05 (48 sectors) and 0.02 (24 sectors; refused before the cylinder map):
+ * the area monitor lowers the area distortion by at least 40 % (measured 6.21 -> 0.017, 22.4 ->
+ * 0.069 and 53.1 -> 0.088 from the equal-area start; 0.02 reached 15 % before its floor on sliver
+ * areas, src/sphere/cylinder_initial_map.cpp). A neck of 0.01 squeezes each ball by about e^-100
+ * against the other: it maps or is refused with its status, never folded with RAPS_OK
+ * (measured: the initial map refused, 16 folds; the adapted one maps). Under the sanitizers only
+ * the first two. */
 static void dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
     const double necks[] = {0.2, 0.05, 0.02, 0.01};
@@ -436,8 +437,7 @@ static void dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted(void** s
         test_mesh m = make_dumbbell(necks[k], sectors[k]);
         char name[64];
         snprintf(name, sizeof(name), "dumbbell neck %.2f", necks[k]);
-        if (k < 2) assert_area_lowered(name, &m, 0.6);
-        if (k == 2) assert_area_lowered(name, &m, 1.0);
+        if (k < 3) assert_area_lowered(name, &m, 0.6);
         if (k == 3) {
             map_or_refuse(name, &m, RAPS_MONITOR_NONE);
             map_or_refuse(name, &m, RAPS_MONITOR_AREA);
