@@ -1,8 +1,9 @@
 // A second initial spherical map for meshes whose long parts the one-puncture map cannot resolve:
 // two punctures, a periodic Tutte embedding of the annulus between them into a straight
-// cylinder, and the lift w = e^(H h + i theta) (the exponential coordinates of the cylinder
-// between the two poles; as in Choi, Lam and Lui 2015 and the two-pole maps of Gu, Wang, Chan,
-// Thompson and Yau 2004, the exponential is done last, in the lift):
+// cylinder, and the lift w = e^(H h + i theta): the exponential coordinates of the cylinder
+// between the two poles, done last, in the lift (Choi, Lam and Lui 2015 correct the pole region of
+// their one-puncture map with a second projection from the other pole; here the second pole is a
+// puncture of its own):
 //
 //  1. Punctures A and B at the ends of an approximate longest geodesic (double-sweep Dijkstra
 //     over 3D edge lengths). Their stars are removed; the rings bound an annulus.
@@ -21,7 +22,7 @@
 // by about e^(-L / r). The one-puncture map computes that squeeze in the plane, where a solve
 // has an absolute error of 1e-16 of the disk: on a capsule of aspect 40 the far end, which
 // belongs 1e-34 from the plane's origin, comes out as a cluster of noise around a point about
-// 1e-17 off it, and 820 planar triangles fold. Here both ends of the longest part are the
+// 1e-17 off it, and 679 planar triangles fold. Here both ends of the longest part are the
 // punctures, the squeeze is in the exponential, and a point near either pole keeps the relative
 // precision of its height and angle: x and y of a unit vector near (0, 0, +-1) are resolved
 // relative to their size.
