@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
 #include "core/portable_math.h"
 #include "planar/laplace_system.h"
 #include "sphere/cylinder_initial_map.h"
@@ -108,9 +109,15 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& prob
     // A planar fold is rounding (the exact solution is an embedding): a long part squeezed below
     // the solve's absolute error. Then the two-puncture map, where it folds fewer triangles.
     if (count_planar_folds(mesh, plane, pole) > 0) {
-        std::vector<Eigen::Vector3d> cylinder =
-            cylinder_initial_map(problem, weights, pool, progress.part(0.96, 0.98));
-        if (!cylinder.empty()) {
+        std::optional<CylinderCoordinates> coordinates;
+        try {
+            coordinates = cylinder_coordinates(problem, weights, progress.part(0.96, 0.98));
+        } catch (const Error& e) {
+            // A singular system leaves the one-puncture map (refused later if still folded).
+            if (e.code() != ErrorCode::kSolverFailed) throw;
+        }
+        if (coordinates) {
+            std::vector<Eigen::Vector3d> cylinder = conformal_cylinder_map(problem, *coordinates);
             mobius_centre(problem, cylinder, pool, 1e-4, 100, progress.part(0.98, 1.0));
             if (count_folds(mesh, cylinder).folded < count_folds(mesh, points).folded) {
                 points.swap(cylinder);
