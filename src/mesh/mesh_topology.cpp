@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/fill_in_runs.h"
 
 namespace raps {
 namespace {
@@ -37,7 +38,7 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& 
         }
     });
     std::partial_sum(out.offsets.begin(), out.offsets.end(), out.offsets.begin());
-    out.halfedges.resize(halfedge_count);
+    assign_in_runs(out.halfedges, halfedge_count, 0, progress.part(0.5, 0.5));
     std::vector<int32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
         progress.at(halfedge_count + h, 2 * static_cast<int64_t>(halfedge_count));
@@ -51,14 +52,14 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& 
 Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress) {
     const OutgoingHalfedges out = group_by_origin(mesh, progress.part(0.0, 0.15));
     const int32_t halfedge_count = 3 * mesh.triangle_count();
-    std::vector<int32_t> target(halfedge_count);
+    std::vector<int32_t> target = filled_in_runs(halfedge_count, 0, progress.part(0.15, 0.15));
     progress.part(0.15, 0.2).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
             target[h] = halfedge_target(mesh, h);
         }
     });
     Halfedges result;
-    result.twin.assign(halfedge_count, -1);
+    assign_in_runs(result.twin, halfedge_count, -1, progress.part(0.2, 0.2));
     const ProgressSpan pairing = progress.part(0.2, 1.0);
     pairing.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
@@ -328,7 +329,8 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     // Each entry carries its edge's half-edge h and direction (2h: in the row of h's origin,
     // 2h + 1: of its target) through the sort, so the slots come out of the sort itself: binary
     // searches for them afterwards were most of this function.
-    std::vector<std::pair<int32_t, int32_t>> entries(adjacency.offsets.back());
+    std::vector<std::pair<int32_t, int32_t>> entries = filled_in_runs(
+        adjacency.offsets.back(), std::pair<int32_t, int32_t>(), progress.part(0.2, 0.2));
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
     progress.part(0.2, 0.4).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
@@ -339,9 +341,9 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
         }
     });
     const ProgressSpan sorting = progress.part(0.4, 0.9);
-    adjacency.neighbors.resize(entries.size());
-    adjacency.forward_slot.resize(halfedge_count);
-    adjacency.backward_slot.resize(halfedge_count);
+    assign_in_runs(adjacency.neighbors, entries.size(), 0, progress.part(0.4, 0.4));
+    assign_in_runs(adjacency.forward_slot, halfedge_count, 0, progress.part(0.4, 0.4));
+    assign_in_runs(adjacency.backward_slot, halfedge_count, 0, progress.part(0.4, 0.4));
     sorting.in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
             // Insertion sort by neighbour: a vertex has about six.

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/fill_in_runs.h"
 
 namespace raps {
 
@@ -55,9 +56,9 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
     const int32_t n = static_cast<int32_t>(interior.vertex_of_unknown.size());
     SparsePattern& pattern = interior.pattern;
     pattern.size = n;
-    interior.value_of_slot.assign(adjacency.neighbors.size(), -1);
+    assign_in_runs(interior.value_of_slot, adjacency.neighbors.size(), -1, progress.part(0.0, 0.2));
     interior.diagonal_of_unknown.resize(n);
-    progress.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+    progress.part(0.2, 1.0).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t row = static_cast<int32_t>(run_begin); row < run_end; ++row) {
             const int32_t v = interior.vertex_of_unknown[row];
             bool diagonal_placed = false;
@@ -117,9 +118,11 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
                           const ProgressSpan& progress) {
     const int32_t n = unknown_count();
     if (n == 0) return;  // every vertex is on the boundary
-    std::vector<double> values(solver_->pattern().columns.size(), 0.0);
-    std::vector<double> rhs(2 * static_cast<size_t>(n), 0.0);
-    const ProgressSpan assembly = progress.part(0.0, 0.1);
+    std::vector<double> values =
+        filled_in_runs(solver_->pattern().columns.size(), 0.0, progress.part(0.0, 0.03));
+    std::vector<double> rhs =
+        filled_in_runs(2 * static_cast<size_t>(n), 0.0, progress.part(0.03, 0.04));
+    const ProgressSpan assembly = progress.part(0.04, 0.1);
     assembly.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t row = static_cast<int32_t>(run_begin); row < run_end; ++row) {
             const int32_t v = vertex_of_unknown_[row];

@@ -1,12 +1,13 @@
 #include "solver/multifrontal_factorization.h"
 
-#include "solver/dense_kernels.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include <Eigen/Core>
+
+#include "core/fill_in_runs.h"
+#include "solver/dense_kernels.h"
 
 namespace raps {
 namespace {
@@ -24,20 +25,18 @@ bool worth_merging(int64_t columns, double zero_fraction) {
 
 }  // namespace
 
-void MultifrontalFactorization::analyze(const SparsePattern& pattern,
-                                        const std::vector<int32_t>& order,
-                                        const ProgressSpan& progress) {
-    const int32_t n = pattern.size;
-    size_ = n;
-    prepared_ = false;
+namespace {
 
-    // Elimination tree of the permuted matrix (Liu's algorithm with path compression).
-    std::vector<int32_t> position(n);
-    for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
+// Elimination tree of the pattern eliminated in `order` (Liu's algorithm with path compression):
+// parent[k] of the k-th eliminated unknown, in elimination positions, or -1 for a root.
+std::vector<int32_t> elimination_tree(const SparsePattern& pattern,
+                                      const std::vector<int32_t>& order,
+                                      const std::vector<int32_t>& position,
+                                      const ProgressSpan& progress) {
+    const int32_t n = pattern.size;
     std::vector<int32_t> parent(n, -1), ancestor(n, -1);
-    const ProgressSpan tree = progress.part(0.0, 0.2);
     for (int32_t i = 0; i < n; ++i) {
-        tree.at(i, n);
+        progress.at(i, n);
         const int32_t row = order[i];
         for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
             int32_t j = position[pattern.columns[p]];
@@ -52,9 +51,14 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
             }
         }
     }
+    return parent;
+}
 
-    // Postorder the tree so that every subtree is a contiguous range ending at its root; the
-    // fill is unchanged and supernodes become ranges of consecutive columns.
+// The tree's postorder (postorder[k]: the node visited k-th, children before parents, each
+// subtree a contiguous range ending at its root), a pass over the tree per report.
+std::vector<int32_t> tree_postorder(const std::vector<int32_t>& parent,
+                                    const ProgressSpan& progress) {
+    const int32_t n = static_cast<int32_t>(parent.size());
     std::vector<int32_t> first_child(n, -1), next_sibling(n, -1);
     for (int32_t j = n - 1; j >= 0; --j) {
         if (parent[j] >= 0) {
@@ -62,101 +66,105 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
             first_child[parent[j]] = j;
         }
     }
+    progress.report(0.3);
     std::vector<int32_t> postorder;
     postorder.reserve(n);
-    {
-        std::vector<int32_t> stack;
-        for (int32_t root = 0; root < n; ++root) {
-            if (parent[root] >= 0) continue;
-            stack.push_back(root);
-            while (!stack.empty()) {
-                const int32_t j = stack.back();
-                if (first_child[j] >= 0) {
-                    const int32_t c = first_child[j];
-                    first_child[j] = next_sibling[c];
-                    stack.push_back(c);
-                } else {
-                    stack.pop_back();
-                    postorder.push_back(j);
-                }
+    std::vector<int32_t> stack;
+    for (int32_t root = 0; root < n; ++root) {
+        if (parent[root] >= 0) continue;
+        stack.push_back(root);
+        while (!stack.empty()) {
+            const int32_t j = stack.back();
+            if (first_child[j] >= 0) {
+                const int32_t c = first_child[j];
+                first_child[j] = next_sibling[c];
+                stack.push_back(c);
+            } else {
+                stack.pop_back();
+                progress.at(static_cast<int64_t>(postorder.size()), n, 0.3, 1.0);
+                postorder.push_back(j);
             }
         }
     }
-    order_.resize(n);
-    std::vector<int32_t> renumber(n);
-    for (int32_t k = 0; k < n; ++k) {
-        order_[k] = order[postorder[k]];
-        renumber[postorder[k]] = k;
-    }
-    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
-    {
-        std::vector<int32_t> renumbered_parent(n, -1);
-        for (int32_t j = 0; j < n; ++j) {
-            if (parent[j] >= 0) renumbered_parent[renumber[j]] = renumber[parent[j]];
-        }
-        parent.swap(renumbered_parent);
-    }
+    return postorder;
+}
 
-    // Column counts of L (diagonal included) without forming L (Gilbert, Ng & Peyton 1994, as
-    // in CSparse's cs_counts): row i of L is the row subtree spanned by the columns of A's row
-    // i; each column j counts the row subtrees it lies in, found from the subtrees' leaves and
-    // their least common ancestors. Walking every row subtree instead, O(|L|), was a quarter of
-    // this analysis. Columns are numbered in postorder, so j's subtree is first[j] .. j.
+// Column counts of L (diagonal included) without forming L (Gilbert, Ng & Peyton 1994, as in
+// CSparse's cs_counts): row i of L is the row subtree spanned by the columns of A's row i; each
+// column j counts the row subtrees it lies in, found from the subtrees' leaves and their least
+// common ancestors. Walking every row subtree instead, O(|L|), was a quarter of the analysis.
+// Columns are numbered in postorder (order: position -> unknown), so j's subtree is
+// first[j] .. j.
+std::vector<int64_t> column_counts(const SparsePattern& pattern, const std::vector<int32_t>& order,
+                                   const std::vector<int32_t>& position,
+                                   const std::vector<int32_t>& parent,
+                                   const ProgressSpan& progress) {
+    const int32_t n = pattern.size;
     std::vector<int64_t> column_count(n, 0);
-    {
-        std::vector<int32_t> first(n, -1), max_first(n, -1), previous_leaf(n, -1);
-        std::iota(ancestor.begin(), ancestor.end(), 0);  // now: union-find of finished subtrees
-        for (int32_t j = 0; j < n; ++j) {
-            if (first[j] < 0) {
-                column_count[j] = 1;  // a leaf of the tree
-                for (int32_t k = j; k >= 0 && first[k] < 0; k = parent[k]) first[k] = j;
-            }
-        }
-        const ProgressSpan counts = progress.part(0.2, 0.45);
-        for (int32_t j = 0; j < n; ++j) {
-            counts.at(j, n);
-            if (parent[j] >= 0) --column_count[parent[j]];
-            const int32_t row = order_[j];
-            for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
-                const int32_t i = position[pattern.columns[p]];
-                if (i <= j || first[j] <= max_first[i]) continue;  // j is no leaf of i's subtree
-                max_first[i] = first[j];
-                const int32_t previous = previous_leaf[i];
-                previous_leaf[i] = j;
-                ++column_count[j];
-                if (previous < 0) continue;  // i's first leaf
-                int32_t common = previous;   // least common ancestor of the two leaves
-                while (common != ancestor[common]) common = ancestor[common];
-                for (int32_t k = previous; k != common;) {  // path compression
-                    const int32_t up = ancestor[k];
-                    ancestor[k] = common;
-                    k = up;
-                }
-                --column_count[common];
-            }
-            if (parent[j] >= 0) ancestor[j] = parent[j];
-        }
-        for (int32_t j = 0; j < n; ++j) {
-            if (parent[j] >= 0) column_count[parent[j]] += column_count[j];
+    std::vector<int32_t> first(n, -1), max_first(n, -1), previous_leaf(n, -1), ancestor(n);
+    std::iota(ancestor.begin(), ancestor.end(), 0);  // union-find of finished subtrees
+    for (int32_t j = 0; j < n; ++j) {
+        if (first[j] < 0) {
+            column_count[j] = 1;  // a leaf of the tree
+            for (int32_t k = j; k >= 0 && first[k] < 0; k = parent[k]) first[k] = j;
         }
     }
+    progress.report(0.1);
+    for (int32_t j = 0; j < n; ++j) {
+        progress.at(j, n, 0.1, 0.9);
+        if (parent[j] >= 0) --column_count[parent[j]];
+        const int32_t row = order[j];
+        for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
+            const int32_t i = position[pattern.columns[p]];
+            if (i <= j || first[j] <= max_first[i]) continue;  // j is no leaf of i's subtree
+            max_first[i] = first[j];
+            const int32_t previous = previous_leaf[i];
+            previous_leaf[i] = j;
+            ++column_count[j];
+            if (previous < 0) continue;  // i's first leaf
+            int32_t common = previous;   // least common ancestor of the two leaves
+            while (common != ancestor[common]) common = ancestor[common];
+            for (int32_t k = previous; k != common;) {  // path compression
+                const int32_t up = ancestor[k];
+                ancestor[k] = common;
+                k = up;
+            }
+            --column_count[common];
+        }
+        if (parent[j] >= 0) ancestor[j] = parent[j];
+    }
+    progress.report(0.9);
+    for (int32_t j = 0; j < n; ++j) {
+        if (parent[j] >= 0) column_count[parent[j]] += column_count[j];
+    }
+    return column_count;
+}
 
-    // Fundamental supernodes: chains j -> j + 1 where j is the only child and the structure
-    // shrinks by exactly the diagonal.
+// Fundamental supernodes: chains j -> j + 1 where j is the only child and the structure shrinks
+// by exactly the diagonal. The first column of each, then n.
+std::vector<int32_t> fundamental_supernodes(const std::vector<int32_t>& parent,
+                                            const std::vector<int64_t>& column_count) {
+    const int32_t n = static_cast<int32_t>(parent.size());
     std::vector<int32_t> child_count(n, 0);
     for (int32_t j = 0; j < n; ++j) {
         if (parent[j] >= 0) ++child_count[parent[j]];
     }
-    std::vector<int32_t> super_first;  // first column of each fundamental supernode
+    std::vector<int32_t> super_first;
     for (int32_t j = 0; j < n; ++j) {
         const bool continues = j > 0 && parent[j - 1] == j && child_count[j] == 1 &&
                                column_count[j - 1] == column_count[j] + 1;
         if (!continues) super_first.push_back(j);
     }
     super_first.push_back(n);
+    return super_first;
+}
 
-    // Relaxed amalgamation, from the last supernode down: supernode s merges into the group
-    // that starts right after it when that group holds its parent column.
+// Relaxed amalgamation, from the last supernode down: supernode s merges into the group that
+// starts right after it when that group holds its parent column. merged_with_next[s] for each
+// fundamental supernode.
+std::vector<char> relaxed_amalgamation(const std::vector<int32_t>& super_first,
+                                       const std::vector<int32_t>& parent,
+                                       const std::vector<int64_t>& column_count) {
     const int32_t fundamental_count = static_cast<int32_t>(super_first.size()) - 1;
     std::vector<char> merged_with_next(fundamental_count, 0);
     {
@@ -192,6 +200,63 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
             }
         }
     }
+    return merged_with_next;
+}
+
+}  // namespace
+
+void MultifrontalFactorization::analyze(const SparsePattern& pattern,
+                                        const std::vector<int32_t>& order,
+                                        const ProgressSpan& progress) {
+    const int32_t n = pattern.size;
+    size_ = n;
+    prepared_ = false;
+    std::vector<int32_t> position(n);
+    for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
+    std::vector<int32_t> parent =
+        elimination_tree(pattern, order, position, progress.part(0.0, 0.15));
+
+    // Postorder the tree so that every subtree is a contiguous range ending at its root; the
+    // fill is unchanged and supernodes become ranges of consecutive columns.
+    const ProgressSpan renumbering = progress.part(0.15, 0.2);
+    const std::vector<int32_t> postorder = tree_postorder(parent, renumbering.part(0.0, 0.6));
+    order_.resize(n);
+    std::vector<int32_t> renumber(n);
+    for (int32_t k = 0; k < n; ++k) {
+        order_[k] = order[postorder[k]];
+        renumber[postorder[k]] = k;
+    }
+    renumbering.report(0.7);
+    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
+    renumbering.report(0.8);
+    {
+        std::vector<int32_t> renumbered_parent(n, -1);
+        for (int32_t j = 0; j < n; ++j) {
+            if (parent[j] >= 0) renumbered_parent[renumber[j]] = renumber[parent[j]];
+        }
+        parent.swap(renumbered_parent);
+    }
+    renumbering.report(1.0);
+
+    const std::vector<int64_t> column_count =
+        column_counts(pattern, order_, position, parent, progress.part(0.2, 0.4));
+    const ProgressSpan grouping = progress.part(0.4, 0.45);
+    const std::vector<int32_t> super_first = fundamental_supernodes(parent, column_count);
+    grouping.report(0.3);
+    const std::vector<char> merged_with_next =
+        relaxed_amalgamation(super_first, parent, column_count);
+    grouping.report(0.6);
+    build_supernodes(super_first, merged_with_next, parent);
+    grouping.report(1.0);
+    build_front_rows(pattern, position, progress.part(0.45, 0.8));
+    build_relative_rows(progress.part(0.8, 1.0));
+}
+
+void MultifrontalFactorization::build_supernodes(const std::vector<int32_t>& super_first,
+                                                 const std::vector<char>& merged_with_next,
+                                                 const std::vector<int32_t>& parent) {
+    const int32_t n = size_;
+    const int32_t fundamental_count = static_cast<int32_t>(super_first.size()) - 1;
     std::vector<int32_t> supernode_of(n);
     supernodes_.clear();
     for (int32_t s = 0; s < fundamental_count; ++s) {
@@ -233,12 +298,18 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
             }
         }
     }
+}
 
+void MultifrontalFactorization::build_front_rows(const SparsePattern& pattern,
+                                                 const std::vector<int32_t>& position,
+                                                 const ProgressSpan& progress) {
+    const int32_t n = size_;
+    const int32_t supernode_count = static_cast<int32_t>(supernodes_.size());
     // Front structures: the supernode's columns, then the rows below it from A's columns and
     // from its children's update rows, sorted.
     row_indices_.clear();
     std::vector<int32_t> mark(n, -1);
-    const ProgressSpan fronts = progress.part(0.45, 0.8);
+    const ProgressSpan& fronts = progress;
     for (int32_t s = 0; s < supernode_count; ++s) {
         fronts.at(s, supernode_count);
         Supernode& node = supernodes_[s];
@@ -271,7 +342,11 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
         std::sort(row_indices_.begin() + static_cast<int64_t>(update_begin), row_indices_.end());
         node.rows = static_cast<int32_t>(row_indices_.size() - node.row_offset);
     }
+}
 
+void MultifrontalFactorization::build_relative_rows(const ProgressSpan& progress) {
+    const int32_t n = size_;
+    const int32_t supernode_count = static_cast<int32_t>(supernodes_.size());
     // Where each child's update rows land in its parent's front.
     std::vector<int32_t> local(n, -1);
     relative_rows_.clear();
@@ -279,7 +354,7 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     for (const Supernode& node : supernodes_) {
         max_front = std::max(max_front, static_cast<int64_t>(node.rows) * node.rows);
     }
-    const ProgressSpan relative = progress.part(0.8, 1.0);
+    const ProgressSpan& relative = progress;
     for (int32_t s = 0; s < supernode_count; ++s) {
         relative.at(s, supernode_count);
         const Supernode& node = supernodes_[s];
@@ -337,11 +412,12 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     // after its first column, and take the transposed entry (other, j) when other lies beyond.
     // transposed[p] is the index of the entry mirroring entry p; rows are sorted, so visiting
     // rows in order meets each row's entries in order. (Cholesky places no mirrors.)
-    std::vector<int64_t> transposed(cholesky_ ? 0 : pattern.nonzeros());
+    std::vector<int64_t> transposed;
     if (!cholesky_) {
+        assign_in_runs(transposed, pattern.nonzeros(), int64_t(0), progress.part(0.0, 0.1));
         std::vector<int64_t> cursor(pattern.row_offsets.begin(), pattern.row_offsets.end() - 1);
         for (int32_t row = 0; row < n; ++row) {
-            progress.at(row, 2 * static_cast<int64_t>(n));
+            progress.at(row, n, 0.1, 0.3);
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
                 transposed[p] = cursor[pattern.columns[p]]++;
             }
@@ -351,8 +427,8 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     // supernodes from the earlier row as itself and its mirror (the later row skips both).
     // Cholesky keeps only the lower triangle: each row j gives its entries (other >= j) at
     // (other, j), and the upper ones are never placed.
-    value_source_.resize(pattern.nonzeros());
-    value_target_.resize(pattern.nonzeros());
+    assign_in_runs(value_source_, pattern.nonzeros(), int64_t(0), progress.part(0.3, 0.4));
+    assign_in_runs(value_target_, pattern.nonzeros(), int64_t(0), progress.part(0.4, 0.5));
     diagonal_source_.assign(n, -1);
     int64_t next_value = 0, next_report = kItemsPerReport;
     for (Supernode& node : supernodes_) {

@@ -65,6 +65,16 @@ class MultifrontalFactorization {
         int64_t value_end;
     };
 
+    // The steps of analyze() after the column counts: the supernodes (fundamental ones merged
+    // where merged_with_next says) with their children lists; each front's rows; where each
+    // child's update rows land in its parent, and the workspaces.
+    void build_supernodes(const std::vector<int32_t>& super_first,
+                          const std::vector<char>& merged_with_next,
+                          const std::vector<int32_t>& parent);
+    void build_front_rows(const SparsePattern& pattern, const std::vector<int32_t>& position,
+                          const ProgressSpan& progress);
+    void build_relative_rows(const ProgressSpan& progress);
+
     // Work of one front's partial factorization (progress reports, factor_flops()).
     double front_flops(const Supernode& node) const;
 
