@@ -118,10 +118,11 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
                           const ProgressSpan& progress) {
     const int32_t n = unknown_count();
     if (n == 0) return;  // every vertex is on the boundary
-    std::vector<double> values =
-        filled_in_runs(solver_->pattern().columns.size(), 0.0, progress.part(0.0, 0.03));
-    std::vector<double> rhs =
-        filled_in_runs(2 * static_cast<size_t>(n), 0.0, progress.part(0.03, 0.04));
+    // Reused by the next solve: the pages are touched once per system, not once per solve.
+    std::vector<double>& values = values_;
+    std::vector<double>& rhs = rhs_;
+    assign_in_runs(values, solver_->pattern().columns.size(), 0.0, progress.part(0.0, 0.03));
+    assign_in_runs(rhs, 2 * static_cast<size_t>(n), 0.0, progress.part(0.03, 0.04));
     const ProgressSpan assembly = progress.part(0.04, 0.1);
     assembly.in_runs(n, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t row = static_cast<int32_t>(run_begin); row < run_end; ++row) {
@@ -151,16 +152,18 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
             }
         }
     });
-    solver_->solve(values, rhs.data(), 2, progress.part(0.1, 1.0));
-    for (int32_t row = 0; row < n; ++row) {
-        if (!std::isfinite(rhs[row]) || !std::isfinite(rhs[n + row])) {
-            throw Error(ErrorCode::kSolverFailed,
-                        "the Laplace system is numerically singular (non-finite solution at "
-                        "vertex " +
-                            std::to_string(vertex_of_unknown_[row]) + ")");
+    solver_->solve(values, rhs.data(), 2, progress.part(0.1, 0.98));
+    progress.part(0.98, 1.0).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int32_t row = static_cast<int32_t>(run_begin); row < run_end; ++row) {
+            if (!std::isfinite(rhs[row]) || !std::isfinite(rhs[n + row])) {
+                throw Error(ErrorCode::kSolverFailed,
+                            "the Laplace system is numerically singular (non-finite solution at "
+                            "vertex " +
+                                std::to_string(vertex_of_unknown_[row]) + ")");
+            }
+            uv[vertex_of_unknown_[row]] = Eigen::Vector2d(rhs[row], rhs[n + row]);
         }
-        uv[vertex_of_unknown_[row]] = Eigen::Vector2d(rhs[row], rhs[n + row]);
-    }
+    });
 }
 
 }  // namespace raps
