@@ -56,6 +56,10 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
     const int32_t n = static_cast<int32_t>(interior.vertex_of_unknown.size());
     SparsePattern& pattern = interior.pattern;
     pattern.size = n;
+    // Reserved: grown by push_back, the columns were copied whole at each doubling (80 MB at
+    // 3M triangles, tens of milliseconds without a progress call).
+    pattern.row_offsets.reserve(static_cast<size_t>(n) + 1);
+    pattern.columns.reserve(adjacency.neighbors.size() + static_cast<size_t>(n));
     assign_in_runs(interior.value_of_slot, adjacency.neighbors.size(), -1, progress.part(0.0, 0.2));
     interior.diagonal_of_unknown.resize(n);
     progress.part(0.2, 1.0).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
@@ -107,11 +111,14 @@ LaplaceSystem::LaplaceSystem(const TriangleMesh& mesh, const VertexAdjacency& ad
         return;
     }
     const int32_t n = unknown_count();
-    std::vector<Eigen::Vector3d> coordinates(n);
-    for (int32_t row = 0; row < n; ++row)
-        coordinates[row] = mesh.positions[vertex_of_unknown_[row]];
+    std::vector<Eigen::Vector3d> coordinates;
+    coordinates.reserve(n);
+    progress.part(0.1, 0.11).in_runs(n, [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t row = run_begin; row < run_end; ++row)
+            coordinates.push_back(mesh.positions[vertex_of_unknown_[row]]);
+    });
     solver_ = std::make_unique<SparseSolver>(std::move(interior.pattern), coordinates,
-                                             progress.part(0.1, 1.0));
+                                             progress.part(0.11, 1.0));
 }
 
 void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen::Vector2d>& uv,

@@ -606,43 +606,88 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
     return true;
 }
 
+namespace {
+
+// Progress of the triangular solves by the factor's entries read (a supernode's panel is
+// rows x columns): columns alone were a poor measure, 8,192 of a separator's columns being
+// tens of milliseconds of work at millions of triangles and as many leaf columns almost none.
+constexpr double kEntriesPerSolveReport = 1 << 20;
+
+}  // namespace
+
+// Counts the panels' entries a triangular solve has read; a report every kEntriesPerSolveReport.
+struct MultifrontalFactorization::SolveWork {
+    const ProgressSpan& progress;
+    double total, done = 0, next = kEntriesPerSolveReport;
+    void add(const Supernode& node) {
+        done += static_cast<double>(node.rows) * node.columns;
+        if (done < next || !progress.active()) return;
+        next = done + kEntriesPerSolveReport;
+        progress.report(done / total);
+    }
+};
+
 void MultifrontalFactorization::solve(double* b, int rhs_count,
                                       const ProgressSpan& progress) const {
     const int32_t n = size_;
-    // Progress: by columns done, forward then backward; a report every kItemsPerReport
-    // columns.
-    int64_t columns_done = 0, next_report = kItemsPerReport;
-    auto count_columns = [&](int32_t columns) {
-        columns_done += columns;
-        if (columns_done < next_report || !progress.active()) return;
-        next_report = columns_done + kItemsPerReport;
-        progress.report(0.5 * static_cast<double>(columns_done) / n);
-    };
-    // Permute into elimination order.
-    Matrix x(n, rhs_count);
-    for (int c = 0; c < rhs_count; ++c) {
-        for (int32_t k = 0; k < n; ++k) x(k, c) = b[static_cast<int64_t>(c) * n + order_[k]];
+    // Progress: the permutations (a pass over the right-hand sides each), then the forward and
+    // the backward solve (a pass over the factor each).
+    double entries = 0;
+    int32_t most_update = 0;
+    for (const Supernode& node : supernodes_) {
+        entries += static_cast<double>(node.rows) * node.columns;
+        most_update = std::max(most_update, node.rows - node.columns);
     }
+    // Permute into elimination order (and back at the end), a column at a time.
+    Matrix x(n, rhs_count);
+    auto permute = [&](bool into, const ProgressSpan& span) {
+        for (int c = 0; c < rhs_count; ++c) {
+            double* xc = x.data() + static_cast<int64_t>(c) * n;
+            double* bc = b + static_cast<int64_t>(c) * n;
+            span.part(static_cast<double>(c) / rhs_count, static_cast<double>(c + 1) / rhs_count)
+                .in_runs(n, [&](int64_t begin, int64_t end) {
+                    for (int64_t k = begin; k < end; ++k) {
+                        if (into) {
+                            xc[k] = bc[order_[k]];
+                        } else {
+                            bc[order_[k]] = xc[k];
+                        }
+                    }
+                });
+        }
+    };
+    permute(true, progress.part(0.0, 0.05));
     // One buffer of the largest update size, used through blocks and never resized: Eigen frees
     // a matrix's storage before allocating the new one, so a resize that runs out of memory
     // leaves the matrix pointing at freed memory, freed again when it is destroyed (found by
     // failing each allocation in turn: tests/test_alloc_failures.c).
-    int32_t most_update = 0;
-    for (const Supernode& node : supernodes_)
-        most_update = std::max(most_update, node.rows - node.columns);
     Matrix gathered_buffer(most_update, rhs_count);
+    const ProgressSpan forward_span = progress.part(0.05, 0.5);
+    SolveWork forward_work{forward_span, entries};
+    solve_forward(x.data(), rhs_count, gathered_buffer.data(), most_update, forward_work);
+    const ProgressSpan backward_span = progress.part(0.5, 0.95);
+    SolveWork backward_work{backward_span, entries};
+    solve_backward(x.data(), rhs_count, gathered_buffer.data(), most_update, backward_work);
+    permute(false, progress.part(0.95, 1.0));
+}
+
+// Forward: L y = b, children before parents. L is unit lower for LU; Cholesky's holds its
+// diagonal. gathered_buffer: most_update x rhs columns of scratch.
+void MultifrontalFactorization::solve_forward(double* x_data, int rhs_count,
+                                              double* gathered_buffer, int32_t most_update,
+                                              SolveWork& work) const {
+    const int32_t n = size_;
+    Eigen::Map<Matrix> x(x_data, n, rhs_count);
     // Supernodes this small are solved with plain loops: Eigen's triangular solves and
     // products cost more in set-up than in arithmetic at these sizes (as in partial_lu).
     constexpr int32_t kSmallFront = 64;
-    // Forward: L y = b, children before parents. L is unit lower for LU; Cholesky's holds its
-    // diagonal.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
-        count_columns(k);
+        work.add(node);
         const double* lower = factors_.get() + node.factor_offset;
         if (m <= kSmallFront) {
             const int32_t* rows = row_indices_.data() + node.row_offset + k;
-            double* gathered = gathered_buffer.data();
+            double* gathered = gathered_buffer;
             for (int c = 0; c < rhs_count; ++c) {
                 double* xc = x.data() + static_cast<int64_t>(c) * n;
                 double* xs = xc + node.first_column;
@@ -666,18 +711,27 @@ void MultifrontalFactorization::solve(double* b, int rhs_count,
             panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
         }
         if (update == 0) continue;
-        auto gathered = gathered_buffer.topRows(update);
+        Eigen::Map<Matrix, 0, Eigen::OuterStride<>> gathered(gathered_buffer, update, rhs_count,
+                                                             Eigen::OuterStride<>(most_update));
         gathered.noalias() = panel.bottomRows(update) * xs;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         for (int c = 0; c < rhs_count; ++c) {
             for (int32_t r = 0; r < update; ++r) x(rows[r], c) -= gathered(r, c);
         }
     }
-    // Backward: U x = y (LU) or L^T x = y (Cholesky), parents before children.
+}
+
+// Backward: U x = y (LU) or L^T x = y (Cholesky), parents before children.
+void MultifrontalFactorization::solve_backward(double* x_data, int rhs_count,
+                                               double* gathered_buffer, int32_t most_update,
+                                               SolveWork& work) const {
+    const int32_t n = size_;
+    Eigen::Map<Matrix> x(x_data, n, rhs_count);
+    constexpr int32_t kSmallFront = 64;
     for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
-        count_columns(k);
+        work.add(node);
         const double* lower = factors_.get() + node.factor_offset;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         if (m <= kSmallFront && cholesky_) {
@@ -716,7 +770,8 @@ void MultifrontalFactorization::solve(double* b, int rhs_count,
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         if (update > 0) {
-            auto gathered = gathered_buffer.topRows(update);
+            Eigen::Map<Matrix, 0, Eigen::OuterStride<>> gathered(gathered_buffer, update, rhs_count,
+                                                                 Eigen::OuterStride<>(most_update));
             for (int c = 0; c < rhs_count; ++c) {
                 for (int32_t r = 0; r < update; ++r) gathered(r, c) = x(rows[r], c);
             }
@@ -732,9 +787,6 @@ void MultifrontalFactorization::solve(double* b, int rhs_count,
         } else {
             panel.topRows(k).triangularView<Eigen::Upper>().solveInPlace(xs);
         }
-    }
-    for (int c = 0; c < rhs_count; ++c) {
-        for (int32_t k = 0; k < n; ++k) b[static_cast<int64_t>(c) * n + order_[k]] = x(k, c);
     }
 }
 

@@ -75,6 +75,14 @@ class MultifrontalFactorization {
                           const ProgressSpan& progress);
     void build_relative_rows(const ProgressSpan& progress);
 
+    // The triangular solves of solve(), on x (size() x rhs_count, column-major, in elimination
+    // order) with a most_update x rhs_count scratch buffer; work counts what they have read.
+    struct SolveWork;
+    void solve_forward(double* x_data, int rhs_count, double* gathered_buffer, int32_t most_update,
+                       SolveWork& work) const;
+    void solve_backward(double* x_data, int rhs_count, double* gathered_buffer, int32_t most_update,
+                        SolveWork& work) const;
+
     // Work of one front's partial factorization (progress reports, factor_flops()).
     double front_flops(const Supernode& node) const;
 

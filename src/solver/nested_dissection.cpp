@@ -133,6 +133,7 @@ class Dissection {
         fine.neighbors = pattern_.columns.data();
         fine.count = n;
         fine.weights.assign(n, 1);
+        progress_.report(0.0);
         fine.points = coordinates.data();
         while (levels_.back().size() > kCoarsestSize) {
             Level coarse;
@@ -161,6 +162,7 @@ class Dissection {
     void coarsen(Level& fine, Level& coarse, const ProgressSpan& progress) {
         const int32_t n = fine.size();
         std::vector<int32_t> visit(n), match(n, -1);
+        progress.report(0.0);
         std::iota(visit.begin(), visit.end(), 0);
         if (n < kShuffleBelow) {
             uint64_t state = 0x9E3779B97F4A7C15ull;  // fixed seed: the order is deterministic
