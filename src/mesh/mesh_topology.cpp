@@ -165,15 +165,20 @@ std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfe
 }
 
 std::vector<std::vector<int32_t>> boundary_loops(const TriangleMesh& mesh,
-                                                 const Halfedges& halfedges) {
+                                                 const Halfedges& halfedges,
+                                                 const ProgressSpan& progress) {
     // With manifold vertices every boundary vertex starts exactly one boundary half-edge.
     std::vector<int32_t> boundary_out(mesh.positions.size(), -1);
-    for (int32_t h = 0; h < static_cast<int32_t>(halfedges.twin.size()); ++h) {
-        if (halfedges.twin[h] < 0) boundary_out[halfedge_origin(mesh, h)] = h;
-    }
+    progress.part(0.0, 0.7).in_runs(
+        static_cast<int64_t>(halfedges.twin.size()), [&](int64_t begin, int64_t end) {
+            for (int32_t h = static_cast<int32_t>(begin); h < end; ++h) {
+                if (halfedges.twin[h] < 0) boundary_out[halfedge_origin(mesh, h)] = h;
+            }
+        });
     std::vector<std::vector<int32_t>> loops;
     std::vector<char> done(mesh.positions.size(), 0);
     for (int32_t v0 = 0; v0 < mesh.vertex_count(); ++v0) {
+        progress.at(v0, mesh.vertex_count(), 0.7, 1.0);
         if (boundary_out[v0] < 0 || done[v0]) continue;
         std::vector<int32_t> loop;
         for (int32_t v = v0; !done[v]; v = halfedge_target(mesh, boundary_out[v])) {
@@ -225,10 +230,10 @@ int64_t euler_characteristic(const TriangleMesh& mesh, const Halfedges& halfedge
 
 std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges,
                                         const ProgressSpan& progress) {
-    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
-    check_one_piece(mesh, halfedges, "a disk", progress.part(0.5, 1.0));
-    progress.report(1.0);
-    std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.4));
+    check_one_piece(mesh, halfedges, "a disk", progress.part(0.4, 0.8));
+    std::vector<std::vector<int32_t>> loops =
+        boundary_loops(mesh, halfedges, progress.part(0.8, 0.95));
     if (loops.empty()) {
         throw Error(ErrorCode::kNoBoundary,
                     "the mesh is closed (it has no boundary loop); a disk has exactly one");
@@ -240,6 +245,7 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
                         " boundary loops (holes), through vertices " + starts +
                         "; a disk has exactly one");
     }
+    progress.report(0.95);  // the Euler characteristic: one pass over the half-edges
     const int64_t euler = euler_characteristic(mesh, halfedges);
     if (euler != 1) {
         throw Error(ErrorCode::kNonzeroGenus,
@@ -252,10 +258,10 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
 
 void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges,
                              const ProgressSpan& progress) {
-    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
-    check_one_piece(mesh, halfedges, "a sphere", progress.part(0.5, 1.0));
-    progress.report(1.0);
-    const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.4));
+    check_one_piece(mesh, halfedges, "a sphere", progress.part(0.4, 0.8));
+    const std::vector<std::vector<int32_t>> loops =
+        boundary_loops(mesh, halfedges, progress.part(0.8, 0.95));
     if (!loops.empty()) {
         const std::string starts = loop_starts(loops);
         throw Error(ErrorCode::kOpenMesh, "the sphere domain needs a closed mesh: it has " +
@@ -263,6 +269,7 @@ void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedge
                                               (loops.size() > 1 ? "s" : "") +
                                               " (through vertices " + starts + ")");
     }
+    progress.report(0.95);  // the Euler characteristic: one pass over the half-edges
     const int64_t euler = euler_characteristic(mesh, halfedges);
     if (euler != 2) {
         throw Error(ErrorCode::kNonzeroGenus, "the mesh has handles: genus " +

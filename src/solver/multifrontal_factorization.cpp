@@ -150,6 +150,7 @@ std::vector<int32_t> fundamental_supernodes(const std::vector<int32_t>& parent,
         if (parent[j] >= 0) ++child_count[parent[j]];
     }
     std::vector<int32_t> super_first;
+    super_first.reserve(static_cast<size_t>(n) + 1);  // no doubling copies (tens of MB)
     for (int32_t j = 0; j < n; ++j) {
         const bool continues = j > 0 && parent[j - 1] == j && child_count[j] == 1 &&
                                column_count[j - 1] == column_count[j] + 1;
@@ -259,6 +260,7 @@ void MultifrontalFactorization::build_supernodes(const std::vector<int32_t>& sup
     const int32_t fundamental_count = static_cast<int32_t>(super_first.size()) - 1;
     std::vector<int32_t> supernode_of(n);
     supernodes_.clear();
+    supernodes_.reserve(fundamental_count);
     for (int32_t s = 0; s < fundamental_count; ++s) {
         if (s == 0 || !merged_with_next[s - 1]) {
             Supernode node{};
@@ -507,11 +509,17 @@ constexpr int64_t kEntriesPerReport = int64_t(1) << 18;
 }  // namespace
 
 bool MultifrontalFactorization::factorize(const double* values, const ProgressSpan& progress) {
-    std::vector<double> pivot_scale(size_);
-    for (int32_t j = 0; j < size_; ++j) {
-        pivot_scale[j] = diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
-        if (!(pivot_scale[j] > 0.0)) pivot_scale[j] = 1e-300;
-    }
+    // Each pivot's scale: its row's original diagonal (a pass over the unknowns, in runs).
+    std::vector<double> pivot_scale;
+    pivot_scale.reserve(size_);
+    progress.part(0.0, 0.01).in_runs(size_, [&](int64_t begin, int64_t end) {
+        for (int64_t j = begin; j < end; ++j) {
+            const double scale =
+                diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
+            pivot_scale.push_back(scale > 0.0 ? scale : 1e-300);
+        }
+    });
+    const ProgressSpan work = progress.part(0.01, 1.0);  // by flops
     int64_t stack_top = 0;
     std::vector<int64_t> block_starts;
     double flops_done = 0, next_report = std::min(0.01 * total_flops_, kFrontReportFlops);
@@ -523,7 +531,7 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
         entries_moved += entries;
         if (entries_moved < kEntriesPerReport) return;
         entries_moved = 0;
-        progress.report(flops_done / total_flops_);
+        work.report(flops_done / total_flops_);
     };
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
@@ -558,9 +566,9 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
             stack_top = block_starts[block_starts.size() - child_total];
             block_starts.resize(block_starts.size() - child_total);
         }
-        FrontProgress inside{&progress, flops_done, front_flops(node), total_flops_, 0.0};
+        FrontProgress inside{&work, flops_done, front_flops(node), total_flops_, 0.0};
         const KernelProgress kernel_progress{front_work_done, &inside};
-        const bool report_inside = progress.active() && inside.front > kFrontReportFlops;
+        const bool report_inside = work.active() && inside.front > kFrontReportFlops;
         if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column,
                                     report_inside ? &kernel_progress : nullptr))
             return false;
@@ -596,9 +604,9 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
         flops_done += front_flops(node);
         // Every 1% of the work, or every kFrontReportFlops of it (small fronts cost more time
         // per flop), or every kFrontsPerReport fronts, whichever comes first.
-        if (progress.active() &&
+        if (work.active() &&
             (flops_done >= next_report || ++fronts_since_report >= kFrontsPerReport)) {
-            progress.report(flops_done / total_flops_);
+            work.report(flops_done / total_flops_);
             next_report = flops_done + std::min(0.01 * total_flops_, kFrontReportFlops);
             fronts_since_report = 0;
         }
