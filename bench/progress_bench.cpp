@@ -52,7 +52,7 @@ struct Report {
     int ok = 0;
     uint64_t triangles = 0;
     double total_ms = 0, after_last_call_ms = 0;
-    double longest_cpu_gap_ms = 0;  // between two calls on one thread (threads 1: all the work)
+    double longest_cpu_gap_ms = -1;  // between two calls, with --threads 1 only (-1: not measured)
     PhaseFigures phase[RAPS_PHASE_COUNT];
 };
 
@@ -68,8 +68,8 @@ int32_t record_call(void* user, raps_phase phase, double fraction) {
 // starts again (0) begins a new pass: its fractions are compared within a pass only.
 // Gaps longer than gaps_over_ms (0: none) are also listed on stderr, each with its phase and the
 // fractions around it, to find the step a cancel waits for.
-void summarise(const std::vector<Call>& calls, Clock::time_point start, double gaps_over_ms,
-               Report& report) {
+void summarise(const std::vector<Call>& calls, Clock::time_point start, bool one_thread,
+               double gaps_over_ms, Report& report) {
     double last[RAPS_PHASE_COUNT];
     std::fill(last, last + RAPS_PHASE_COUNT, -1.0);
     Clock::time_point previous = start;
@@ -77,9 +77,10 @@ void summarise(const std::vector<Call>& calls, Clock::time_point start, double g
         PhaseFigures& p = report.phase[c.phase];
         ++p.calls;
         const double gap = std::chrono::duration<double, std::milli>(c.at - previous).count();
-        const double cpu_gap = &c == &calls.front() ? 0.0 : c.cpu_ms - (&c - 1)->cpu_ms;
-        if (cpu_gap > report.longest_cpu_gap_ms) report.longest_cpu_gap_ms = cpu_gap;
-        if (gaps_over_ms > 0 && cpu_gap > gaps_over_ms) {
+        const double cpu_gap =
+            !one_thread || &c == &calls.front() ? 0.0 : c.cpu_ms - (&c - 1)->cpu_ms;
+        if (one_thread) report.longest_cpu_gap_ms = std::max(report.longest_cpu_gap_ms, cpu_gap);
+        if (gaps_over_ms > 0 && (one_thread ? cpu_gap : gap) > gaps_over_ms) {
             std::fprintf(stderr, "gap %.1f ms (CPU %.1f ms) before %s %.6f (previous call %.6f)\n",
                          gap, cpu_gap, raps_samples::phase_name(c.phase), c.fraction,
                          (&c - 1)->fraction);
@@ -124,7 +125,9 @@ Report run_case(const std::vector<double>& positions, const std::vector<uint32_t
             report.after_last_call_ms =
                 std::chrono::duration<double, std::milli>(end - calls.back().at).count();
         }
-        summarise(calls, start, gaps_over_ms, report);
+        // The calling thread's CPU time measures the work between two calls only when one
+        // thread makes all of them (and does all the work).
+        summarise(calls, start, threads == 1, gaps_over_ms, report);
     } else {
         std::fprintf(stderr, "raps-bench-progress: %s: %s\n", raps_status_string(status),
                      raps_result_last_error(result));
@@ -185,9 +188,13 @@ void print_case(const Case& c, const Report& r, double peak_mb) {
     }
     double worst = r.after_last_call_ms;
     for (const PhaseFigures& p : r.phase) worst = std::max(worst, p.longest_gap_ms);
-    std::printf("| %s | %s/%d | %llu | %.0f | %.0f | **%.1f** | %.1f", c.name, c.file,
+    std::printf("| %s | %s/%d | %llu | %.0f | %.0f | **%.1f** | ", c.name, c.file,
                 1 << (2 * c.subdivisions), static_cast<unsigned long long>(r.triangles), r.total_ms,
-                peak_mb, worst, r.longest_cpu_gap_ms);
+                peak_mb, worst);
+    if (r.longest_cpu_gap_ms >= 0)
+        std::printf("%.1f", r.longest_cpu_gap_ms);
+    else
+        std::printf("-");
     for (const PhaseFigures& p : r.phase) {
         if (p.calls == 0) {
             std::printf(" | -");
@@ -244,7 +251,8 @@ int main(int argc, char** argv) {
         "of the calls before and after it). Worst: the "
         "longest gap of the run, the time after the last call included. CPU gap: the longest "
         "CPU time of the reporting thread between two calls (the work, without the time other "
-        "processes had the core; all the work with --threads 1).\n\n");
+        "processes had the core), measured with --threads 1 only, where one thread does all "
+        "the work.\n\n");
     std::printf("| domain | mesh | triangles | ms | peak MB | worst gap ms | CPU gap ms");
     for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p)
         std::printf(" | %s", raps_samples::phase_name(p));
