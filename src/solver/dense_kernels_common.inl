@@ -119,9 +119,8 @@ struct WorkCounter {
 // The tiles of columns [j0, j0 + jn) in rows [r0, row_end) of C less depth columns of A times
 // rows of B (pointers already at the depth block's first column and row).
 void subtract_tile_column(double* c, int64_t ldc, const double* a, int64_t lda, const double* b,
-                          int64_t b_row, int64_t b_col, int32_t rows, int32_t r0,
-                          int32_t row_end, int32_t j0, int32_t jn, int32_t depth, bool lower,
-                          WorkCounter& work) {
+                          int64_t b_row, int64_t b_col, int32_t rows, int32_t r0, int32_t row_end,
+                          int32_t j0, int32_t jn, int32_t depth, bool lower, WorkCounter& work) {
     const int32_t diagonal_tile = (j0 / kTileRows) * kTileRows;
     const int32_t i_begin = lower && diagonal_tile > r0 ? diagonal_tile : r0;
     for (int32_t i0 = i_begin; i0 < row_end; i0 += kTileRows) {
@@ -164,8 +163,8 @@ void subtract_product(double* c, int64_t ldc, const double* a, int64_t lda, cons
 // X2 = L22^-1 X2, so nearly all the work is in subtract_product. Each element still gets
 // x_i -= l_ip x_p for p = 0, 1, ..., i - 1 in that order (the product's p before the lower
 // half's), the operations of forward substitution column by column, so the bits are its bits.
-void solve_unit_lower(const double* l, int64_t ldl, int32_t n, double* x, int64_t ldx,
-                      int32_t cols, WorkCounter& work) {
+void solve_unit_lower(const double* l, int64_t ldl, int32_t n, double* x, int64_t ldx, int32_t cols,
+                      WorkCounter& work) {
     constexpr int32_t kUnblocked = 16;
     if (n <= kUnblocked) {
         for (int32_t j = 0; j < cols; ++j) {
