@@ -26,7 +26,9 @@
 #define SECTORS 24
 
 /* A sphere of quads between its latitude rings (each two triangles) and two n-gon caps (each
- * fanned from one of its vertices), polygon ids in `polygon`. */
+ * fanned from one of its vertices), polygon ids in `polygon`. The northern ring has a vertex in
+ * the middle of each of its edges, shared by the cap and the quad below, which are thus n-gons
+ * with collinear corners: fanned, each has a zero-area triangle, which raps sets aside. */
 static test_mesh quad_sphere(uint32_t** polygon) {
     test_mesh_builder b;
     memset(&b, 0, sizeof(b));
@@ -39,7 +41,14 @@ static test_mesh quad_sphere(uint32_t** polygon) {
                                  cos(polar));
         }
     }
-    const size_t triangles = 2 * (size_t)SECTORS * (RINGS - 2) + 2 * (SECTORS - 2);
+    const size_t middle = (size_t)(RINGS - 1) * SECTORS; /* middle of edge (j, j + 1) */
+    for (int j = 0; j < SECTORS; ++j) {
+        const double* p = b.mesh.positions + 3 * j;
+        const double* q = b.mesh.positions + 3 * ((j + 1) % SECTORS);
+        test_mesh_add_vertex(&b, 0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]));
+    }
+    const size_t triangles =
+        2 * (size_t)SECTORS * (RINGS - 2) + SECTORS + 2 * SECTORS - 2 + SECTORS - 2;
     *polygon = malloc(triangles * sizeof(uint32_t));
     assert_non_null(*polygon);
     size_t t = 0;
@@ -52,16 +61,23 @@ static test_mesh quad_sphere(uint32_t** polygon) {
             test_mesh_add_triangle(&b, row + (size_t)j, below + next, row + next);
             (*polygon)[t++] = id;
             (*polygon)[t++] = id;
+            if (i == 0) { /* the pentagon's third triangle: zero area */
+                test_mesh_add_triangle(&b, (size_t)j, next, middle + (size_t)j);
+                (*polygon)[t++] = id;
+            }
         }
     }
-    const size_t last = (size_t)(RINGS - 2) * SECTORS;
-    for (size_t j = 1; j + 1 < SECTORS; ++j) { /* the caps, counter-clockwise from outside */
-        test_mesh_add_triangle(&b, 0, j + 1, j);
-        (*polygon)[t++] = id;
+    /* The caps, counter-clockwise seen from outside: the north one over its ring and the
+     * middles (2 SECTORS corners), the south one over its ring. */
+    for (size_t k = 1; k + 1 < 2 * (size_t)SECTORS; ++k, ++t) {
+        const size_t c = k % 2 ? middle + k / 2 : k / 2, d = k % 2 ? (k + 1) / 2 : middle + k / 2;
+        test_mesh_add_triangle(&b, 0, c, d);
+        (*polygon)[t] = id;
     }
     ++id;
+    const size_t last = (size_t)(RINGS - 2) * SECTORS;
     for (size_t j = 1; j + 1 < SECTORS; ++j) {
-        test_mesh_add_triangle(&b, last, last + j, last + j + 1);
+        test_mesh_add_triangle(&b, last, last + j + 1, last + j);
         (*polygon)[t++] = id;
     }
     assert_int_equal(t, triangles);
