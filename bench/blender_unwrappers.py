@@ -197,4 +197,5 @@ def print_tables(rows, args):
             _fmt(r["area_mean_abs_log"])))
 
 
-main()
+if __name__ == "__main__":  # also a module: bench/blender_addon_overhead.py
+    main()

@@ -131,8 +131,9 @@ class Run:
         self.job = None
         self.started = time.perf_counter()
 
-    def prepare(self):
-        """Builds the job; returns a problem to report (nothing is changed then), or None."""
+    def prepare(self, progress=True):
+        """Builds the job (progress: whether it reports progress and can be cancelled);
+        returns a problem to report (nothing is changed then), or None."""
         if not self.objects:
             return "select at least one mesh object"
         for obj in self.objects:
@@ -149,7 +150,7 @@ class Run:
         for name, data in inputs:
             if len(data.triangles) == 0:
                 return "%s: has no faces to unwrap" % name
-        self.job = Job(inputs, options)
+        self.job = Job(inputs, options, progress)
         return None
 
     def finish(self, context):
@@ -226,7 +227,9 @@ class _UnwrapBase(UnwrapProperties):
     def execute(self, context):
         """Script, redo panel and background: the job runs while Blender waits."""
         run = Run(self, context)
-        problem = run.prepare()
+        # Headless, nobody sees the progress or presses Esc: the library runs without calling
+        # back into Python.
+        problem = run.prepare(progress=not bpy.app.background)
         if problem:
             self.report({"ERROR"}, "raps: " + problem)
             return {"CANCELLED"}

@@ -1,0 +1,107 @@
+"""The add-on's own cost against the library's, in one Blender process (docs/blender.md).
+
+  blender -b --factory-startup --python bench/blender_addon_overhead.py -- \
+      --zip build/bindings/blender/raps_uv.zip --meshes ../shared/data/meshes \
+      [--repeat 15] [suzanne.obj halftunnel.off ...]
+
+For each mesh (a fresh object per call, as bench/blender_unwrappers.py makes them) and the
+lightmap preset: the operator's call (bpy.ops.raps.lightmap, headless: no progress callback),
+the library's run alone on the same arrays (raps.parameterize with the preset's settings, the
+mesh handle made outside the timing), and that run with a Python progress callback that does
+nothing (what the menu's path, with its progress bar and Esc, adds per call). Prints medians of
+wall-clock and process CPU milliseconds (CPU: every thread of Blender's process, so that other
+jobs on a loaded machine count less), and the number of progress calls.
+"""
+
+import argparse
+import os
+import statistics
+import sys
+import time
+
+import bpy
+
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+
+def _arguments():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--zip", required=True)
+    parser.add_argument("--meshes", required=True)
+    parser.add_argument("--repeat", type=int, default=15)
+    parser.add_argument("names", nargs="*",
+                        default=["suzanne.obj", "halftunnel.off", "horse_quad.obj", "spot.obj"])
+    return parser.parse_args(argv)
+
+
+ARGS = _arguments()
+
+
+def timed(call):
+    """Median wall and CPU milliseconds of call() over ARGS.repeat calls; call may return a
+    function that prepares the next (its time is not counted)."""
+    wall, cpu = [], []
+    for _ in range(ARGS.repeat):
+        prepare = call.prepare() if hasattr(call, "prepare") else None
+        w, c = time.perf_counter(), time.process_time()
+        call(prepare)
+        wall.append(1000 * (time.perf_counter() - w))
+        cpu.append(1000 * (time.process_time() - c))
+    return statistics.median(wall), statistics.median(cpu)
+
+
+class Operator:
+    def __init__(self, fresh):
+        self.fresh = fresh
+
+    def prepare(self):
+        self.fresh()
+
+    def __call__(self, _prepared):
+        bpy.ops.raps.lightmap(uv_map="UVMap")
+
+
+class Library:
+    def __init__(self, data, options, progress):
+        self.data, self.options, self.progress = data, options, progress
+
+    def prepare(self):
+        from raps_uv import unwrap
+        return unwrap._raps_mesh(self.data), self.options.settings()
+
+    def __call__(self, prepared):
+        from raps_uv.native import raps
+        mesh, settings = prepared
+        raps.parameterize(mesh, settings, progress=self.progress).close()
+        mesh.close()
+        settings.close()
+
+
+def main():
+    bpy.ops.preferences.addon_install(filepath=ARGS.zip, overwrite=True)
+    bpy.ops.preferences.addon_enable(module="raps_uv")
+    from blender_unwrappers import fresh_object, read_mesh_file
+    from raps_uv import mesh_io, unwrap
+    print("| mesh | faces | operator (ms, wall / CPU) | library (ms) | library + Python "
+          "progress (ms) | progress calls |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for name in ARGS.names:
+        verts, faces = read_mesh_file(os.path.join(ARGS.meshes, name))
+        base = bpy.data.meshes.new(name)
+        base.from_pydata(verts, [], faces)
+        operator = timed(Operator(lambda: fresh_object(base, "raps")))
+        data = mesh_io.read_mesh(fresh_object(base, "raps"))
+        options = unwrap.Options(lightmap=True, rotation="QUARTER", padding=2)
+        calls = []
+        Library(data, options, lambda phase, fraction: calls.append(1))(
+            Library(data, options, None).prepare())
+        library = timed(Library(data, options, None))
+        with_progress = timed(Library(data, options, lambda phase, fraction: True))
+        print("| %s | %d | %.0f / %.0f | %.0f / %.0f | %.0f / %.0f | %d |" % (
+            name, len(faces), *operator, *library, *with_progress, len(calls)))
+        bpy.data.meshes.remove(base)
+
+
+main()
