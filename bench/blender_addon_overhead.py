@@ -2,15 +2,17 @@
 
   blender -b --factory-startup --python bench/blender_addon_overhead.py -- \
       --zip build/bindings/blender/raps_uv.zip --meshes ../shared/data/meshes \
-      [--repeat 15] [suzanne.obj halftunnel.off ...]
+      [--repeat 15] [--lightmap-pack-max-faces 7000] [suzanne.obj halftunnel.off ...]
 
 For each mesh (a fresh object per call, as bench/blender_unwrappers.py makes them) and the
 lightmap preset: the operator's call (bpy.ops.raps.lightmap, headless: no progress callback),
 the library's run alone on the same arrays (raps.parameterize with the preset's settings, the
 mesh handle made outside the timing), and that run with a Python progress callback that does
-nothing (what the menu's path, with its progress bar and Esc, adds per call). Prints medians of
-wall-clock and process CPU milliseconds (CPU: every thread of Blender's process, so that other
-jobs on a loaded machine count less), and the number of progress calls.
+nothing (what the menu's path, with its progress bar and Esc, adds per call); and Blender's
+Lightmap Pack on the same mesh (its call alone, in edit mode, all faces selected; only on meshes
+of at most --lightmap-pack-max-faces faces, as in bench/blender_unwrappers.py). Prints
+medians of wall-clock and process CPU milliseconds (CPU: every thread of Blender's process, so
+that other jobs on a loaded machine count less), and the number of progress calls.
 """
 
 import argparse
@@ -31,6 +33,7 @@ def _arguments():
     parser.add_argument("--zip", required=True)
     parser.add_argument("--meshes", required=True)
     parser.add_argument("--repeat", type=int, default=15)
+    parser.add_argument("--lightmap-pack-max-faces", type=int, default=7000)
     parser.add_argument("names", nargs="*",
                         default=["suzanne.obj", "halftunnel.off", "horse_quad.obj", "spot.obj"])
     return parser.parse_args(argv)
@@ -63,6 +66,19 @@ class Operator:
         bpy.ops.raps.lightmap(uv_map="UVMap")
 
 
+class LightmapPack:
+    def __init__(self, fresh):
+        self.fresh = fresh
+
+    def prepare(self):
+        self.fresh()
+        bpy.ops.object.mode_set(mode="EDIT")
+        bpy.ops.mesh.select_all(action="SELECT")
+
+    def __call__(self, _prepared):
+        bpy.ops.uv.lightmap_pack()
+
+
 class Library:
     def __init__(self, data, options, progress):
         self.data, self.options, self.progress = data, options, progress
@@ -84,9 +100,10 @@ def main():
     bpy.ops.preferences.addon_enable(module="raps_uv")
     from blender_unwrappers import fresh_object, read_mesh_file
     from raps_uv import mesh_io, unwrap
-    print("| mesh | faces | operator (ms, wall / CPU) | library (ms) | library + Python "
-          "progress (ms) | progress calls |")
-    print("|---|---:|---:|---:|---:|---:|")
+    print("Milliseconds, medians of %d calls: wall / CPU\n" % ARGS.repeat)
+    print("| mesh | faces | Lightmap with raps | library alone | library + Python progress "
+          "| progress calls | Lightmap Pack |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
     for name in ARGS.names:
         verts, faces = read_mesh_file(os.path.join(ARGS.meshes, name))
         base = bpy.data.meshes.new(name)
@@ -99,8 +116,13 @@ def main():
             Library(data, options, None).prepare())
         library = timed(Library(data, options, None))
         with_progress = timed(Library(data, options, lambda phase, fraction: True))
-        print("| %s | %d | %.0f / %.0f | %.0f / %.0f | %.0f / %.0f | %d |" % (
-            name, len(faces), *operator, *library, *with_progress, len(calls)))
+        pack = None
+        if len(faces) <= ARGS.lightmap_pack_max_faces:  # minutes on the larger meshes
+            pack = timed(LightmapPack(lambda: fresh_object(base, "pack")))
+            bpy.ops.object.mode_set(mode="OBJECT")
+        print("| %s | %d | %.0f / %.0f | %.0f / %.0f | %.0f / %.0f | %d | %s |" % (
+            name, len(faces), *operator, *library, *with_progress, len(calls),
+            "%.0f / %.0f" % pack if pack else "-"))
         bpy.data.meshes.remove(base)
 
 
