@@ -27,6 +27,7 @@ import numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import loop_triangle_obj  # noqa: E402
+import mesh_file  # noqa: E402
 
 
 def _arguments():
@@ -61,6 +62,17 @@ def load(name):
     bpy.ops.import_scene.obj(filepath=os.path.join(ARGS.meshes, name), split_mode="OFF")
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
+    return obj
+
+
+def load_polygons(name):
+    """A shared mesh as one object built from its polygons (OFF too, which Blender's importer
+    does not read)."""
+    verts, faces = mesh_file.read_mesh_file(os.path.join(ARGS.meshes, name))
+    mesh = bpy.data.meshes.new(name.split(".")[0])
+    mesh.from_pydata(verts, [], faces)
+    obj = bpy.data.objects.new(mesh.name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
     return obj
 
 
@@ -187,9 +199,9 @@ class AddonTest(unittest.TestCase):
         self.assertGreater(m["unit_square_coverage"], 0.5)
 
     def test_quads_and_ngons_stay_whole(self):
-        # suzanne: quads and triangles (two quads folded onto each other); horse_quad: quads,
-        # whose diagonals raps's charts cut unless told the polygons; the grid's middle is
-        # dissolved into one n-gon. One run each, and no face needed the add-on's fallback
+        # suzanne: quads and triangles (two quads folded onto each other); horse_quad and
+        # halftunnel: quads, whose diagonals raps's charts cut unless told the polygons; the
+        # grid's middle is dissolved into one n-gon (with collinear corners). One run each, and no face needed the add-on's fallback
         # (made an island of its own): raps kept every polygon in one chart.
         ngon = grid("ngon")
         bpy.context.view_layer.objects.active = ngon
@@ -203,7 +215,8 @@ class AddonTest(unittest.TestCase):
         bpy.ops.object.mode_set(mode="OBJECT")
         self.assertTrue(any(len(p.vertices) > 4 for p in ngon.data.polygons))
         from raps_uv import operators
-        for obj in (load("suzanne.obj"), load("horse_quad.obj"), ngon):
+        for obj in (load("suzanne.obj"), load("horse_quad.obj"), load_polygons("halftunnel.off"),
+                    ngon):
             select(obj)
             operator = _FakeOperator()
             run = operators.Run(operator, bpy.context)
