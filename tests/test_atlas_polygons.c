@@ -196,6 +196,35 @@ static void polygons_stay_whole_in_a_scene(void** state) {
     test_mesh_free(&m);
 }
 
+/* Ids are the caller's: any ids make a valid atlas (whole surface regions as one "polygon",
+ * ids repeated across the mesh), never a hang or a refusal. */
+static void any_polygon_ids_make_a_valid_atlas(void** state) {
+    (void)state;
+    uint32_t* polygon = NULL;
+    test_mesh m = quad_sphere(&polygon);
+    const size_t n = m.index_count / 3;
+    raps_mesh* mesh = to_raps_mesh(&m);
+    raps_settings* s = atlas_settings();
+    uint32_t seed = 12345;
+    for (int pattern = 0; pattern < 3; ++pattern) {
+        for (size_t t = 0; t < n; ++t) {
+            seed = seed * 1664525u + 1013904223u;
+            polygon[t] = pattern == 0 ? 0u : pattern == 1 ? (seed >> 16) % 3u : (uint32_t)(t / 7);
+        }
+        assert_int_equal(raps_mesh_set_triangle_polygons(mesh, polygon, n), RAPS_OK);
+        raps_result* r = parameterize_ok(mesh, s);
+        raps_stats stats;
+        stats.struct_size = sizeof(stats);
+        assert_int_equal(raps_result_get_stats(r, &stats), RAPS_OK);
+        assert_int_equal(stats.flipped_triangles, 0);
+        raps_result_destroy(r);
+    }
+    raps_settings_destroy(s);
+    raps_mesh_destroy(mesh);
+    free(polygon);
+    test_mesh_free(&m);
+}
+
 static void a_bad_polygon_count_is_refused(void** state) {
     (void)state;
     test_mesh m = make_grid(2, 2, 1.0, 1.0); /* 8 triangles */
@@ -223,6 +252,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_polygon_stays_whole_in_one_chart),
         cmocka_unit_test(polygons_stay_whole_in_a_scene),
+        cmocka_unit_test(any_polygon_ids_make_a_valid_atlas),
         cmocka_unit_test(a_bad_polygon_count_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
