@@ -314,11 +314,13 @@ class AddonTest(unittest.TestCase):
             return wait_for_esc
         run.job._progress = gated
         modal = operators.ModalRun(run, bpy.context)
-        self.assertTrue(inside.wait(60), "the library never reached its charts' maps")
-        self.assertEqual(modal.handle("TIMER", bpy.context), {"RUNNING_MODAL"})  # progress
-        fraction = run.job.fraction
-        self.assertEqual(modal.handle("ESC", bpy.context), {"RUNNING_MODAL"})
-        esc_handled.set()
+        try:
+            self.assertTrue(inside.wait(60), "the library never reached its charts' maps")
+            self.assertEqual(modal.handle("TIMER", bpy.context), {"RUNNING_MODAL"})  # progress
+            fraction = run.job.fraction
+            self.assertEqual(modal.handle("ESC", bpy.context), {"RUNNING_MODAL"})
+        finally:
+            esc_handled.set()  # never leave the worker waiting, even when the test fails
         self.assertGreater(fraction, 0.0)
         self.assertLess(fraction, 1.0)
         result = {"RUNNING_MODAL"}

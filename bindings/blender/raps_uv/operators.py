@@ -2,8 +2,10 @@
 
 Run from the menu (invoke), raps works on a worker thread while a modal timer shows its progress
 in the status bar and Esc cancels it (the library stops at its next progress call, and nothing
-is written). From a script, the redo panel or `blender -b` (execute), the same job runs to its
-end while Blender waits, showing progress on the cursor. Either way every selected object's uvs
+is written); ModalRun holds that path apart from Blender's event loop, so that a headless test
+drives it too. From a script or the redo panel (execute), the same job runs to its end while
+Blender waits, showing progress on the cursor; in `blender -b` without a progress callback
+(nothing to show, no Esc to press). Either way every selected object's uvs
 are written only once all have succeeded: a failure is reported naming the object, and leaves
 every object as it was. bl_options UNDO makes the write one Ctrl-Z step.
 """
