@@ -262,9 +262,10 @@ RAPS_API raps_status raps_mesh_set_triangle_groups(raps_mesh* mesh, const uint32
  * compared across shared edges. NULL with triangle_count 0 removes them (every triangle a
  * polygon of its own, the default). The data is copied; the count is checked when the mesh is
  * used, as for groups. Triangles of one polygon in different groups or across a seam edge are
- * parts of different polygons there; so are those set aside (zero area, a repeated vertex),
- * which take a neighbouring chart's uvs. An edge of more than two triangles is cut, except
- * between two triangles of one polygon that meet there the opposite ways.
+ * parts of different polygons there. A zero-area triangle (an n-gon with collinear corners)
+ * takes the chart of a triangle of its polygon that shares an edge with it. An edge of more
+ * than two triangles is cut, except between two triangles of one polygon that meet there the
+ * opposite ways.
  * Errors: INVALID_ARGUMENT (mesh NULL, polygons NULL with a nonzero count), TOO_LARGE (more than
  * 2^28), OUT_OF_MEMORY; when used: GROUP_COUNT (not one per triangle). */
 RAPS_API raps_status raps_mesh_set_triangle_polygons(raps_mesh* mesh, const uint32_t* polygons,

@@ -26,7 +26,9 @@
 #define SECTORS 24
 
 /* A sphere of quads between its latitude rings (each two triangles) and two n-gon caps (each
- * fanned from one of its vertices), polygon ids in `polygon`. */
+ * fanned from one of its vertices), polygon ids in `polygon`. The northern ring has a vertex in
+ * the middle of each of its edges, shared by the cap and the quad below, which are thus n-gons
+ * with collinear corners: fanned, each has a zero-area triangle, which raps sets aside. */
 static test_mesh quad_sphere(uint32_t** polygon) {
     test_mesh_builder b;
     memset(&b, 0, sizeof(b));
@@ -39,7 +41,14 @@ static test_mesh quad_sphere(uint32_t** polygon) {
                                  cos(polar));
         }
     }
-    const size_t triangles = 2 * (size_t)SECTORS * (RINGS - 2) + 2 * (SECTORS - 2);
+    const size_t middle = (size_t)(RINGS - 1) * SECTORS; /* middle of edge (j, j + 1) */
+    for (int j = 0; j < SECTORS; ++j) {
+        const double* p = b.mesh.positions + 3 * j;
+        const double* q = b.mesh.positions + 3 * ((j + 1) % SECTORS);
+        test_mesh_add_vertex(&b, 0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]));
+    }
+    const size_t triangles =
+        2 * (size_t)SECTORS * (RINGS - 2) + SECTORS + 2 * SECTORS - 2 + SECTORS - 2;
     *polygon = malloc(triangles * sizeof(uint32_t));
     assert_non_null(*polygon);
     size_t t = 0;
@@ -52,16 +61,23 @@ static test_mesh quad_sphere(uint32_t** polygon) {
             test_mesh_add_triangle(&b, row + (size_t)j, below + next, row + next);
             (*polygon)[t++] = id;
             (*polygon)[t++] = id;
+            if (i == 0) { /* the pentagon's third triangle: zero area */
+                test_mesh_add_triangle(&b, (size_t)j, next, middle + (size_t)j);
+                (*polygon)[t++] = id;
+            }
         }
     }
-    const size_t last = (size_t)(RINGS - 2) * SECTORS;
-    for (size_t j = 1; j + 1 < SECTORS; ++j) { /* the caps, counter-clockwise from outside */
-        test_mesh_add_triangle(&b, 0, j + 1, j);
-        (*polygon)[t++] = id;
+    /* The caps, counter-clockwise seen from outside: the north one over its ring and the
+     * middles (2 SECTORS corners), the south one over its ring. */
+    for (size_t k = 1; k + 1 < 2 * (size_t)SECTORS; ++k, ++t) {
+        const size_t c = k % 2 ? middle + k / 2 : k / 2, d = k % 2 ? (k + 1) / 2 : middle + k / 2;
+        test_mesh_add_triangle(&b, 0, c, d);
+        (*polygon)[t] = id;
     }
     ++id;
+    const size_t last = (size_t)(RINGS - 2) * SECTORS;
     for (size_t j = 1; j + 1 < SECTORS; ++j) {
-        test_mesh_add_triangle(&b, last, last + j, last + j + 1);
+        test_mesh_add_triangle(&b, last, last + j + 1, last + j);
         (*polygon)[t++] = id;
     }
     assert_int_equal(t, triangles);
@@ -180,6 +196,35 @@ static void polygons_stay_whole_in_a_scene(void** state) {
     test_mesh_free(&m);
 }
 
+/* Ids are the caller's: any ids make a valid atlas (whole surface regions as one "polygon",
+ * ids repeated across the mesh), never a hang or a refusal. */
+static void any_polygon_ids_make_a_valid_atlas(void** state) {
+    (void)state;
+    uint32_t* polygon = NULL;
+    test_mesh m = quad_sphere(&polygon);
+    const size_t n = m.index_count / 3;
+    raps_mesh* mesh = to_raps_mesh(&m);
+    raps_settings* s = atlas_settings();
+    uint32_t seed = 12345;
+    for (int pattern = 0; pattern < 3; ++pattern) {
+        for (size_t t = 0; t < n; ++t) {
+            seed = seed * 1664525u + 1013904223u;
+            polygon[t] = pattern == 0 ? 0u : pattern == 1 ? (seed >> 16) % 3u : (uint32_t)(t / 7);
+        }
+        assert_int_equal(raps_mesh_set_triangle_polygons(mesh, polygon, n), RAPS_OK);
+        raps_result* r = parameterize_ok(mesh, s);
+        raps_stats stats;
+        stats.struct_size = sizeof(stats);
+        assert_int_equal(raps_result_get_stats(r, &stats), RAPS_OK);
+        assert_int_equal(stats.flipped_triangles, 0);
+        raps_result_destroy(r);
+    }
+    raps_settings_destroy(s);
+    raps_mesh_destroy(mesh);
+    free(polygon);
+    test_mesh_free(&m);
+}
+
 static void a_bad_polygon_count_is_refused(void** state) {
     (void)state;
     test_mesh m = make_grid(2, 2, 1.0, 1.0); /* 8 triangles */
@@ -207,6 +252,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_polygon_stays_whole_in_one_chart),
         cmocka_unit_test(polygons_stay_whole_in_a_scene),
+        cmocka_unit_test(any_polygon_ids_make_a_valid_atlas),
         cmocka_unit_test(a_bad_polygon_count_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

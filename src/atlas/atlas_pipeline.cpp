@@ -17,6 +17,7 @@
 #include "atlas/corner_sources.h"
 #include "atlas/instanced_parts.h"
 #include "atlas/page_packing.h"
+#include "atlas/polygon_units.h"
 #include "atlas/user_seams.h"
 #include "atlas/uv_repack.h"
 #include "atlas/vertex_welding.h"
@@ -133,8 +134,11 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
             if (first_chart_of_welded[w] < 0) first_chart_of_welded[w] = static_cast<int32_t>(c);
         }
     }
-    // Triangles set aside: duplicates copy their primary; degenerate ones go on the chart of one
-    // of their vertices (their uv triangle is then as degenerate as their 3D one).
+    // Triangles set aside: duplicates copy their primary; degenerate ones go on the chart of
+    // their polygon or else of one of their vertices (their uv triangle is then as degenerate
+    // as their 3D one).
+    const std::vector<int32_t> polygon_chart =
+        aside_polygon_charts(mesh, welded, surface, sources.chart);
     std::vector<int32_t> point_chart_of_part(parts.count(), -1);
     const int64_t aside_count = static_cast<int64_t>(surface.aside_triangles.size());
     progress.part(0.8, 1.0).in_runs(aside_count, [&](int64_t run_begin, int64_t run_end) {
@@ -144,6 +148,8 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
             int32_t chart = -1;
             if (surface.aside_primary[i] >= 0) {
                 chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
+            } else if (polygon_chart[i] >= 0) {
+                chart = polygon_chart[i];
             } else {
                 for (int k = 0; k < 3 && chart < 0; ++k)
                     chart = first_chart_of_welded[welded[v[k]]];

@@ -1,5 +1,8 @@
 #include "atlas/polygon_units.h"
 
+#include <algorithm>
+#include <unordered_map>
+
 namespace raps {
 namespace {
 
@@ -73,6 +76,38 @@ void halve_by_polygons(const AtlasSurface& surface, const std::vector<int32_t>& 
     }
     for (size_t i = 0; i < triangles.size(); ++i)
         side[triangles[i]] = number[i] < count / 2 ? 0 : 1;
+}
+
+std::vector<int32_t> aside_polygon_charts(const TriangleMesh& mesh,
+                                          const std::vector<int32_t>& welded,
+                                          const AtlasSurface& surface,
+                                          const std::vector<int32_t>& chart_of_input) {
+    std::vector<int32_t> chart(surface.aside_triangles.size(), -1);
+    if (mesh.triangle_polygon.empty()) return chart;
+    auto edge = [&](int32_t t, int k) {
+        const uint32_t a = static_cast<uint32_t>(welded[mesh.triangles[t][k]]);
+        const uint32_t b = static_cast<uint32_t>(welded[mesh.triangles[t][(k + 1) % 3]]);
+        return static_cast<uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+    };
+    std::unordered_map<uint64_t, std::vector<int32_t>> aside_at;  // edge -> aside positions
+    for (size_t i = 0; i < surface.aside_triangles.size(); ++i) {
+        if (surface.aside_primary[i] >= 0) continue;  // a duplicate copies its primary
+        for (int k = 0; k < 3; ++k)
+            aside_at[edge(surface.aside_triangles[i], k)].push_back(static_cast<int32_t>(i));
+    }
+    if (aside_at.empty()) return chart;
+    for (int32_t s : surface.input_triangle) {  // in order: the first such triangle wins
+        for (int k = 0; k < 3; ++k) {
+            const auto found = aside_at.find(edge(s, k));
+            if (found == aside_at.end()) continue;
+            for (int32_t i : found->second) {
+                const int32_t t = surface.aside_triangles[i];
+                if (chart[i] < 0 && mesh.triangle_polygon[t] == mesh.triangle_polygon[s])
+                    chart[i] = chart_of_input[s];
+            }
+        }
+    }
+    return chart;
 }
 
 }  // namespace raps

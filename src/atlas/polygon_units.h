@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "atlas/atlas_surface.h"
+#include "core/triangle_mesh.h"
 
 namespace raps {
 
@@ -24,5 +25,13 @@ void keep_polygons_together(const AtlasSurface& surface, const std::vector<int32
 // single polygon by triangles (the only way left to split it).
 void halve_by_polygons(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                        std::vector<int32_t>& side);
+
+// Per triangle set aside as degenerate (surface.aside_triangles; a zero-area part of an n-gon
+// with collinear corners), the chart of a triangle of its polygon that shares an edge with it
+// (chart_of_input: per input triangle), or -1: its corners then come from its polygon's chart.
+std::vector<int32_t> aside_polygon_charts(const TriangleMesh& mesh,
+                                          const std::vector<int32_t>& welded,
+                                          const AtlasSurface& surface,
+                                          const std::vector<int32_t>& chart_of_input);
 
 }  // namespace raps

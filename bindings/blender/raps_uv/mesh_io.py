@@ -30,6 +30,10 @@ def world_transform(obj):
 
 
 def _read(collection, attribute, count, dtype, width=1):
+    """foreach_get into a numpy array. dtype must be the property's own (uint32 for integers,
+    float32 for floats, bool): Blender copies those as one block, and converts any other
+    element by element (loop triangles' vertices as int64: 5 ms instead of 1 ms on 100K
+    triangles; an edge index as int32: 12 ms instead of 0.3 ms)."""
     values = numpy.empty(count * width, dtype=dtype)
     collection.foreach_get(attribute, values)
     return values.reshape(-1, width) if width > 1 else values
@@ -40,10 +44,10 @@ def read_mesh(obj, use_seams=True, use_materials=False):
     mesh = obj.data
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
-    triangles = _read(mesh.loop_triangles, "vertices", tri_count, numpy.int64, 3)
-    loops = _read(mesh.loop_triangles, "loops", tri_count, numpy.int64, 3)
-    polygons = _read(mesh.loop_triangles, "polygon_index", tri_count, numpy.int64)
-    positions = _read(mesh.vertices, "co", len(mesh.vertices), numpy.float64, 3)
+    triangles = _read(mesh.loop_triangles, "vertices", tri_count, numpy.uint32, 3)
+    loops = _read(mesh.loop_triangles, "loops", tri_count, numpy.uint32, 3)
+    polygons = _read(mesh.loop_triangles, "polygon_index", tri_count, numpy.uint32)
+    positions = _read(mesh.vertices, "co", len(mesh.vertices), numpy.float32, 3)
 
     # raps numbers only the vertices that faces use, in Blender's order.
     used = numpy.zeros(len(mesh.vertices), dtype=bool)
@@ -61,10 +65,10 @@ def read_mesh(obj, use_seams=True, use_materials=False):
     data.transform = world_transform(obj)
     data.groups = None
     # Polygon ids only where a polygon has several triangles (a triangle mesh needs none).
-    data.polygons = polygons.astype(numpy.uint32) if tri_count > len(mesh.polygons) else None
+    data.polygons = polygons if tri_count > len(mesh.polygons) else None
     if use_materials and tri_count:
-        materials = _read(mesh.polygons, "material_index", len(mesh.polygons), numpy.int64)
-        data.groups = materials[polygons].astype(numpy.uint32)
+        materials = _read(mesh.polygons, "material_index", len(mesh.polygons), numpy.uint32)
+        data.groups = materials[polygons]
     data.seams = _face_seams(mesh, used, new_index) if use_seams else None
     return data
 
@@ -79,8 +83,8 @@ def _face_seams(mesh, used, new_index):
     if not seam.any():
         return None
     in_face = numpy.zeros(edge_count, dtype=bool)
-    in_face[_read(mesh.loops, "edge_index", len(mesh.loops), numpy.int64)] = True
-    ends = _read(mesh.edges, "vertices", edge_count, numpy.int64, 2)[seam & in_face]
+    in_face[_read(mesh.loops, "edge_index", len(mesh.loops), numpy.uint32)] = True
+    ends = _read(mesh.edges, "vertices", edge_count, numpy.uint32, 2)[seam & in_face]
     # A face's edges join vertices that faces use, so every end has a raps index.
     return new_index[ends].astype(numpy.uint32) if len(ends) else None
 
