@@ -5,62 +5,71 @@
 
 #include "atlas/chart_merging.h"
 #include "atlas/chart_segmentation.h"
+#include "atlas/local_index.h"
 
 namespace raps {
 namespace {
+
+// Per chart triangle i, the chart triangle across its side k (3i+k), or -1: outside the chart
+// or across a seam.
+std::vector<int32_t> chart_neighbours(const AtlasSurface& surface,
+                                      const std::vector<int32_t>& triangles,
+                                      const std::vector<char>& seam) {
+    const LocalIndex local(triangles, surface.mesh.triangles.size());
+    std::vector<int32_t> neighbour(3 * triangles.size(), -1);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t h = 3 * triangles[i] + k, o = surface.twin[h];
+            if (o >= 0 && !seam[h]) neighbour[3 * i + k] = local(o / 3);
+        }
+    }
+    return neighbour;
+}
+
+// Hops from chart triangle `from` to every chart triangle (-1: not reached).
+std::vector<int32_t> hops(const std::vector<int32_t>& neighbour, int32_t from) {
+    std::vector<int32_t> distance(neighbour.size() / 3, -1), frontier = {from};
+    distance[from] = 0;
+    for (size_t i = 0; i < frontier.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t o = neighbour[3 * frontier[i] + k];
+            if (o < 0 || distance[o] >= 0) continue;
+            distance[o] = distance[frontier[i]] + 1;
+            frontier.push_back(o);
+        }
+    }
+    return distance;
+}
 
 // Splits `triangles` in two: breadth-first from one end of the chart to find its farthest
 // triangle a, from a to find b, then every triangle goes to the nearer of a and b (ties to a).
 std::pair<std::vector<int32_t>, std::vector<int32_t>> split_chart(
     const AtlasSurface& surface, const std::vector<int32_t>& triangles,
     const std::vector<char>& seam, const ProgressSpan& beat) {
-    std::vector<int32_t> local(surface.mesh.triangles.size(), -1);
-    for (size_t i = 0; i < triangles.size(); ++i) local[triangles[i]] = static_cast<int32_t>(i);
-    auto distances = [&](int32_t from) {
-        std::vector<int32_t> distance(triangles.size(), -1), frontier = {from};
-        distance[from] = 0;
-        for (size_t i = 0; i < frontier.size(); ++i) {
-            const int32_t t = triangles[frontier[i]];
-            for (int k = 0; k < 3; ++k) {
-                const int32_t o = surface.twin[3 * t + k];
-                if (o < 0 || seam[3 * t + k] || local[o / 3] < 0 || distance[local[o / 3]] >= 0)
-                    continue;
-                distance[local[o / 3]] = distance[frontier[i]] + 1;
-                frontier.push_back(local[o / 3]);
-            }
-        }
-        return distance;
-    };
+    const std::vector<int32_t> neighbour = chart_neighbours(surface, triangles, seam);
     auto farthest = [](const std::vector<int32_t>& distance) {
         return static_cast<int32_t>(std::max_element(distance.begin(), distance.end()) -
                                     distance.begin());
     };
-    const int32_t a = farthest(distances(0));
+    const int32_t a = farthest(hops(neighbour, 0));
     beat.report(0.0);
-    const std::vector<int32_t> from_a = distances(a);
+    const std::vector<int32_t> from_a = hops(neighbour, a);
     beat.report(0.0);
     const int32_t b = farthest(from_a);
-    const std::vector<int32_t> from_b = distances(b);
+    const std::vector<int32_t> from_b = hops(neighbour, b);
     beat.report(0.0);
-    std::pair<std::vector<int32_t>, std::vector<int32_t>> halves;
-    // Side per surface triangle (-1: outside the chart, itself a barrier), smoothed like the
-    // segmentation's boundaries so the split does not leave a saw-tooth seam.
-    std::vector<int32_t> side(surface.mesh.triangles.size(), -1);
+    // Side per chart triangle, smoothed like the segmentation's boundaries so the split does
+    // not leave a saw-tooth seam.
+    std::vector<int32_t> side(triangles.size());
     for (size_t i = 0; i < triangles.size(); ++i) {
         // Unreached triangles (a chart in several pieces) follow a's side if not reached by b.
         const bool to_b = from_b[i] >= 0 && (from_a[i] < 0 || from_b[i] < from_a[i]);
-        side[triangles[i]] = to_b ? 1 : 0;
+        side[i] = to_b ? 1 : 0;
     }
-    // Only the chart's own half-edges are read: everything else stays a barrier.
-    std::vector<char> barrier(seam.size(), 1);
-    for (int32_t t : triangles) {
-        for (int k = 0; k < 3; ++k) {
-            const int32_t h = 3 * t + k, o = surface.twin[h];
-            barrier[h] = seam[h] || (o >= 0 && side[o / 3] < 0);
-        }
-    }
-    smooth_chart_boundaries(surface, barrier, triangles, side, beat);
-    for (int32_t t : triangles) (side[t] == 1 ? halves.second : halves.first).push_back(t);
+    smooth_chart_boundaries(neighbour, side, beat);
+    std::pair<std::vector<int32_t>, std::vector<int32_t>> halves;
+    for (size_t i = 0; i < triangles.size(); ++i)
+        (side[i] == 1 ? halves.second : halves.first).push_back(triangles[i]);
     if (halves.second.empty()) {  // one triangle, or nothing reachable: halve by index
         const size_t half = halves.first.size() / 2;
         halves.second.assign(halves.first.begin() + half, halves.first.end());

@@ -28,6 +28,11 @@ void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char
                              const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
                              const ProgressSpan& progress = {});
 
+// The same on a chart of its own: chart[i] per chart triangle i, neighbour[3i+k] the chart
+// triangle across its side k, or -1 where a barrier is.
+void smooth_chart_boundaries(const std::vector<int32_t>& neighbour, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress = {});
+
 // Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
                                     const SegmentationSettings& settings,
