@@ -7,7 +7,7 @@ namespace raps {
 bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
                AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
-               std::pair<const ChartDisk*, const ChartDisk*> parts, AdaptiveStep step) {
+               std::pair<const ChartDisk*, const ChartDisk*> parts) {
     bool good = parts.first ? make_union_chart_disk(surface, triangles, seam, *parts.first,
                                                     *parts.second, chart.disk, beat)
                             : make_chart_disk(surface, triangles, seam, chart.disk, beat);
@@ -22,21 +22,11 @@ bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
     if (!good && triangles.size() > 1) return false;
     if (!chart.map.injective) chart.map = circle_chart_map(chart.disk, settings, system, beat);
     unadapted_l2 = chart.map.stretch_l2;
-    if (step == AdaptiveStep::kNow)
-        adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system, beat);
-    beat.report(0.0);
-    chart.box =
-        smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles, chart.disk.boundary_loop);
-    return true;
-}
-
-void adapt_chart_later(const Settings& settings, const ChartLimits& limits, AtlasChart& chart,
-                       const ProgressSpan& beat) {
-    LaplaceSystem system = chart_laplace_system(chart.disk, beat);
     adapt_chart_map(chart.disk, settings, limits.max_stretch_linf, chart.map, system, beat);
     beat.report(0.0);
     chart.box =
         smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles, chart.disk.boundary_loop);
+    return true;
 }
 
 double chart_area(const ChartDisk& disk) {

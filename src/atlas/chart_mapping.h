@@ -1,8 +1,6 @@
 // One chart's map, as the atlas makes it: the chart cut into a disk, its free-boundary map
-// (chart_parameterization.h), then the adaptive step. Merging (chart_merging.h) maps many
-// candidate unions and keeps few of them: it can leave the adaptive step of a union for later,
-// since the step holds the boundary (the chart's box does not change) and only lowers the L2
-// stretch, so a union that fits the L2 budget without it fits with it.
+// (chart_parameterization.h), then the adaptive step; for the first charts and for every union
+// merging tries (chart_merging.h).
 #pragma once
 
 #include <cstdint>
@@ -31,21 +29,13 @@ struct ChartLimits {
     double max_stretch_linf = 2.5;    // for every chart
 };
 
-enum class AdaptiveStep { kNow, kLater };
-
 // The chart made of `triangles` (ascending surface triangle ids; those of two charts when
 // `parts` are given): its disk and map, or false when it must be split. unadapted_l2: the
-// map's L2 stretch before its adaptive step. With AdaptiveStep::kLater a chart whose
-// free-boundary map is valid keeps it, and adapt_chart_later() finishes it.
+// map's L2 stretch before its adaptive step.
 bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
                AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
-               std::pair<const ChartDisk*, const ChartDisk*> parts = {},
-               AdaptiveStep step = AdaptiveStep::kNow);
-
-// The adaptive step map_chart() left for later: the same map and box it would have made then.
-void adapt_chart_later(const Settings& settings, const ChartLimits& limits, AtlasChart& chart,
-                       const ProgressSpan& beat);
+               std::pair<const ChartDisk*, const ChartDisk*> parts = {});
 
 // The chart's 3D area.
 double chart_area(const ChartDisk& disk);

@@ -9,12 +9,10 @@
 namespace raps {
 namespace {
 
-// Per chart, beside it: its 3D area, an id kept across passes, and whether its map is final
-// (false while its adaptive step waits, AdaptiveStep::kLater).
+// Per chart, beside it: its 3D area and an id kept across passes.
 struct Facts {
     double area;
     int64_t id;
-    bool adapted;
 };
 
 struct Candidate {
@@ -28,14 +26,8 @@ struct Candidate {
 // one over the L2 budget by `change` stays over it until the budget has that much room: the
 // later passes skip them instead of mapping them again (lion: the last pass, which merged
 // nothing, was a quarter of the atlas's time). Charts keep ids across passes for this.
-// A union is judged by its adapted map (the step lowers stretch most on exactly the larger,
-// more curved charts that merging makes), but the step waits until the budget needs its
-// figure: the free-boundary map's L2 stretch is never below the adapted one, so a union within
-// the budget by it is within it by the adapted one, and its box is the same (the step holds
-// the boundary). A union merged again before its step was needed never takes it. Before a union
-// is rejected for the budget, every waiting step is taken: the decision is then made on the
-// adapted figures, as when none waits, and the atlas is the same. Where the budget binds in
-// most passes (face.obj subdivided once) this saves little, 1% of the atlas's instructions.
+// A union is judged by its adapted map: the step lowers stretch most on exactly the larger,
+// more curved charts that merging makes.
 class Merger {
   public:
     Merger(const AtlasSurface& surface, const std::vector<char>& seam, const Settings& settings,
@@ -50,7 +42,7 @@ class Merger {
           beat_(beat),
           pool_(pool) {
         for (size_t c = 0; c < charts_.size(); ++c) {
-            facts_.push_back({area[c], static_cast<int64_t>(c), true});
+            facts_.push_back({area[c], static_cast<int64_t>(c)});
             weighted_ += term(facts_[c], charts_[c]);
         }
         next_id_ = static_cast<int64_t>(charts_.size());
@@ -58,15 +50,6 @@ class Merger {
 
     // One pass over every adjacent pair; false when nothing merged.
     bool pass(const Progress& progress, double pass_start);
-
-    // Takes every adaptive step still waiting.
-    void finish() {
-        std::vector<std::pair<AtlasChart*, Facts*>> waiting;
-        for (size_t c = 0; c < charts_.size(); ++c) {
-            if (!facts_[c].adapted) waiting.push_back({&charts_[c], &facts_[c]});
-        }
-        adapt(waiting);
-    }
 
   private:
     static double term(const Facts& facts, const AtlasChart& chart) {
@@ -78,9 +61,6 @@ class Merger {
     std::vector<Candidate> candidates() const;
     std::vector<Candidate> next_batch(const std::vector<Candidate>& candidates, size_t& next) const;
     bool map_union(const Candidate& pair, AtlasChart& chart) const;
-    void adapt(const std::vector<std::pair<AtlasChart*, Facts*>>& waiting);
-    bool waiting_steps() const;
-    void take_waiting_steps();
     bool within_budget(double change) const { return weighted_ + change <= target_; }
     void decide(const Candidate& pair, AtlasChart& built, bool mapped, bool good);
 
@@ -93,7 +73,7 @@ class Merger {
     const ProgressSpan& beat_;
     ThreadPool& pool_;
     std::vector<Facts> facts_;
-    double weighted_ = 0;  // sum of term() over the live charts, with waiting steps not taken
+    double weighted_ = 0;  // sum of term() over the live charts
     int64_t next_id_ = 0;
     std::map<std::pair<int64_t, int64_t>, double> rejected_;  // id pair -> change in budget
     // Within a pass: charts merged away, and the unions made.
@@ -157,45 +137,7 @@ bool Merger::map_union(const Candidate& pair, AtlasChart& chart) const {
     std::sort(triangles.begin(), triangles.end());
     double unadapted;
     return map_chart(surface_, triangles, seam_, settings_, limits_, chart, unadapted, beat_,
-                     {&charts_[pair.a].disk, &charts_[pair.b].disk}, AdaptiveStep::kLater);
-}
-
-void Merger::adapt(const std::vector<std::pair<AtlasChart*, Facts*>>& waiting) {
-    std::vector<size_t> cost(waiting.size());
-    for (size_t i = 0; i < waiting.size(); ++i)
-        cost[i] = waiting[i].first->disk.surface_triangle.size();
-    parallel_largest_first(pool_, cost, [&](size_t i) {
-        adapt_chart_later(settings_, limits_, *waiting[i].first, beat_);
-        waiting[i].second->adapted = true;
-    });
-}
-
-bool Merger::waiting_steps() const {
-    for (size_t c = 0; c < charts_.size(); ++c) {
-        if (!consumed_[c] && !facts_[c].adapted) return true;
-    }
-    for (const Facts& f : merged_facts_) {
-        if (!f.adapted) return true;
-    }
-    return false;
-}
-
-// Every live chart's waiting step, then the budget's sum again (live charts in index order,
-// then this pass's unions in order: the same for any thread count).
-void Merger::take_waiting_steps() {
-    std::vector<std::pair<AtlasChart*, Facts*>> waiting;
-    for (size_t c = 0; c < charts_.size(); ++c) {
-        if (!consumed_[c] && !facts_[c].adapted) waiting.push_back({&charts_[c], &facts_[c]});
-    }
-    for (size_t m = 0; m < merged_.size(); ++m) {
-        if (!merged_facts_[m].adapted) waiting.push_back({&merged_[m], &merged_facts_[m]});
-    }
-    adapt(waiting);
-    weighted_ = 0;
-    for (size_t c = 0; c < charts_.size(); ++c) {
-        if (!consumed_[c]) weighted_ += term(facts_[c], charts_[c]);
-    }
-    for (size_t m = 0; m < merged_.size(); ++m) weighted_ += term(merged_facts_[m], merged_[m]);
+                     {&charts_[pair.a].disk, &charts_[pair.b].disk});
 }
 
 void Merger::decide(const Candidate& pair, AtlasChart& built, bool mapped, bool good) {
@@ -203,7 +145,6 @@ void Merger::decide(const Candidate& pair, AtlasChart& built, bool mapped, bool 
     if (!mapped) {
         // Still rejected unless the budget now has room for it (merges with a negative change
         // can make some): then it is mapped after all.
-        if (!within_budget(rejected_[key(a, b)]) && waiting_steps()) take_waiting_steps();
         if (!within_budget(rejected_[key(a, b)])) return;
         good = map_union(pair, built);
     }
@@ -212,18 +153,12 @@ void Merger::decide(const Candidate& pair, AtlasChart& built, bool mapped, bool 
         return;
     }
     const double union_area = facts_[a].area + facts_[b].area;
-    Facts made{union_area, 0, false};
-    auto change = [&] {
-        return term(made, built) - term(facts_[a], charts_[a]) - term(facts_[b], charts_[b]);
-    };
-    if (!within_budget(change())) {
-        adapt_chart_later(settings_, limits_, built, beat_);
-        made.adapted = true;
-        if (!within_budget(change()) && waiting_steps()) take_waiting_steps();
-        if (!within_budget(change())) {
-            rejected_[key(a, b)] = change();
-            return;
-        }
+    Facts made{union_area, 0};
+    const double change =
+        term(made, built) - term(facts_[a], charts_[a]) - term(facts_[b], charts_[b]);
+    if (!within_budget(change)) {
+        rejected_[key(a, b)] = change;
+        return;
     }
     // A union whose bounding box is much larger than its parts' boxes together (an arch, a
     // ring, an L) saves a chart but costs more packing space than it saves. Allowed: 1 / 0.9
@@ -236,7 +171,7 @@ void Merger::decide(const Candidate& pair, AtlasChart& built, bool mapped, bool 
         rejected_[key(a, b)] = std::numeric_limits<double>::infinity();
         return;
     }
-    weighted_ += change();
+    weighted_ += change;
     consumed_[a] = consumed_[b] = 1;
     made.id = next_id_++;
     merged_.push_back(std::move(built));
@@ -299,7 +234,6 @@ void merge_charts(const AtlasSurface& surface, const std::vector<char>& seam,
         const double pass_start = 1.0 - (1.0 - start) * std::ldexp(1.0, -pass);
         if (!merger.pass(progress, pass_start)) break;
     }
-    merger.finish();
 }
 
 }  // namespace raps
