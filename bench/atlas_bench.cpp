@@ -4,18 +4,24 @@
 // other tool's figures are printed.
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
-//                    [--mesh FILE] [--phases] [--subdivide K]
+//                    [--mesh FILE] [--phases] [--subdivide K] [--scan TRIANGLES]
 // --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
 // each mesh's median time per phase; --subdivide splits every triangle 1-to-4 K times first
-// (the same surface with 4^K times the triangles: how the time grows with the size).
+// (the same surface with 4^K times the triangles: how the time grows with the size); --scan adds
+// a generated scan-like mesh of about that many triangles (its row is "scan", --mesh scan runs it
+// alone): a height field of random bumps over the unit square with noise on every vertex, random
+// diagonals and three holes, the way photogrammetry and range scans come out (seed 20, fixed).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "bench_support.h"
+#include "mesh_io.h"
 #include "parameter_text.h"
 #include "raps.h"
 
@@ -29,6 +35,64 @@ const char* const kMeshes[] = {
     "rocker-arm.obj", "spot.obj",        "suzanne.obj",       "teapot.obj",
 };
 
+// Uniform in [0, 1) from the generator's raw bits (std::uniform_real_distribution differs
+// between standard libraries; this does not).
+double uniform(std::mt19937_64& random) { return static_cast<double>(random() >> 11) * 0x1p-53; }
+
+// The scan-like mesh described above, about `count` triangles.
+raps_bench::TriangleMesh scan_like_mesh(int64_t count) {
+    std::mt19937_64 random(20);
+    const int n = std::max(4, static_cast<int>(std::sqrt(static_cast<double>(count) / 2.0)));
+    const double h = 1.0 / n;
+    struct Bump {
+        double x, y, height, width;
+    };
+    std::vector<Bump> bumps(12);
+    for (Bump& b : bumps) {
+        b = {uniform(random), uniform(random), 0.4 * (uniform(random) - 0.3),
+             0.05 + 0.2 * uniform(random)};
+    }
+    raps_bench::TriangleMesh mesh;
+    for (int j = 0; j <= n; ++j) {
+        for (int i = 0; i <= n; ++i) {
+            const double x = (i + 0.3 * (uniform(random) - 0.5)) * h;
+            const double y = (j + 0.3 * (uniform(random) - 0.5)) * h;
+            double z = 0.15 * h * (uniform(random) - 0.5);
+            for (const Bump& b : bumps) {
+                const double d2 = (x - b.x) * (x - b.x) + (y - b.y) * (y - b.y);
+                z += b.height * std::exp(-d2 / (b.width * b.width));
+            }
+            mesh.positions.insert(mesh.positions.end(), {x, y, z});
+        }
+    }
+    double holes[3][3];  // centre x, y and radius
+    for (auto& hole : holes) {
+        hole[0] = uniform(random);
+        hole[1] = uniform(random);
+        hole[2] = 0.02 + 0.03 * uniform(random);
+    }
+    auto in_hole = [&](int i, int j) {
+        for (const auto& hole : holes) {
+            const double dx = (i + 0.5) * h - hole[0], dy = (j + 0.5) * h - hole[1];
+            if (dx * dx + dy * dy < hole[2] * hole[2]) return true;
+        }
+        return false;
+    };
+    std::vector<uint32_t>& triangles = mesh.triangles;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            const bool flip = uniform(random) < 0.5;
+            if (in_hole(i, j)) continue;
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + (n + 1), d = c + 1;
+            if (flip)
+                triangles.insert(triangles.end(), {a, b, d, a, d, c});
+            else
+                triangles.insert(triangles.end(), {a, b, c, b, d, c});
+        }
+    }
+    return mesh;
+}
+
 struct Sample {
     double total_ms;
     double phase_ms[RAPS_PHASE_COUNT];
@@ -38,6 +102,7 @@ struct Sample {
 
 struct Options {
     int threads = 0, resolution = 1024, padding = 1, subdivide = 0;
+    int64_t scan = 0;  // triangles of the scan-like mesh, 0: none
 };
 
 Sample run_once(const raps_bench::TriangleMesh& input, const Options& options) {
@@ -92,7 +157,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr,
                          "usage: raps-bench-atlas [--data DIR] [--runs N] [--threads N] "
                          "[--resolution N] [--padding N] [--mesh FILE] [--phases] "
-                         "[--subdivide K]\n");
+                         "[--subdivide K] [--scan TRIANGLES]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -108,6 +173,8 @@ int main(int argc, char** argv) {
             options.padding = std::atoi(value.c_str());
         else if (arg == "--mesh")
             only = value;
+        else if (arg == "--scan")
+            options.scan = std::max(0LL, std::atoll(value.c_str()));
         else if (arg == "--subdivide")
             options.subdivide = std::max(0, std::atoi(value.c_str()));
         else {
@@ -124,11 +191,20 @@ int main(int argc, char** argv) {
         "| mesh | triangles | ms | charts | coverage | L2 | Linf | area mean abs log | "
         "angle mean deg | flips | peak MB |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const char* file : kMeshes) {
-        if (!only.empty() && only != file) continue;
+    std::vector<std::string> names(std::begin(kMeshes), std::end(kMeshes));
+    if (options.scan > 0) names.push_back("scan");
+    for (const std::string& name : names) {
+        const char* file = name.c_str();
+        if (!only.empty() && only != name) continue;
         const auto child = raps_bench::run_in_child<Sample>("raps-bench-atlas", [&](auto emit) {
-            const raps_bench::TriangleMesh mesh =
-                raps_bench::load_triangles(data + "/meshes/" + file, options.subdivide);
+            raps_bench::TriangleMesh mesh;
+            if (name == "scan") {
+                mesh = scan_like_mesh(options.scan);
+                for (int k = 0; k < options.subdivide; ++k)
+                    raps_samples::subdivide_midpoint(mesh.positions, mesh.triangles);
+            } else {
+                mesh = raps_bench::load_triangles(data + "/meshes/" + file, options.subdivide);
+            }
             for (int r = 0; r < runs; ++r) emit(run_once(mesh, options));
         });
         const std::vector<Sample>& samples = child.samples;

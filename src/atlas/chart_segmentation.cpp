@@ -265,29 +265,29 @@ std::vector<int32_t> compact_ids(std::vector<int32_t> chart) {
 
 }  // namespace
 
-void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
-                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
-                             const ProgressSpan& progress) {
-    // Region growing over triangles leaves saw-tooth boundaries (single triangles poking into
-    // the neighbour, most visibly on triangulated quad meshes); they lengthen seams and waste
-    // packing space. A triangle whose two uncut neighbours share another chart joins it; a
-    // few sweeps in index order remove the teeth (the order makes it deterministic).
+namespace {
+
+// Region growing over triangles leaves saw-tooth boundaries (single triangles poking into the
+// neighbour, most visibly on triangulated quad meshes); they lengthen seams and waste packing
+// space. A triangle whose two uncut neighbours share another chart joins it; a few sweeps in
+// index order remove the teeth (the order makes it deterministic). slot(i): the i-th triangle
+// visited, as an index into `chart`; across(t, k): the triangle across side k of t, or -1;
+// pinned(t): t is part of a polygon and never moves alone.
+template <typename Slot, typename Across, typename Pinned>
+void smooth_sweeps(int64_t count, const Slot& slot, const Across& across, const Pinned& pinned,
+                   std::vector<int32_t>& chart, const ProgressSpan& progress) {
     for (int sweep = 0; sweep < 4; ++sweep) {
         bool changed = false;
-        const int64_t count = static_cast<int64_t>(triangles.size());
         progress.part(sweep / 4.0, (sweep + 1) / 4.0)
             .in_runs(count, [&](int64_t run_begin, int64_t run_end) {
-                for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
-                    const int32_t t = triangles[i];
+                for (int64_t i = run_begin; i < run_end; ++i) {
+                    const int32_t t = slot(i);
                     // A triangle of a polygon moves only with it: the teeth are triangles.
-                    if (joins_polygon(surface, 3 * t) || joins_polygon(surface, 3 * t + 1) ||
-                        joins_polygon(surface, 3 * t + 2))
-                        continue;
+                    if (pinned(t)) continue;
                     int32_t other[3], found = 0;
                     for (int k = 0; k < 3; ++k) {
-                        const int32_t o = surface.twin[3 * t + k];
-                        if (o >= 0 && !barrier[3 * t + k] && chart[o / 3] != chart[t])
-                            other[found++] = chart[o / 3];
+                        const int32_t o = across(t, k);
+                        if (o >= 0 && chart[o] != chart[t]) other[found++] = chart[o];
                     }
                     int32_t winner = -1;
                     if (found >= 2 && other[0] == other[1]) winner = other[0];
@@ -301,6 +301,32 @@ void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char
             });
         if (!changed) break;
     }
+}
+
+}  // namespace
+
+void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
+                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress) {
+    smooth_sweeps(
+        static_cast<int64_t>(triangles.size()), [&](int64_t i) { return triangles[i]; },
+        [&](int32_t t, int k) {
+            const int32_t o = surface.twin[3 * t + k];
+            return o >= 0 && !barrier[3 * t + k] ? o / 3 : -1;
+        },
+        [&](int32_t t) {
+            return joins_polygon(surface, 3 * t) || joins_polygon(surface, 3 * t + 1) ||
+                   joins_polygon(surface, 3 * t + 2);
+        },
+        chart, progress);
+}
+
+void smooth_chart_boundaries(const std::vector<int32_t>& neighbour, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress, const std::vector<char>& pinned) {
+    smooth_sweeps(
+        static_cast<int64_t>(chart.size()), [](int64_t i) { return static_cast<int32_t>(i); },
+        [&](int32_t t, int k) { return neighbour[3 * t + k]; },
+        [&](int32_t t) { return !pinned.empty() && pinned[t]; }, chart, progress);
 }
 
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,

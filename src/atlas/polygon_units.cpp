@@ -7,28 +7,25 @@ namespace raps {
 namespace {
 
 // Per position in `triangles`, its polygon: 0, 1, ... in order of their first triangle, through
-// the polygons' own edges between triangles inside the chart (side >= 0).
+// the polygons' own edges between triangles of the chart.
 std::vector<int32_t> polygon_numbers(const AtlasSurface& surface,
                                      const std::vector<int32_t>& triangles,
-                                     const std::vector<int32_t>& side, int32_t& count) {
-    std::vector<int32_t> position(surface.mesh.triangles.size(), -1);
-    for (size_t i = 0; i < triangles.size(); ++i) position[triangles[i]] = static_cast<int32_t>(i);
+                                     const std::vector<int32_t>& neighbour, int32_t& count) {
     std::vector<int32_t> number(triangles.size(), -1), stack;
     count = 0;
     for (size_t i = 0; i < triangles.size(); ++i) {
         if (number[i] >= 0) continue;
         number[i] = count;
-        stack.assign(1, triangles[i]);
+        stack.assign(1, static_cast<int32_t>(i));
         while (!stack.empty()) {
-            const int32_t t = stack.back();
+            const int32_t j = stack.back();
             stack.pop_back();
             for (int k = 0; k < 3; ++k) {
-                const int32_t o = surface.twin[3 * t + k];
-                if (!joins_polygon(surface, 3 * t + k) || side[o / 3] < 0 ||
-                    number[position[o / 3]] >= 0)
+                const int32_t o = neighbour[3 * j + k];
+                if (o < 0 || number[o] >= 0 || !joins_polygon(surface, 3 * triangles[j] + k))
                     continue;
-                number[position[o / 3]] = count;
-                stack.push_back(o / 3);
+                number[o] = count;
+                stack.push_back(o);
             }
         }
         ++count;
@@ -50,32 +47,41 @@ bool is_one_polygon(const AtlasSurface& surface, const std::vector<int32_t>& tri
 }
 
 void keep_polygons_together(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                            std::vector<int32_t>& side) {
+                            const std::vector<int32_t>& neighbour, std::vector<int32_t>& side) {
     if (surface.polygon_inner.empty()) return;
     int32_t count = 0;
-    const std::vector<int32_t> number = polygon_numbers(surface, triangles, side, count);
+    const std::vector<int32_t> number = polygon_numbers(surface, triangles, neighbour, count);
     std::vector<int32_t> polygon_side(count, -1);
     for (size_t i = 0; i < triangles.size(); ++i) {
-        if (polygon_side[number[i]] < 0) polygon_side[number[i]] = side[triangles[i]];
-        side[triangles[i]] = polygon_side[number[i]];
+        if (polygon_side[number[i]] < 0) polygon_side[number[i]] = side[i];
+        side[i] = polygon_side[number[i]];
     }
 }
 
 void halve_by_polygons(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                       std::vector<int32_t>& side) {
+                       const std::vector<int32_t>& neighbour, std::vector<int32_t>& side) {
     int32_t count = static_cast<int32_t>(triangles.size());
     std::vector<int32_t> number(triangles.size());
     for (size_t i = 0; i < triangles.size(); ++i) number[i] = static_cast<int32_t>(i);
     if (!surface.polygon_inner.empty()) {
         int32_t polygons = 0;
-        std::vector<int32_t> by_polygon = polygon_numbers(surface, triangles, side, polygons);
+        std::vector<int32_t> by_polygon = polygon_numbers(surface, triangles, neighbour, polygons);
         if (polygons > 1) {
             number = std::move(by_polygon);
             count = polygons;
         }
     }
-    for (size_t i = 0; i < triangles.size(); ++i)
-        side[triangles[i]] = number[i] < count / 2 ? 0 : 1;
+    for (size_t i = 0; i < triangles.size(); ++i) side[i] = number[i] < count / 2 ? 0 : 1;
+}
+
+std::vector<char> polygon_triangles(const AtlasSurface& surface,
+                                    const std::vector<int32_t>& triangles) {
+    if (surface.polygon_inner.empty()) return {};
+    std::vector<char> inside(triangles.size(), 0);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k) inside[i] |= joins_polygon(surface, 3 * triangles[i] + k);
+    }
+    return inside;
 }
 
 std::vector<int32_t> aside_polygon_charts(const TriangleMesh& mesh,

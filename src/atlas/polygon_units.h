@@ -16,15 +16,23 @@ namespace raps {
 // Whether `triangles` (a chart, whose polygons are whole) are one polygon, or one triangle.
 bool is_one_polygon(const AtlasSurface& surface, const std::vector<int32_t>& triangles);
 
-// side[t] for t in `triangles` (a chart; side is per surface triangle, -1 outside the chart):
-// every polygon takes the side of its first triangle in `triangles`.
+// The chart functions below work on a chart's own triangles: `triangles` (surface ids), side[i]
+// per triangles[i], neighbour[3i+k] the chart triangle across side k of triangle i or -1
+// (atlas_charts.cpp's chart_neighbours; a polygon's own edges are never seams).
+
+// Every polygon takes the side of its first triangle in `triangles`.
 void keep_polygons_together(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                            std::vector<int32_t>& side);
+                            const std::vector<int32_t>& neighbour, std::vector<int32_t>& side);
 
 // Halves `triangles` by polygons in their order (side 0, then 1) where no distance could; a
 // single polygon by triangles (the only way left to split it).
 void halve_by_polygons(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                       std::vector<int32_t>& side);
+                       const std::vector<int32_t>& neighbour, std::vector<int32_t>& side);
+
+// Per triangles[i], whether it is part of a polygon of several triangles (it moves only with
+// its polygon); empty when the mesh has no polygons.
+std::vector<char> polygon_triangles(const AtlasSurface& surface,
+                                    const std::vector<int32_t>& triangles);
 
 // Per triangle set aside as degenerate (surface.aside_triangles; a zero-area part of an n-gon
 // with collinear corners), the chart of a triangle of its polygon that shares an edge with it
