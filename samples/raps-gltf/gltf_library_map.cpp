@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 
 #include "gltf_accessors.h"
 #include "gltf_error.h"
@@ -208,6 +209,21 @@ GroupGeometry scaled(const GroupGeometry& g, int k) {
     return out;
 }
 
+// A primitive's vertex -> library vertex (-1 until given): an array over the accessor when the
+// primitive uses much of it, a hash map when it uses little.
+class LocalIds {
+  public:
+    LocalIds(uint64_t vertex_count, size_t corners)
+        : dense_(corners >= vertex_count / 4 ? vertex_count : 0, -1) {}
+    int64_t& of(uint32_t v) {
+        return dense_.empty() ? sparse_.emplace(v, -1).first->second : dense_[v];
+    }
+
+  private:
+    std::vector<int64_t> dense_;
+    std::unordered_map<uint32_t, int64_t> sparse_;
+};
+
 }  // namespace
 
 GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInput>& group,
@@ -216,26 +232,30 @@ GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInpu
     for (const PrimitiveInput& p : group) {
         const int position = (*p.json)["attributes"]["POSITION"].get<int>();
         const AccessorLayout pa = accessor_layout(asset.doc, position);
-        const std::vector<uint8_t> data = read_accessor(asset, position);
+        // Read at the corners only: primitives may each use a few vertices of one large
+        // accessor (1000 such primitives of a 251001-vertex accessor: 10 s of copies before).
+        const std::vector<uint8_t> data = read_accessor_at(asset, position, p.triangles);
         const uint64_t element = element_size("VEC3", pa.component_type);
         const std::vector<double> uv = weld_by_uv ? texcoord0(asset, p) : std::vector<double>();
-        std::vector<int64_t> local(p.vertex_count, -1);
+        LocalIds local(p.vertex_count, p.triangles.size());
         std::map<WeldKey, uint32_t> welded;
         g.first_triangle.push_back(g.indices.size() / 3);
-        for (uint32_t v : p.triangles) {
-            if (local[v] < 0) {
+        for (size_t k = 0; k < p.triangles.size(); ++k) {
+            const uint32_t v = p.triangles[k];
+            int64_t& id = local.of(v);
+            if (id < 0) {
                 WeldKey key{};
                 for (int c = 0; c < 3; ++c) {
                     key[c] =
-                        component_value(&data[v * element], pa.component_type, pa.normalized, c);
+                        component_value(&data[k * element], pa.component_type, pa.normalized, c);
                 }
                 if (!uv.empty()) key = {key[0], key[1], key[2], uv[2 * v], uv[2 * v + 1]};
                 const uint32_t next = static_cast<uint32_t>(g.xyz.size() / 3);
                 const auto found = weld_by_uv ? welded.emplace(key, next).first : welded.end();
-                local[v] = found != welded.end() ? found->second : next;
-                if (local[v] == next) g.xyz.insert(g.xyz.end(), key.begin(), key.begin() + 3);
+                id = found != welded.end() ? found->second : next;
+                if (id == next) g.xyz.insert(g.xyz.end(), key.begin(), key.begin() + 3);
             }
-            g.indices.push_back(static_cast<uint32_t>(local[v]));
+            g.indices.push_back(static_cast<uint32_t>(id));
         }
         g.input_vertices += p.vertex_count;
     }

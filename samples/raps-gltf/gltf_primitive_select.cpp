@@ -100,31 +100,36 @@ void check_indices(const std::vector<uint32_t>& indices, int component_type, uin
     }
 }
 
-std::vector<double> read_positions(const Asset& asset, int accessor, const std::string& where) {
+// The positions at the triangles' corners, three per triangle, read only there (a primitive
+// may use a few vertices of an accessor that hundreds of primitives share).
+std::vector<double> corner_positions(const Asset& asset, int accessor,
+                                     const std::vector<uint32_t>& triangles,
+                                     const std::string& where) {
     const AccessorLayout a = accessor_layout(asset.doc, accessor);
-    const std::vector<uint8_t> data = read_accessor(asset, accessor);
+    const std::vector<uint8_t> data = read_accessor_at(asset, accessor, triangles);
     const uint64_t element = element_size("VEC3", a.component_type);
-    std::vector<double> xyz(3 * a.count);
-    for (uint64_t v = 0; v < a.count; ++v) {
+    std::vector<double> xyz(3 * triangles.size());
+    for (size_t k = 0; k < triangles.size(); ++k) {
         for (int c = 0; c < 3; ++c) {
-            xyz[3 * v + c] = component_value(&data[v * element], a.component_type, a.normalized, c);
+            xyz[3 * k + c] = component_value(&data[k * element], a.component_type, a.normalized, c);
             // NaN would poison the map and every min/max.
-            if (!std::isfinite(xyz[3 * v + c])) {
+            if (!std::isfinite(xyz[3 * k + c])) {
                 throw GltfError("accessor", where + ": POSITION accessor " +
                                                 std::to_string(accessor) + " vertex " +
-                                                std::to_string(v) + " is not finite");
+                                                std::to_string(triangles[k]) + " is not finite");
             }
         }
     }
     return xyz;
 }
 
-bool any_triangle_has_area(const std::vector<uint32_t>& t, const std::vector<double>& xyz) {
+// Whether a triangle has area: neither two corners the same vertex nor the three collinear.
+bool any_triangle_has_area(const std::vector<uint32_t>& t, const std::vector<double>& corners) {
     for (size_t i = 0; i + 2 < t.size(); i += 3) {
         if (t[i] == t[i + 1] || t[i + 1] == t[i + 2] || t[i] == t[i + 2]) continue;
-        const double* a = &xyz[3 * t[i]];
-        const double* b = &xyz[3 * t[i + 1]];
-        const double* c = &xyz[3 * t[i + 2]];
+        const double* a = &corners[3 * i];
+        const double* b = &corners[3 * i + 3];
+        const double* c = &corners[3 * i + 6];
         const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
@@ -215,7 +220,8 @@ std::string read_primitive(const Asset& asset, const BakeOptions& options, const
     if (all_zeros(asset, position)) return zeros;
     input->triangles = triangle_list(mode, vertices);
     if (input->triangles.empty()) return "no complete triangle";
-    if (!any_triangle_has_area(input->triangles, read_positions(asset, position, where))) {
+    if (!any_triangle_has_area(input->triangles,
+                               corner_positions(asset, position, input->triangles, where))) {
         return "every triangle is degenerate (repeated vertices or zero area): nothing to map";
     }
     input->tangents = tangent_policy(asset.doc, prim, options.texcoord);

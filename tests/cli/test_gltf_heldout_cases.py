@@ -238,6 +238,44 @@ class HeldoutCases(unittest.TestCase):
         self.assertIn('past the vertex count', stderr)
 
 
+    def test_many_primitives_sharing_one_accessor_keep_their_values(self):
+        """Primitives that each use a few vertices of one large interleaved accessor (with a
+        sparse substitution) are read at their corners only; every output corner still carries
+        its input vertex's position and normal."""
+        pos, tris = spec.grid(30, 30)
+        tris = np.asarray(tris, np.uint32).reshape(-1, 3)
+        normals = np.tile(np.float32([0, 0, 1]), (len(pos), 1))
+        normals[::7] = np.float32([0, 1, 0])
+        moved = np.arange(5, len(pos), 97, dtype=np.uint32)
+        truth = pos.copy()
+        truth[moved, 2] += 0.25
+        b = Builder()
+        rows = np.zeros(len(pos), dtype=[('p', '<f4', 3), ('n', '<f4', 3)])
+        rows['p'], rows['n'] = pos, normals
+        view = b.view(rows.tobytes(), 34962)
+        b.doc['bufferViews'][view]['byteStride'] = 24
+        b.doc['accessors'] += [
+            {'bufferView': view, 'componentType': spec.FLOAT, 'count': len(pos), 'type': 'VEC3',
+             'min': truth.min(axis=0).tolist(), 'max': truth.max(axis=0).tolist()},
+            {'bufferView': view, 'byteOffset': 12, 'componentType': spec.FLOAT,
+             'count': len(pos), 'type': 'VEC3'}]
+        b.sparse(0, moved, truth[moved])
+        prims = [{'attributes': {'POSITION': 0, 'NORMAL': 1},
+                  'indices': b.accessor(tris[k::45].ravel(), 'SCALAR', spec.UINT32,
+                                        target=34963)} for k in range(45)]
+        b.doc['meshes'].append({'primitives': prims})
+        src = self.path('shared.gltf')
+        b.write_gltf(src)
+        for flags in ((), ('--group', 'primitive')):
+            g, _ = self.bake_clean(src, 'shared.glb', *flags)
+            for k, prim in enumerate(g.json['meshes'][0]['primitives']):
+                corners = g.triangles(prim)
+                np.testing.assert_array_equal(
+                    g.accessor(prim['attributes']['POSITION'])[corners], truth[tris[k::45]])
+                np.testing.assert_array_equal(
+                    g.accessor(prim['attributes']['NORMAL'])[corners], normals[tris[k::45]])
+
+
 if __name__ == '__main__':
     spec.RAPS_GLTF, spec.VALIDATOR, spec.NODE = sys.argv[1], sys.argv[2], sys.argv[3]
     unittest.main(argv=sys.argv[:1], verbosity=2)
