@@ -239,15 +239,16 @@ void MultifrontalFactorization::analyze(const SparsePattern& pattern,
     const std::vector<char> merged_with_next =
         relaxed_amalgamation(super_first, parent, column_count);
     grouping.report(0.6);
-    build_supernodes(super_first, merged_with_next, parent);
-    grouping.report(1.0);
+    build_supernodes(super_first, merged_with_next, parent, grouping.part(0.6, 1.0));
     build_front_rows(pattern, position, progress.part(0.45, 0.8));
     build_relative_rows(progress.part(0.8, 1.0));
 }
 
 void MultifrontalFactorization::build_supernodes(const std::vector<int32_t>& super_first,
                                                  const std::vector<char>& merged_with_next,
-                                                 const std::vector<int32_t>& parent) {
+                                                 const std::vector<int32_t>& parent,
+                                                 const ProgressSpan& progress) {
+    // Progress: a report after each pass (over the columns or the supernodes).
     const int32_t n = size_;
     const int32_t fundamental_count = static_cast<int32_t>(super_first.size()) - 1;
     std::vector<int32_t> supernode_of(n);
@@ -261,6 +262,7 @@ void MultifrontalFactorization::build_supernodes(const std::vector<int32_t>& sup
         }
         supernodes_.back().columns = super_first[s + 1] - supernodes_.back().first_column;
     }
+    progress.report(0.2);
     const int32_t supernode_count = static_cast<int32_t>(supernodes_.size());
     for (int32_t s = 0; s < supernode_count; ++s) {
         const Supernode& node = supernodes_[s];
@@ -268,16 +270,19 @@ void MultifrontalFactorization::build_supernodes(const std::vector<int32_t>& sup
             supernode_of[j] = s;
         }
     }
+    progress.report(0.4);
     std::vector<int32_t> super_parent(supernode_count, -1);
     for (int32_t s = 0; s < supernode_count; ++s) {
         const int32_t last = supernodes_[s].first_column + supernodes_[s].columns - 1;
         if (parent[last] >= 0) super_parent[s] = supernode_of[parent[last]];
     }
+    progress.report(0.6);
     // Children lists (postorder keeps them in increasing order, which the stack relies on).
     std::vector<int32_t> children_count(supernode_count, 0);
     for (int32_t s = 0; s < supernode_count; ++s) {
         if (super_parent[s] >= 0) ++children_count[super_parent[s]];
     }
+    progress.report(0.8);
     {
         int32_t offset = 0;
         for (int32_t s = 0; s < supernode_count; ++s) {
@@ -292,6 +297,7 @@ void MultifrontalFactorization::build_supernodes(const std::vector<int32_t>& sup
             }
         }
     }
+    progress.report(1.0);
 }
 
 void MultifrontalFactorization::build_front_rows(const SparsePattern& pattern,

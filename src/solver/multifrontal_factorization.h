@@ -70,7 +70,7 @@ class MultifrontalFactorization {
     // child's update rows land in its parent, and the workspaces.
     void build_supernodes(const std::vector<int32_t>& super_first,
                           const std::vector<char>& merged_with_next,
-                          const std::vector<int32_t>& parent);
+                          const std::vector<int32_t>& parent, const ProgressSpan& progress);
     void build_front_rows(const SparsePattern& pattern, const std::vector<int32_t>& position,
                           const ProgressSpan& progress);
     void build_relative_rows(const ProgressSpan& progress);
