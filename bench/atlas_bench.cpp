@@ -5,9 +5,10 @@
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
 //                    [--mesh FILE] [--phases] [--subdivide K] [--scan TRIANGLES]
-// --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
-// each mesh's median time per phase; --subdivide splits every triangle 1-to-4 K times first
-// (the same surface with 4^K times the triangles: how the time grows with the size); --scan adds
+// --mesh runs only that mesh (fandisk.obj, say: for profiling; repeated, those meshes); --phases
+// adds, after the table, each mesh's median time per phase; --subdivide splits every shared
+// mesh's triangles 1-to-4 K times first (the same surface with 4^K times the triangles: how the
+// time grows with the size); --scan adds
 // a generated scan-like mesh of about that many triangles (its row is "scan", --mesh scan runs it
 // alone): a height field of random bumps over the unit square with noise on every vertex, random
 // diagonals and three holes, the way photogrammetry and range scans come out (seed 20, fixed).
@@ -147,7 +148,7 @@ Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uin
 
 int main(int argc, char** argv) {
     std::string data = RAPS_SHARED_DATA_DIR;
-    std::string only;
+    std::vector<std::string> only;
     bool phases = false;
     std::string phase_lines;
     int runs = 3;
@@ -177,7 +178,7 @@ int main(int argc, char** argv) {
         else if (arg == "--padding")
             options.padding = std::atoi(value.c_str());
         else if (arg == "--mesh")
-            only = value;
+            only.push_back(value);
         else if (arg == "--scan")
             options.scan = std::max(0LL, std::atoll(value.c_str()));
         else if (arg == "--subdivide")
@@ -200,7 +201,7 @@ int main(int argc, char** argv) {
     if (options.scan > 0) names.push_back("scan");
     for (const std::string& name : names) {
         const char* file = name.c_str();
-        if (!only.empty() && only != name) continue;
+        if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
         int fds[2];
         if (pipe(fds) != 0) return 1;
         const pid_t pid = fork();
@@ -215,7 +216,7 @@ int main(int argc, char** argv) {
                     mesh = raps_samples::read_mesh(data + "/meshes/" + file);
                     triangles = mesh.triangles();
                 }
-                for (int k = 0; k < options.subdivide; ++k)
+                for (int k = 0; k < options.subdivide && name != "scan"; ++k)
                     raps_samples::subdivide_midpoint(mesh.positions, triangles);
                 for (int r = 0; r < runs; ++r) {
                     const Sample s = run_once(mesh, triangles, options);
