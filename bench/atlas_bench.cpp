@@ -5,9 +5,10 @@
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
 //                    [--mesh FILE] [--phases] [--subdivide K] [--scan TRIANGLES]
-// --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
-// each mesh's median time per phase; --subdivide splits every triangle 1-to-4 K times first
-// (the same surface with 4^K times the triangles: how the time grows with the size); --scan adds
+// --mesh runs only that mesh (fandisk.obj, say: for profiling; repeated, those meshes); --phases
+// adds, after the table, each mesh's median time per phase; --subdivide splits every shared
+// mesh's triangles 1-to-4 K times first (the same surface with 4^K times the triangles: how the
+// time grows with the size); --scan adds
 // a generated scan-like mesh of about that many triangles (its row is "scan", --mesh scan runs it
 // alone): a height field of random bumps over the unit square with noise on every vertex, random
 // diagonals and three holes, the way photogrammetry and range scans come out (seed 20, fixed).
@@ -21,7 +22,6 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "mesh_io.h"
 #include "parameter_text.h"
 #include "raps.h"
 
@@ -142,7 +142,7 @@ Sample run_once(const raps_bench::TriangleMesh& input, const Options& options) {
 
 int main(int argc, char** argv) {
     std::string data = RAPS_SHARED_DATA_DIR;
-    std::string only;
+    std::vector<std::string> only;
     bool phases = false;
     std::string phase_lines;
     int runs = 3;
@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
         else if (arg == "--padding")
             options.padding = std::atoi(value.c_str());
         else if (arg == "--mesh")
-            only = value;
+            only.push_back(value);
         else if (arg == "--scan")
             options.scan = std::max(0LL, std::atoll(value.c_str()));
         else if (arg == "--subdivide")
@@ -195,16 +195,13 @@ int main(int argc, char** argv) {
     if (options.scan > 0) names.push_back("scan");
     for (const std::string& name : names) {
         const char* file = name.c_str();
-        if (!only.empty() && only != name) continue;
+        if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
         const auto child = raps_bench::run_in_child<Sample>("raps-bench-atlas", [&](auto emit) {
-            raps_bench::TriangleMesh mesh;
-            if (name == "scan") {
-                mesh = scan_like_mesh(options.scan);
-                for (int k = 0; k < options.subdivide; ++k)
-                    raps_samples::subdivide_midpoint(mesh.positions, mesh.triangles);
-            } else {
-                mesh = raps_bench::load_triangles(data + "/meshes/" + file, options.subdivide);
-            }
+            // --subdivide leaves the generated scan alone (--scan sets its size).
+            const raps_bench::TriangleMesh mesh =
+                name == "scan"
+                    ? scan_like_mesh(options.scan)
+                    : raps_bench::load_triangles(data + "/meshes/" + file, options.subdivide);
             for (int r = 0; r < runs; ++r) emit(run_once(mesh, options));
         });
         const std::vector<Sample>& samples = child.samples;

@@ -52,6 +52,100 @@ bool is_disk(const ChartDisk& disk, const Halfedges& halfedges,
     return loops.size() == 1 && euler == 1;
 }
 
+// Marks the edges a spanning tree of the triangles (breadth first from triangle 0) crosses;
+// false when the triangles are not connected.
+bool spanning_tree_crossings(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                             const std::vector<int32_t>& twin, std::vector<char>& crossed) {
+    const size_t triangle_count = twin.size() / 3;
+    crossed.assign(twin.size(), 0);
+    std::vector<char> visited(triangle_count, 0);
+    std::vector<int32_t> frontier;
+    // Enters `first` and the rest of its input polygon, across the polygon's own edges, so
+    // that no cut runs through a polygon.
+    auto enter = [&](int32_t first) {
+        visited[first] = 1;
+        const size_t begin = frontier.size();
+        frontier.push_back(first);
+        for (size_t j = begin; j < frontier.size(); ++j) {
+            for (int k = 0; k < 3; ++k) {
+                const int32_t h = 3 * frontier[j] + k, o = twin[h];
+                if (o < 0 || visited[o / 3] ||
+                    !joins_polygon(surface, 3 * triangles[frontier[j]] + k))
+                    continue;
+                visited[o / 3] = 1;
+                crossed[h] = crossed[o] = 1;
+                frontier.push_back(o / 3);
+            }
+        }
+    };
+    enter(0);
+    for (size_t i = 0; i < frontier.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t h = 3 * frontier[i] + k, o = twin[h];
+            if (o < 0 || visited[o / 3]) continue;
+            crossed[h] = crossed[o] = 1;
+            enter(o / 3);
+        }
+    }
+    return frontier.size() == triangle_count;
+}
+
+// Cuts the chart open along every uncut edge the spanning tree does not cross, pruned of
+// dangling branches: candidate edges with an end that is neither on the boundary nor touched by
+// another candidate are dropped until none is left.
+void cut_along_tree_complement(const TriangleMesh& mesh, const std::vector<char>& crossed,
+                               std::vector<int32_t>& twin) {
+    const int32_t corners = static_cast<int32_t>(twin.size());
+    const int32_t n = mesh.vertex_count();
+    std::vector<int32_t> degree(n, 0);
+    std::vector<char> boundary(n, 0), cut(corners, 0);
+    for (int32_t h = 0; h < corners; ++h) {
+        const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+        if (twin[h] < 0) {
+            boundary[a] = boundary[b] = 1;
+        } else if (!crossed[h] && h < twin[h]) {
+            cut[h] = 1;
+            ++degree[a];
+            ++degree[b];
+        }
+    }
+    // The candidate edges at each vertex, in one array (offsets per vertex).
+    std::vector<int32_t> offset(n + 1, 0), incident;
+    for (int32_t v = 0; v < n; ++v) offset[v + 1] = offset[v] + degree[v];
+    incident.resize(offset[n]);
+    std::vector<int32_t> filled(offset.begin(), offset.end() - 1);
+    for (int32_t h = 0; h < corners; ++h) {
+        if (!cut[h]) continue;
+        incident[filled[halfedge_origin(mesh, h)]++] = h;
+        incident[filled[halfedge_target(mesh, h)]++] = h;
+    }
+    std::vector<int32_t> dangling;
+    for (int32_t v = 0; v < n; ++v) {
+        if (degree[v] == 1 && !boundary[v]) dangling.push_back(v);
+    }
+    while (!dangling.empty()) {
+        const int32_t v = dangling.back();
+        dangling.pop_back();
+        if (degree[v] != 1 || boundary[v]) continue;
+        for (int32_t s = offset[v]; s < offset[v + 1]; ++s) {
+            const int32_t h = incident[s];
+            if (!cut[h]) continue;
+            cut[h] = 0;
+            const int32_t a = halfedge_origin(mesh, h), b = halfedge_target(mesh, h);
+            --degree[a];
+            --degree[b];
+            const int32_t other = a == v ? b : a;
+            if (degree[other] == 1 && !boundary[other]) dangling.push_back(other);
+        }
+    }
+    for (int32_t h = 0; h < corners; ++h) {
+        if (cut[h]) {
+            const int32_t o = twin[h];
+            twin[h] = twin[o] = -1;
+        }
+    }
+}
+
 // The chart's topology (everything but its vertex order), or false when it is no disk.
 bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                       const std::vector<char>& seam, ChartDisk& disk) {
@@ -66,83 +160,9 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
     build_vertices(surface, triangles, halfedges.twin, disk);
     std::vector<std::vector<int32_t>> loops;
     if (!is_disk(disk, halfedges, loops)) {
-        // Spanning tree of the triangles (breadth first from triangle 0); every uncut edge it
-        // does not cross is a cut candidate. It enters each input polygon whole, across the
-        // polygon's own edges, so that no cut runs through a polygon.
-        const int32_t corners = static_cast<int32_t>(halfedges.twin.size());
-        std::vector<char> crossed(corners, 0), visited(triangles.size(), 0);
-        std::vector<int32_t> frontier;
-        auto enter = [&](int32_t first) {
-            visited[first] = 1;
-            const size_t begin = frontier.size();
-            frontier.push_back(first);
-            for (size_t j = begin; j < frontier.size(); ++j) {  // only this polygon's triangles
-                for (int k = 0; k < 3; ++k) {
-                    const int32_t h = 3 * frontier[j] + k, o = halfedges.twin[h];
-                    if (o < 0 || visited[o / 3] ||
-                        !joins_polygon(surface, 3 * triangles[frontier[j]] + k))
-                        continue;
-                    visited[o / 3] = 1;
-                    crossed[h] = crossed[o] = 1;
-                    frontier.push_back(o / 3);
-                }
-            }
-        };
-        enter(0);
-        for (size_t i = 0; i < frontier.size(); ++i) {
-            for (int k = 0; k < 3; ++k) {
-                const int32_t h = 3 * frontier[i] + k, o = halfedges.twin[h];
-                if (o < 0 || visited[o / 3]) continue;
-                crossed[h] = crossed[o] = 1;
-                enter(o / 3);
-            }
-        }
-        if (frontier.size() != triangles.size()) return false;  // not connected
-        // Prune: drop candidate edges with an end that is neither on the boundary nor touched
-        // by another candidate, until none is left dangling.
-        const int32_t n = disk.mesh.vertex_count();
-        std::vector<int32_t> degree(n, 0);
-        std::vector<char> boundary(n, 0), cut(corners, 0);
-        for (int32_t h = 0; h < corners; ++h) {
-            const int32_t a = halfedge_origin(disk.mesh, h), b = halfedge_target(disk.mesh, h);
-            if (halfedges.twin[h] < 0) {
-                boundary[a] = boundary[b] = 1;
-            } else if (!crossed[h] && h < halfedges.twin[h]) {
-                cut[h] = 1;
-                ++degree[a];
-                ++degree[b];
-            }
-        }
-        std::vector<std::vector<int32_t>> incident(n);
-        for (int32_t h = 0; h < corners; ++h) {
-            if (!cut[h]) continue;
-            incident[halfedge_origin(disk.mesh, h)].push_back(h);
-            incident[halfedge_target(disk.mesh, h)].push_back(h);
-        }
-        std::vector<int32_t> dangling;
-        for (int32_t v = 0; v < n; ++v) {
-            if (degree[v] == 1 && !boundary[v]) dangling.push_back(v);
-        }
-        while (!dangling.empty()) {
-            const int32_t v = dangling.back();
-            dangling.pop_back();
-            if (degree[v] != 1 || boundary[v]) continue;
-            for (int32_t h : incident[v]) {
-                if (!cut[h]) continue;
-                cut[h] = 0;
-                const int32_t a = halfedge_origin(disk.mesh, h), b = halfedge_target(disk.mesh, h);
-                --degree[a];
-                --degree[b];
-                const int32_t other = a == v ? b : a;
-                if (degree[other] == 1 && !boundary[other]) dangling.push_back(other);
-            }
-        }
-        for (int32_t h = 0; h < corners; ++h) {
-            if (cut[h]) {
-                const int32_t o = halfedges.twin[h];
-                halfedges.twin[h] = halfedges.twin[o] = -1;
-            }
-        }
+        std::vector<char> crossed;
+        if (!spanning_tree_crossings(surface, triangles, halfedges.twin, crossed)) return false;  // not connected
+        cut_along_tree_complement(disk.mesh, crossed, halfedges.twin);
         build_vertices(surface, triangles, halfedges.twin, disk);
         if (!is_disk(disk, halfedges, loops)) return false;
     }
