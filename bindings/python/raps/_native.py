@@ -208,11 +208,14 @@ RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
 #   scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
 #   triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
 #   raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
-#   area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
-#   stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
-#   used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
-#   chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
-#   islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
+#   area gets no texels (its uvs all become one point, as degenerate triangles do). Triangle
+#   groups and seam edges split islands as they split mapped charts: no chart holds two
+#   groups, and no two triangles join across a seam edge (a seam path that ends inside an
+#   island leaves it one chart, its uvs as given). Hard edges, stretch limits and
+#   RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not used. The output is one vertex per distinct
+#   (input vertex, chart, uv) and raps_stats.adaptive_solves is 0; the run enters no
+#   INITIAL_MAP phase (the islands are found in SEGMENT). Errors: UV_COUNT,
+#   DEGENERATE_UV_CHART. Default 0.
 RAPS_PARAM_ATLAS_REPACK = 47
 #   int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
 #   or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
