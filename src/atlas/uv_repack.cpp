@@ -54,9 +54,9 @@ std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<in
             const Eigen::Vector2d& ua = mesh.corner_uv[3 * static_cast<size_t>(t) + k];
             const Eigen::Vector2d& ub = mesh.corner_uv[3 * static_cast<size_t>(t) + l];
             const int32_t lo = std::min(a, b);
-            const EdgeSide side =
-                a < b ? EdgeSide{b, ua.x(), ua.y(), ub.x(), ub.y(), t, k, head[lo]}
-                      : EdgeSide{a, ub.x(), ub.y(), ua.x(), ua.y(), t, k, head[lo]};
+            const EdgeSide side = a < b
+                                      ? EdgeSide{b, ua.x(), ua.y(), ub.x(), ub.y(), t, k, head[lo]}
+                                      : EdgeSide{a, ub.x(), ub.y(), ua.x(), ua.y(), t, k, head[lo]};
             int32_t found = head[lo];
             while (found >= 0 && !sides[found].same_edge(side)) found = sides[found].next;
             if (found >= 0 && seams.any() &&
