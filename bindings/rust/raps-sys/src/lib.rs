@@ -229,14 +229,15 @@ pub const RAPS_PARAM_ATLAS_REPACK: i32 = 47;
 /// own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
 /// chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
 /// RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
-/// texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
-/// that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
-/// seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
-/// of its own, each then stacked on its original. A copy drawn mirrored (a transform with
-/// det < 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
-/// counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
-/// stack. A lightmap needs every chart its own texels: leave this off for one. Default
-/// NONE.
+/// texel rectangle it has. Charts are not cut alike on turned copies, nor mesh by mesh in a
+/// scene, so a connected piece of a mesh that repeats an earlier piece, in the same mesh or
+/// an earlier one (the same triangles over its vertices numbered by first use, the same
+/// groups and seam edges, and vertices congruent as above, turned by any angle) takes copies
+/// of that piece's charts instead of its own, each then stacked on its original. A copy
+/// drawn mirrored (a transform with det < 0) is a mirror: it stacks only with
+/// RAPS_STACK_MIRRORED. raps_stats.utilization counts each shared place once. With
+/// RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh stack. A lightmap needs every chart
+/// its own texels: leave this off for one. Default NONE.
 pub const RAPS_PARAM_ATLAS_STACK: i32 = 48;
 /// float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
 /// farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
