@@ -145,7 +145,7 @@ Orientation orientation_of(const std::vector<Eigen::Vector2d>& uv, const Eigen::
 // Small charts fill holes whichever way they are turned; they keep four turns, which bounds
 // the search for thousands of charts. Measured (docs/bench-scene.md): with the finer hole
 // filling of skyline_packing.cpp, the ten-mesh scene of issue 23 0.691 -> 0.720, the mean of
-// the 16 shared meshes alone 0.682 -> 0.701; 4 ways instead of 6, or 16 charts instead of 32,
+// the 16 shared meshes alone 0.682 -> 0.702; 4 ways instead of 6, or 16 charts instead of 32,
 // gave 0.70 to 0.71 on the scene.
 constexpr int kOrientations = 6;
 constexpr size_t kTurnedCharts = 32;
