@@ -4,21 +4,23 @@
 // other tool's figures are printed.
 //
 //   raps-bench-atlas [--data DIR] [--runs N] [--threads N] [--resolution N] [--padding N]
-//                    [--mesh FILE] [--phases]
+//                    [--mesh FILE] [--phases] [--subdivide K] [--scan TRIANGLES]
 // --mesh runs only that mesh (fandisk.obj, say: for profiling); --phases adds, after the table,
-// each mesh's median time per phase.
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
+// each mesh's median time per phase; --subdivide splits every triangle 1-to-4 K times first
+// (the same surface with 4^K times the triangles: how the time grows with the size); --scan adds
+// a generated scan-like mesh of about that many triangles (its row is "scan", --mesh scan runs it
+// alone): a height field of random bumps over the unit square with noise on every vertex, random
+// diagonals and three holes, the way photogrammetry and range scans come out (seed 20, fixed).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "mesh_io.h"
 #include "parameter_text.h"
 #include "raps.h"
@@ -33,6 +35,64 @@ const char* const kMeshes[] = {
     "rocker-arm.obj", "spot.obj",        "suzanne.obj",       "teapot.obj",
 };
 
+// Uniform in [0, 1) from the generator's raw bits (std::uniform_real_distribution differs
+// between standard libraries; this does not).
+double uniform(std::mt19937_64& random) { return static_cast<double>(random() >> 11) * 0x1p-53; }
+
+// The scan-like mesh described above, about `count` triangles.
+raps_bench::TriangleMesh scan_like_mesh(int64_t count) {
+    std::mt19937_64 random(20);
+    const int n = std::max(4, static_cast<int>(std::sqrt(static_cast<double>(count) / 2.0)));
+    const double h = 1.0 / n;
+    struct Bump {
+        double x, y, height, width;
+    };
+    std::vector<Bump> bumps(12);
+    for (Bump& b : bumps) {
+        b = {uniform(random), uniform(random), 0.4 * (uniform(random) - 0.3),
+             0.05 + 0.2 * uniform(random)};
+    }
+    raps_bench::TriangleMesh mesh;
+    for (int j = 0; j <= n; ++j) {
+        for (int i = 0; i <= n; ++i) {
+            const double x = (i + 0.3 * (uniform(random) - 0.5)) * h;
+            const double y = (j + 0.3 * (uniform(random) - 0.5)) * h;
+            double z = 0.15 * h * (uniform(random) - 0.5);
+            for (const Bump& b : bumps) {
+                const double d2 = (x - b.x) * (x - b.x) + (y - b.y) * (y - b.y);
+                z += b.height * std::exp(-d2 / (b.width * b.width));
+            }
+            mesh.positions.insert(mesh.positions.end(), {x, y, z});
+        }
+    }
+    double holes[3][3];  // centre x, y and radius
+    for (auto& hole : holes) {
+        hole[0] = uniform(random);
+        hole[1] = uniform(random);
+        hole[2] = 0.02 + 0.03 * uniform(random);
+    }
+    auto in_hole = [&](int i, int j) {
+        for (const auto& hole : holes) {
+            const double dx = (i + 0.5) * h - hole[0], dy = (j + 0.5) * h - hole[1];
+            if (dx * dx + dy * dy < hole[2] * hole[2]) return true;
+        }
+        return false;
+    };
+    std::vector<uint32_t>& triangles = mesh.triangles;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            const bool flip = uniform(random) < 0.5;
+            if (in_hole(i, j)) continue;
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + (n + 1), d = c + 1;
+            if (flip)
+                triangles.insert(triangles.end(), {a, b, d, a, d, c});
+            else
+                triangles.insert(triangles.end(), {a, b, c, b, d, c});
+        }
+    }
+    return mesh;
+}
+
 struct Sample {
     double total_ms;
     double phase_ms[RAPS_PHASE_COUNT];
@@ -41,11 +101,11 @@ struct Sample {
 };
 
 struct Options {
-    int threads = 0, resolution = 1024, padding = 1;
+    int threads = 0, resolution = 1024, padding = 1, subdivide = 0;
+    int64_t scan = 0;  // triangles of the scan-like mesh, 0: none
 };
 
-Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uint32_t>& triangles,
-                const Options& options) {
+Sample run_once(const raps_bench::TriangleMesh& input, const Options& options) {
     Sample sample{};
     raps_mesh* mesh = nullptr;
     raps_settings* settings = nullptr;
@@ -58,8 +118,8 @@ Sample run_once(const raps_samples::PolygonMesh& polygons, const std::vector<uin
     raps_settings_set_int(settings, RAPS_PARAM_ATLAS_RESOLUTION, options.resolution);
     raps_settings_set_int(settings, RAPS_PARAM_ATLAS_PADDING, options.padding);
     const auto start = std::chrono::steady_clock::now();
-    raps_mesh_set_positions_f64(mesh, polygons.positions.data(), polygons.vertex_count(), 0);
-    raps_mesh_set_indices_u32(mesh, triangles.data(), triangles.size());
+    raps_mesh_set_positions_f64(mesh, input.positions.data(), input.positions.size() / 3, 0);
+    raps_mesh_set_indices_u32(mesh, input.triangles.data(), input.triangles.size());
     if (raps_parameterize(mesh, settings, result) == RAPS_OK) {
         sample.total_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -96,7 +156,8 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) {
             std::fprintf(stderr,
                          "usage: raps-bench-atlas [--data DIR] [--runs N] [--threads N] "
-                         "[--resolution N] [--padding N] [--mesh FILE] [--phases]\n");
+                         "[--resolution N] [--padding N] [--mesh FILE] [--phases] "
+                         "[--subdivide K] [--scan TRIANGLES]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -112,71 +173,63 @@ int main(int argc, char** argv) {
             options.padding = std::atoi(value.c_str());
         else if (arg == "--mesh")
             only = value;
+        else if (arg == "--scan")
+            options.scan = std::max(0LL, std::atoll(value.c_str()));
+        else if (arg == "--subdivide")
+            options.subdivide = std::max(0, std::atoi(value.c_str()));
         else {
             std::fprintf(stderr, "raps-bench-atlas: unknown option %s\n", arg.c_str());
             return 2;
         }
     }
     std::printf(
-        "raps %s atlas, resolution %d, padding %d, threads %d (0 = all); median of %d runs\n\n",
-        raps_version_string(), options.resolution, options.padding, options.threads, runs);
+        "raps %s atlas, resolution %d, padding %d, threads %d (0 = all), subdivided %d times; "
+        "median of %d runs\n\n",
+        raps_version_string(), options.resolution, options.padding, options.threads,
+        options.subdivide, runs);
     std::printf(
         "| mesh | triangles | ms | charts | coverage | L2 | Linf | area mean abs log | "
         "angle mean deg | flips | peak MB |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const char* file : kMeshes) {
-        if (!only.empty() && only != file) continue;
-        int fds[2];
-        if (pipe(fds) != 0) return 1;
-        const pid_t pid = fork();
-        if (pid == 0) {
-            close(fds[0]);
-            try {
-                const raps_samples::PolygonMesh mesh =
-                    raps_samples::read_mesh(data + "/meshes/" + file);
-                const std::vector<uint32_t> triangles = mesh.triangles();
-                for (int r = 0; r < runs; ++r) {
-                    const Sample s = run_once(mesh, triangles, options);
-                    if (write(fds[1], &s, sizeof(s)) != static_cast<ssize_t>(sizeof(s))) _exit(3);
-                }
-            } catch (const std::exception& e) {
-                std::fprintf(stderr, "raps-bench-atlas: %s\n", e.what());
-                _exit(2);
+    std::vector<std::string> names(std::begin(kMeshes), std::end(kMeshes));
+    if (options.scan > 0) names.push_back("scan");
+    for (const std::string& name : names) {
+        const char* file = name.c_str();
+        if (!only.empty() && only != name) continue;
+        const auto child = raps_bench::run_in_child<Sample>("raps-bench-atlas", [&](auto emit) {
+            raps_bench::TriangleMesh mesh;
+            if (name == "scan") {
+                mesh = scan_like_mesh(options.scan);
+                for (int k = 0; k < options.subdivide; ++k)
+                    raps_samples::subdivide_midpoint(mesh.positions, mesh.triangles);
+            } else {
+                mesh = raps_bench::load_triangles(data + "/meshes/" + file, options.subdivide);
             }
-            _exit(0);
-        }
-        close(fds[1]);
-        std::vector<Sample> samples;
-        Sample s;
-        while (read(fds[0], &s, sizeof(s)) == static_cast<ssize_t>(sizeof(s))) samples.push_back(s);
-        close(fds[0]);
-        int status = 0;
-        struct rusage usage;
-        wait4(pid, &status, 0, &usage);
+            for (int r = 0; r < runs; ++r) emit(run_once(mesh, options));
+        });
+        const std::vector<Sample>& samples = child.samples;
         if (samples.empty() || !samples[0].ok) {
             std::printf("| %s | failed |\n", file);
             continue;
         }
         std::vector<double> times;
         for (const Sample& x : samples) times.push_back(x.total_ms);
-        std::sort(times.begin(), times.end());
-        const double ms = times[times.size() / 2];
+        const double ms = raps_bench::median(times);
         const raps_stats& st = samples[0].stats;
         std::printf(
             "| %s | %llu | %.0f | %llu | %.3f | %.4f | %.2f | %.3f | %.2f | %llu | %.0f |\n", file,
             static_cast<unsigned long long>(st.triangle_count), ms,
             static_cast<unsigned long long>(st.chart_count), st.utilization, st.stretch_l2,
             st.stretch_linf, st.area_log_mean, st.angle_mean_deg,
-            static_cast<unsigned long long>(st.flipped_triangles), usage.ru_maxrss / 1024.0);
+            static_cast<unsigned long long>(st.flipped_triangles), child.peak_mb);
         std::fflush(stdout);
         if (phases) {
             phase_lines += std::string("| ") + file;
             for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p) {
                 std::vector<double> phase;
                 for (const Sample& x : samples) phase.push_back(x.phase_ms[p]);
-                std::sort(phase.begin(), phase.end());
                 char cell[64];
-                std::snprintf(cell, sizeof(cell), " | %.1f", phase[phase.size() / 2]);
+                std::snprintf(cell, sizeof(cell), " | %.1f", raps_bench::median(phase));
                 phase_lines += cell;
             }
             phase_lines += " |\n";

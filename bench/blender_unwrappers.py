@@ -28,6 +28,7 @@ sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
                                 "blender"))
 import loop_triangle_obj  # noqa: E402
+from mesh_file import read_mesh_file  # noqa: E402,F401  (also this module's, for others)
 
 
 def _arguments():
@@ -38,37 +39,6 @@ def _arguments():
     parser.add_argument("--python3", default="/usr/bin/python3")
     parser.add_argument("--lightmap-pack-max-faces", type=int, default=7000)
     return parser.parse_args(argv)
-
-
-def read_mesh_file(path):
-    """Positions and polygons of an OBJ (v, f) or OFF file."""
-    verts, faces = [], []
-    if path.endswith(".off"):
-        tokens = []
-        with open(path) as stream:
-            for line in stream:
-                tokens += line.split("#")[0].split()
-        nv, nf = int(tokens[1]), int(tokens[2])
-        at = 4
-        for _ in range(nv):
-            verts.append(tuple(float(t) for t in tokens[at:at + 3]))
-            at += 3
-        for _ in range(nf):
-            n = int(tokens[at])
-            faces.append(tuple(int(t) for t in tokens[at + 1:at + 1 + n]))
-            at += 1 + n
-        return verts, faces
-    with open(path) as stream:
-        for line in stream:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "v":
-                verts.append(tuple(float(t) for t in parts[1:4]))
-            elif parts[0] == "f":
-                ids = [int(p.split("/")[0]) for p in parts[1:]]
-                faces.append(tuple(i - 1 if i > 0 else len(verts) + i for i in ids))
-    return verts, faces
 
 
 def fresh_object(base, name):
@@ -197,4 +167,5 @@ def print_tables(rows, args):
             _fmt(r["area_mean_abs_log"])))
 
 
-main()
+if __name__ == "__main__":  # also a module: bench/blender_addon_overhead.py
+    main()

@@ -10,9 +10,6 @@
 // resident set (VmHWM) minus the resident set just before the call. Printed per case: triangles,
 // that peak in MB, bytes per triangle, and the library's estimate for comparison. --resolution
 // sets the atlas resolution (default 1024); --only measures one domain (disk, sphere, atlas).
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -23,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "mesh_io.h"
+#include "bench_support.h"
 #include "raps.h"
 
 namespace {
@@ -75,10 +72,9 @@ long long smallest_passing_cap(const raps_mesh* mesh, int32_t domain, int64_t re
 }
 
 Report measure(const std::string& file, int subdivisions, int32_t domain, int64_t resolution) {
-    const raps_samples::PolygonMesh polygons = raps_samples::read_mesh(file);
-    std::vector<double> positions = polygons.positions;
-    std::vector<uint32_t> triangles = polygons.triangles();
-    for (int s = 0; s < subdivisions; ++s) raps_samples::subdivide_midpoint(positions, triangles);
+    raps_bench::TriangleMesh input = raps_bench::load_triangles(file, subdivisions);
+    std::vector<double>& positions = input.positions;
+    std::vector<uint32_t>& triangles = input.triangles;
     raps_mesh* mesh = nullptr;
     raps_mesh_create(&mesh);
     raps_mesh_set_positions_f64(mesh, positions.data(), positions.size() / 3, 0);
@@ -109,30 +105,11 @@ Report measure(const std::string& file, int subdivisions, int32_t domain, int64_
 
 Report measure_in_child(const std::string& file, int subdivisions, int32_t domain,
                         int64_t resolution) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        close(fds[0]);
-        try {
-            const Report report = measure(file, subdivisions, domain, resolution);
-            if (write(fds[1], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
-                _exit(3);
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "raps-bench-memory: %s\n", e.what());
-            _exit(2);
-        }
-        _exit(0);
-    }
-    close(fds[1]);
-    Report report{};
-    const bool got = read(fds[0], &report, sizeof(report)) == static_cast<ssize_t>(sizeof(report));
-    close(fds[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    if (!got) throw std::runtime_error("a child failed on " + file);
-    return report;
+    const auto child = raps_bench::run_in_child<Report>("raps-bench-memory", [&](auto emit) {
+        emit(measure(file, subdivisions, domain, resolution));
+    });
+    if (child.samples.empty()) throw std::runtime_error("a child failed on " + file);
+    return child.samples[0];
 }
 
 }  // namespace

@@ -5,23 +5,22 @@
 // A cancel waits at most the longest gap of the run; the header promises about 1 % of a phase.
 //
 //   raps-bench-progress [--data DIR] [--subdivide K] [--threads N] [--only disk|atlas|sphere]
+//                       [--disk-mesh FILE] [--gaps-over MS]
 //
 // Cases: disk and atlas on face.obj subdivided K times (default 2: 827K triangles; 3: 3.3M),
-// sphere on bunny.off subdivided K + 1 times (K = 2: 444K triangles). Each case runs once, in its
+// sphere on bunny.off subdivided K + 1 times (K = 2: 444K triangles); --disk-mesh another shared
+// disk for the disk case (camelhead.off with K = 4: 5.8M triangles). Each case runs once, in its
 // own child process (peak MB is that process's).
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "mesh_io.h"
+#include "bench_support.h"
 #include "parameter_text.h"
 #include "raps.h"
 
@@ -31,6 +30,7 @@ using Clock = std::chrono::steady_clock;
 
 struct Call {
     Clock::time_point at;
+    double cpu_ms;  // the calling thread's CPU time: the gaps without the time it was not scheduled
     raps_phase phase;
     double fraction;
 };
@@ -48,17 +48,24 @@ struct Report {
     int ok = 0;
     uint64_t triangles = 0;
     double total_ms = 0, after_last_call_ms = 0;
+    double longest_cpu_gap_ms = -1;  // between two calls, with --threads 1 only (-1: not measured)
     PhaseFigures phase[RAPS_PHASE_COUNT];
 };
 
 int32_t record_call(void* user, raps_phase phase, double fraction) {
-    static_cast<std::vector<Call>*>(user)->push_back({Clock::now(), phase, fraction});
+    timespec cpu{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu);
+    static_cast<std::vector<Call>*>(user)->push_back(
+        {Clock::now(), cpu.tv_sec * 1e3 + cpu.tv_nsec * 1e-6, phase, fraction});
     return 1;
 }
 
 // Per phase figures from the calls of one run that began at `start`. A phase that ends (1) and
 // starts again (0) begins a new pass: its fractions are compared within a pass only.
-void summarise(const std::vector<Call>& calls, Clock::time_point start, Report& report) {
+// Gaps longer than gaps_over_ms (0: none) are also listed on stderr, each with its phase and the
+// fractions around it, to find the step a cancel waits for.
+void summarise(const std::vector<Call>& calls, Clock::time_point start, bool one_thread,
+               double gaps_over_ms, Report& report) {
     double last[RAPS_PHASE_COUNT];
     std::fill(last, last + RAPS_PHASE_COUNT, -1.0);
     Clock::time_point previous = start;
@@ -66,6 +73,14 @@ void summarise(const std::vector<Call>& calls, Clock::time_point start, Report& 
         PhaseFigures& p = report.phase[c.phase];
         ++p.calls;
         const double gap = std::chrono::duration<double, std::milli>(c.at - previous).count();
+        const double cpu_gap =
+            !one_thread || &c == &calls.front() ? 0.0 : c.cpu_ms - (&c - 1)->cpu_ms;
+        if (one_thread) report.longest_cpu_gap_ms = std::max(report.longest_cpu_gap_ms, cpu_gap);
+        if (gaps_over_ms > 0 && (one_thread ? cpu_gap : gap) > gaps_over_ms) {
+            std::fprintf(stderr, "gap %.1f ms (CPU %.1f ms) before %s %.6f (previous call %.6f)\n",
+                         gap, cpu_gap, raps_samples::phase_name(c.phase), c.fraction,
+                         (&c - 1)->fraction);
+        }
         if (gap > p.longest_gap_ms) {
             p.longest_gap_ms = gap;
             p.gap_from = &c == &calls.front() ? 0.0 : (&c - 1)->fraction;
@@ -80,7 +95,7 @@ void summarise(const std::vector<Call>& calls, Clock::time_point start, Report& 
 }
 
 Report run_case(const std::vector<double>& positions, const std::vector<uint32_t>& triangles,
-                int32_t domain, int threads) {
+                int32_t domain, int threads, double gaps_over_ms) {
     Report report;
     raps_mesh* mesh = nullptr;
     raps_settings* settings = nullptr;
@@ -106,7 +121,9 @@ Report run_case(const std::vector<double>& positions, const std::vector<uint32_t
             report.after_last_call_ms =
                 std::chrono::duration<double, std::milli>(end - calls.back().at).count();
         }
-        summarise(calls, start, report);
+        // The calling thread's CPU time measures the work between two calls only when one
+        // thread makes all of them (and does all the work).
+        summarise(calls, start, threads == 1, gaps_over_ms, report);
     } else {
         std::fprintf(stderr, "raps-bench-progress: %s: %s\n", raps_status_string(status),
                      raps_result_last_error(result));
@@ -125,38 +142,14 @@ struct Case {
 };
 
 // Runs the case in a child process; the report and the child's peak resident MB.
-std::pair<Report, double> run_in_child(const std::string& data, const Case& c, int threads) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        close(fds[0]);
-        try {
-            const raps_samples::PolygonMesh mesh =
-                raps_samples::read_mesh(data + "/meshes/" + c.file);
-            std::vector<double> positions = mesh.positions;
-            std::vector<uint32_t> triangles = mesh.triangles();
-            for (int s = 0; s < c.subdivisions; ++s)
-                raps_samples::subdivide_midpoint(positions, triangles);
-            const Report report = run_case(positions, triangles, c.domain, threads);
-            if (write(fds[1], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
-                _exit(3);
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "raps-bench-progress: %s\n", e.what());
-            _exit(2);
-        }
-        _exit(0);
-    }
-    close(fds[1]);
-    Report report;
-    if (read(fds[0], &report, sizeof(report)) != static_cast<ssize_t>(sizeof(report)))
-        report.ok = 0;
-    close(fds[0]);
-    int status = 0;
-    struct rusage usage;
-    wait4(pid, &status, 0, &usage);
-    return {report, usage.ru_maxrss / 1024.0};
+std::pair<Report, double> run_in_child(const std::string& data, const Case& c, int threads,
+                                       double gaps_over_ms) {
+    const auto child = raps_bench::run_in_child<Report>("raps-bench-progress", [&](auto emit) {
+        const raps_bench::TriangleMesh mesh =
+            raps_bench::load_triangles(data + "/meshes/" + c.file, c.subdivisions);
+        emit(run_case(mesh.positions, mesh.triangles, c.domain, threads, gaps_over_ms));
+    });
+    return {child.samples.empty() ? Report{} : child.samples[0], child.peak_mb};
 }
 
 void print_case(const Case& c, const Report& r, double peak_mb) {
@@ -166,9 +159,13 @@ void print_case(const Case& c, const Report& r, double peak_mb) {
     }
     double worst = r.after_last_call_ms;
     for (const PhaseFigures& p : r.phase) worst = std::max(worst, p.longest_gap_ms);
-    std::printf("| %s | %s/%d | %llu | %.0f | %.0f | **%.1f**", c.name, c.file,
+    std::printf("| %s | %s/%d | %llu | %.0f | %.0f | **%.1f** | ", c.name, c.file,
                 1 << (2 * c.subdivisions), static_cast<unsigned long long>(r.triangles), r.total_ms,
                 peak_mb, worst);
+    if (r.longest_cpu_gap_ms >= 0)
+        std::printf("%.1f", r.longest_cpu_gap_ms);
+    else
+        std::printf("-");
     for (const PhaseFigures& p : r.phase) {
         if (p.calls == 0) {
             std::printf(" | -");
@@ -184,14 +181,15 @@ void print_case(const Case& c, const Report& r, double peak_mb) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string data = RAPS_SHARED_DATA_DIR, only;
+    std::string data = RAPS_SHARED_DATA_DIR, only, disk_mesh = "face.obj";
     int subdivisions = 2, threads = 0;
+    double gaps_over_ms = 0;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (i + 1 >= argc) {
             std::fprintf(stderr,
                          "usage: raps-bench-progress [--data DIR] [--subdivide K] [--threads N] "
-                         "[--only disk|atlas|sphere]\n");
+                         "[--only disk|atlas|sphere] [--disk-mesh FILE] [--gaps-over MS]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -203,13 +201,17 @@ int main(int argc, char** argv) {
             threads = std::atoi(value.c_str());
         else if (arg == "--only")
             only = value;
+        else if (arg == "--disk-mesh")
+            disk_mesh = value;
+        else if (arg == "--gaps-over")
+            gaps_over_ms = std::atof(value.c_str());
         else {
             std::fprintf(stderr, "raps-bench-progress: unknown option %s\n", arg.c_str());
             return 2;
         }
     }
     const Case cases[] = {
-        {"disk", RAPS_DOMAIN_DISK, "face.obj", subdivisions},
+        {"disk", RAPS_DOMAIN_DISK, disk_mesh.c_str(), subdivisions},
         {"atlas", RAPS_DOMAIN_ATLAS, "face.obj", subdivisions},
         {"sphere", RAPS_DOMAIN_SPHERE, "bunny.off", subdivisions + 1},
     };
@@ -218,16 +220,19 @@ int main(int argc, char** argv) {
     std::printf(
         "Per phase: progress calls / longest gap in ms before one of them (the fractions "
         "of the calls before and after it). Worst: the "
-        "longest gap of the run, the time after the last call included.\n\n");
-    std::printf("| domain | mesh | triangles | ms | peak MB | worst gap ms");
+        "longest gap of the run, the time after the last call included. CPU gap: the longest "
+        "CPU time of the reporting thread between two calls (the work, without the time other "
+        "processes had the core), measured with --threads 1 only, where one thread does all "
+        "the work.\n\n");
+    std::printf("| domain | mesh | triangles | ms | peak MB | worst gap ms | CPU gap ms");
     for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p)
         std::printf(" | %s", raps_samples::phase_name(p));
-    std::printf(" | after last call ms |\n|---|---|---:|---:|---:|---:");
+    std::printf(" | after last call ms |\n|---|---|---:|---:|---:|---:|---:");
     for (raps_phase p = 0; p < RAPS_PHASE_COUNT; ++p) std::printf("|---:");
     std::printf("|---:|\n");
     for (const Case& c : cases) {
         if (!only.empty() && only != c.name) continue;
-        const std::pair<Report, double> r = run_in_child(data, c, threads);
+        const std::pair<Report, double> r = run_in_child(data, c, threads, gaps_over_ms);
         print_case(c, r.first, r.second);
     }
     return 0;

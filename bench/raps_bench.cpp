@@ -6,37 +6,42 @@
 //   raps-bench --sphere [--data DIR] [--runs N] [--large-runs N] [--subdivide K] [--threads N]
 //
 // --sphere times the sphere domain instead (robust method, area monitor, alpha 1) on the shared
-// closed genus-0 meshes and on bunny.off and cow.off subdivided K times (default 2: 111K and 88K
-// triangles): sweeps,
-// time per phase, spherical area distortion of the initial map (a run with no monitor) and of
-// the adapted one, folded triangles, peak memory, and the speed-up from 1 thread to N (default:
-// all cores).
+// closed genus-0 meshes, on a capsule of aspect 50 and a dumbbell with a neck of 0.05 built here
+// (built_shapes.h), and on bunny.off and cow.off subdivided K times (default 2: 111K and 88K
+// triangles): sweeps, time per phase, spherical area and angle distortion of the initial map (a
+// run with no monitor) and of the adapted one, the adapted map's centre of mass, folded
+// triangles, peak memory, and the speed-up from 1 thread to N (default: all cores).
 //
 // Every case runs in its own child process (fork), so the peak resident memory reported is that
 // case's alone. Numbers are printed, never judged: speed targets live here, not in tests.
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <stdexcept>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bench_support.h"
+#include "built_shapes.h"
 #include "mesh_io.h"
 #include "raps.h"
 
 namespace {
 
+using raps_bench::median;
+
 struct Case {
     std::string name;
     std::string file;
     int subdivisions;
+    // A mesh built here instead of a file (built_shapes.h), or none.
+    std::function<void(std::vector<double>&, std::vector<uint32_t>&)> build = nullptr;
 };
 
 // What one child process reports back through its pipe.
@@ -44,6 +49,8 @@ struct Sample {
     double phase_ms[RAPS_PHASE_COUNT];
     double total_ms;
     double area_log_mean;
+    double angle_mean_deg;
+    double centre;  // sphere: the 3D-area-weighted centre of mass of the points, from the origin
     uint64_t flipped;
     uint64_t triangles;
     uint64_t sweeps;
@@ -57,6 +64,30 @@ struct Config {
     int32_t monitor = RAPS_MONITOR_AREA;
     int32_t threads = 0;
 };
+
+// Distance from the origin of the 3D-area-weighted centre of mass of a sphere result's points.
+double sphere_centre(const std::vector<double>& p, const std::vector<uint32_t>& triangles,
+                     const raps_result* result) {
+    const size_t n = p.size() / 3;
+    std::vector<double> u(3 * n);
+    if (raps_result_copy_sphere_points_f64(result, u.data(), n, 0) != RAPS_OK) return -1.0;
+    double c[3] = {0, 0, 0}, total = 0;
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const double* a = &p[3 * triangles[t]];
+        const double* b = &p[3 * triangles[t + 1]];
+        const double* d = &p[3 * triangles[t + 2]];
+        const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double f[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const double area = 0.5 * std::sqrt(std::pow(e[1] * f[2] - e[2] * f[1], 2) +
+                                            std::pow(e[2] * f[0] - e[0] * f[2], 2) +
+                                            std::pow(e[0] * f[1] - e[1] * f[0], 2));
+        total += area;
+        for (int k = 0; k < 3; ++k) {
+            for (int q = 0; q < 3; ++q) c[q] += area / 3.0 * u[3 * triangles[t + k] + q];
+        }
+    }
+    return std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / total;
+}
 
 Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t>& triangles,
                 const Config& config) {
@@ -83,6 +114,9 @@ Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t
         for (int p = 0; p < RAPS_PHASE_COUNT; ++p)
             sample.phase_ms[p] = raps_result_phase_ms(result, p);
         sample.area_log_mean = stats.area_log_mean;
+        sample.angle_mean_deg = stats.angle_mean_deg;
+        if (config.domain == RAPS_DOMAIN_SPHERE)
+            sample.centre = sphere_centre(positions, triangles, result);
         sample.flipped = stats.flipped_triangles;
         sample.triangles = stats.triangle_count;
         sample.sweeps = stats.relaxation_sweeps;
@@ -97,49 +131,21 @@ Sample run_once(const std::vector<double>& positions, const std::vector<uint32_t
     return sample;
 }
 
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 // Runs `runs` samples in one child process (after loading the mesh there, so the parent stays
 // small), returning them and the child's peak resident set in MB.
 std::pair<std::vector<Sample>, double> run_case(const Case& c, int runs, const Config& config) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        close(fds[0]);
-        try {
-            const raps_samples::PolygonMesh mesh = raps_samples::read_mesh(c.file);
-            std::vector<double> positions = mesh.positions;
-            std::vector<uint32_t> triangles = mesh.triangles();
+    auto child = raps_bench::run_in_child<Sample>("raps-bench", [&](auto emit) {
+        raps_bench::TriangleMesh mesh;
+        if (c.build) {
+            c.build(mesh.positions, mesh.triangles);
             for (int s = 0; s < c.subdivisions; ++s)
-                raps_samples::subdivide_midpoint(positions, triangles);
-            for (int r = 0; r < runs; ++r) {
-                const Sample sample = run_once(positions, triangles, config);
-                if (write(fds[1], &sample, sizeof(sample)) != static_cast<ssize_t>(sizeof(sample)))
-                    _exit(3);
-            }
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "raps-bench: %s\n", e.what());
-            _exit(2);
+                raps_samples::subdivide_midpoint(mesh.positions, mesh.triangles);
+        } else {
+            mesh = raps_bench::load_triangles(c.file, c.subdivisions);
         }
-        _exit(0);
-    }
-    close(fds[1]);
-    std::vector<Sample> samples;
-    Sample sample;
-    while (read(fds[0], &sample, sizeof(sample)) == static_cast<ssize_t>(sizeof(sample))) {
-        samples.push_back(sample);
-    }
-    close(fds[0]);
-    int status = 0;
-    struct rusage usage;
-    wait4(pid, &status, 0, &usage);
-    return {samples, usage.ru_maxrss / 1024.0};
+        for (int r = 0; r < runs; ++r) emit(run_once(mesh.positions, mesh.triangles, config));
+    });
+    return {std::move(child.samples), child.peak_mb};
 }
 
 // The sphere section: per closed genus-0 mesh, the initial map's distortion (one run with no
@@ -153,6 +159,16 @@ int run_sphere(const std::string& data, int runs, int large_runs, int subdivisio
                                {"fandisk", data + "/meshes/fandisk.obj", 0},
                                {"horse_quad", data + "/meshes/horse_quad.obj", 0},
                                {"spot", data + "/meshes/spot.obj", 0}};
+    // Issue 18's built shapes: a capsule whose ends a conformal map squeezes by e^-50, and a
+    // dumbbell with a thin neck.
+    cases.push_back(
+        {"capsule, aspect 50", "", 0, [](std::vector<double>& p, std::vector<uint32_t>& t) {
+             raps_bench::build_capsule(50.0, 24, p, t);
+         }});
+    cases.push_back(
+        {"dumbbell, neck 0.05", "", 0, [](std::vector<double>& p, std::vector<uint32_t>& t) {
+             raps_bench::build_dumbbell(0.05, 48, p, t);
+         }});
     if (subdivisions > 0) {
         // bunny, and cow with its long legs, each 1-to-4 subdivided `subdivisions` times.
         for (const char* name : {"bunny.off", "cow.off"}) {
@@ -169,8 +185,8 @@ int run_sphere(const std::string& data, int runs, int large_runs, int subdivisio
     std::printf(
         "| mesh | triangles | runs | sweeps | topology ms | initial map ms | adapt ms | "
         "total ms | total ms, 1 thread | speed-up | threads used | peak MB | area initial -> "
-        "adapted | flips |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+        "adapted | angle deg initial -> adapted | centre | flips |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|\n");
     for (const Case& c : cases) {
         const int n = c.subdivisions > 0 ? large_runs : runs;
         Config initial;
@@ -197,12 +213,13 @@ int run_sphere(const std::string& data, int runs, int large_runs, int subdivisio
         const double t = median(total), t1 = median(total_serial);
         std::printf(
             "| %s | %llu | %zu | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %llu | %.0f | "
-            "%.3f -> %.3f | %llu |\n",
+            "%.3f -> %.3f | %.2f -> %.2f | %.4f | %llu |\n",
             c.name.c_str(), static_cast<unsigned long long>(samples[0].triangles), samples.size(),
             static_cast<unsigned long long>(samples[0].sweeps), median(phase[RAPS_PHASE_TOPOLOGY]),
             median(phase[RAPS_PHASE_INITIAL_MAP]), median(phase[RAPS_PHASE_ADAPT]), t, t1, t1 / t,
             static_cast<unsigned long long>(samples[0].threads_used), peak_mb,
-            first.first[0].area_log_mean, samples[0].area_log_mean,
+            first.first[0].area_log_mean, samples[0].area_log_mean, first.first[0].angle_mean_deg,
+            samples[0].angle_mean_deg, samples[0].centre,
             static_cast<unsigned long long>(samples[0].flipped));
         std::fflush(stdout);
     }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "mesh_io.h"
 #include "raps.h"
 
@@ -60,8 +61,7 @@ Row measure(const std::vector<raps_mesh*>& meshes, raps_settings* settings, int 
             throw std::runtime_error("raps_parameterize_scene: " + message);
         }
     }
-    std::sort(ms.begin(), ms.end());
-    row.median_ms = ms[ms.size() / 2];
+    row.median_ms = raps_bench::median(ms);
     row.stats.struct_size = sizeof(row.stats);
     require(raps_result_get_stats(result, &row.stats), "raps_result_get_stats");
     double lo = 1e300, hi = 0;

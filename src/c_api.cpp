@@ -9,6 +9,7 @@
 #include <cstring>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -144,58 +145,104 @@ void require(bool condition, const char* message) {
     if (!condition) throw Error(ErrorCode::kInvalidArgument, message);
 }
 
-// The public parameters: name, type, inclusive bounds, default, and for enumerations the
-// allowed values (every integer in the bounds).
+// The public parameters: name, inclusive bounds (for an enumeration every integer in them is a
+// value) and the field of raps::Settings each reads and writes. A parameter's default is its
+// field's initial value (core/settings.h), stated there only.
+using raps::Settings;
+
+template <auto Field>
+int64_t read_int(const Settings& s) {
+    return static_cast<int64_t>(s.*Field);
+}
+
+template <auto Field>
+void write_int(Settings& s, int64_t v) {
+    s.*Field = static_cast<std::decay_t<decltype(s.*Field)>>(v);
+}
+
 struct ParamInfo {
     raps_param id;
     const char* name;
-    bool is_float;
-    double min, max, fallback;
+    double min, max;
+    int64_t (*get_int)(const Settings&);  // int parameters
+    void (*set_int)(Settings&, int64_t);
+    double Settings::*real;  // float parameters
+
+    bool is_float() const { return real != nullptr; }
+    double fallback() const {
+        return is_float() ? Settings{}.*real : static_cast<double>(get_int(Settings{}));
+    }
 };
 
+template <auto Field>
+constexpr ParamInfo int_param(raps_param id, const char* name, double min, double max) {
+    return {id, name, min, max, &read_int<Field>, &write_int<Field>, nullptr};
+}
+
+template <double Settings::*Field>
+constexpr ParamInfo float_param(raps_param id, const char* name, double min, double max) {
+    return {id, name, min, max, nullptr, nullptr, Field};
+}
+
 constexpr ParamInfo kParams[] = {
-    {RAPS_PARAM_DOMAIN, "domain", false, RAPS_DOMAIN_DISK, RAPS_DOMAIN_ATLAS, RAPS_DOMAIN_DISK},
-    {RAPS_PARAM_WEIGHTS, "weights", false, RAPS_WEIGHTS_MEAN_VALUE, RAPS_WEIGHTS_UNIFORM,
-     RAPS_WEIGHTS_MEAN_VALUE},
-    {RAPS_PARAM_MONITOR, "monitor", false, RAPS_MONITOR_NONE, RAPS_MONITOR_ANGLE,
-     RAPS_MONITOR_AREA},
-    {RAPS_PARAM_ALPHA, "alpha", true, 2.2250738585072014e-308, 100.0, 1.0},
-    {RAPS_PARAM_ITERATIONS, "iterations", false, 1, 100, 1},
-    {RAPS_PARAM_ITERATION_MODE, "iteration_mode", false, RAPS_ITERATION_ACCUMULATE,
-     RAPS_ITERATION_REAPPLY, RAPS_ITERATION_ACCUMULATE},
-    {RAPS_PARAM_BOUNDARY, "boundary", false, RAPS_BOUNDARY_CIRCLE, RAPS_BOUNDARY_SQUARE,
-     RAPS_BOUNDARY_CIRCLE},
-    {RAPS_PARAM_MAX_TRIANGLES, "max_triangles", false, 1, kMaxElements, kMaxElements},
-    {RAPS_PARAM_THREADS, "threads", false, 0, 1024, 0},
-    {RAPS_PARAM_SPHERE_METHOD, "sphere_method", false, RAPS_SPHERE_LITERAL, RAPS_SPHERE_ROBUST,
-     RAPS_SPHERE_ROBUST},
-    {RAPS_PARAM_SPHERE_UV, "sphere_uv", false, RAPS_SPHERE_UV_NONE, RAPS_SPHERE_UV_OCTAHEDRAL,
-     RAPS_SPHERE_UV_NONE},
-    {RAPS_PARAM_SPHERE_DAMPING, "sphere_damping", true, 2.2250738585072014e-308, 1.0, 1.0},
-    {RAPS_PARAM_SPHERE_TOLERANCE, "sphere_tolerance", true, 1e-12, 1.0, 1e-4},
-    {RAPS_PARAM_SPHERE_MAX_SWEEPS, "sphere_max_sweeps", false, 0, 10000000, 0},
-    {RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", false, 1, 100, 2},
-    {RAPS_PARAM_MAX_MEMORY_MB, "max_memory_mb", false, 0, kMaxElements, 0},
-    {RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", false, 16, 16384, 1024},
-    {RAPS_PARAM_ATLAS_PADDING, "atlas_padding", false, 0, 64, 1},
-    {RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", true, 0.0, 1.7976931348623157e308, 0.0},
-    {RAPS_PARAM_HARD_EDGE_ANGLE, "hard_edge_angle", true, 0.0, 180.0, 180.0},
-    {RAPS_PARAM_ATLAS_MAX_L2_STRETCH, "atlas_max_l2_stretch", true, 1.0, 10.0, 1.01},
-    {RAPS_PARAM_ATLAS_MAX_LINF_STRETCH, "atlas_max_linf_stretch", true, 1.0, 1000.0, 2.9},
-    {RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, "atlas_texels_per_unit", true, 0.0, 1e15, 0.0},
-    {RAPS_PARAM_ATLAS_MAX_WIDTH, "atlas_max_width", false, 16, 16384, 4096},
-    {RAPS_PARAM_ATLAS_MAX_HEIGHT, "atlas_max_height", false, 16, 16384, 4096},
-    {RAPS_PARAM_ATLAS_ROTATION, "atlas_rotation", false, RAPS_ROTATION_ANY, RAPS_ROTATION_NONE,
-     RAPS_ROTATION_ANY},
-    {RAPS_PARAM_ATLAS_MARGIN, "atlas_margin", false, 0, 1024, 0},
-    {RAPS_PARAM_ATLAS_BLOCK_ALIGN, "atlas_block_align", false, 0, 1, 0},
-    {RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page", false, 0, 1, 0},
-    {RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", false, 0, 1, 0},
-    {RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS, "atlas_keep_input_seams", false, 0, 1, 0},
-    {RAPS_PARAM_ATLAS_REPACK, "atlas_repack", false, 0, 1, 0},
-    {RAPS_PARAM_ATLAS_STACK, "atlas_stack", false, RAPS_STACK_NONE, RAPS_STACK_MIRRORED,
-     RAPS_STACK_NONE},
-    {RAPS_PARAM_ATLAS_STACK_TOLERANCE, "atlas_stack_tolerance", true, 0.0, 0.1, 1e-4},
+    int_param<&Settings::domain>(RAPS_PARAM_DOMAIN, "domain", RAPS_DOMAIN_DISK, RAPS_DOMAIN_ATLAS),
+    int_param<&Settings::weights>(RAPS_PARAM_WEIGHTS, "weights", RAPS_WEIGHTS_MEAN_VALUE,
+                                  RAPS_WEIGHTS_UNIFORM),
+    int_param<&Settings::monitor>(RAPS_PARAM_MONITOR, "monitor", RAPS_MONITOR_NONE,
+                                  RAPS_MONITOR_ANGLE),
+    float_param<&Settings::alpha>(RAPS_PARAM_ALPHA, "alpha", 2.2250738585072014e-308, 100.0),
+    int_param<&Settings::iterations>(RAPS_PARAM_ITERATIONS, "iterations", 1, 100),
+    int_param<&Settings::iteration_mode>(RAPS_PARAM_ITERATION_MODE, "iteration_mode",
+                                         RAPS_ITERATION_ACCUMULATE, RAPS_ITERATION_REAPPLY),
+    int_param<&Settings::boundary>(RAPS_PARAM_BOUNDARY, "boundary", RAPS_BOUNDARY_CIRCLE,
+                                   RAPS_BOUNDARY_SQUARE),
+    int_param<&Settings::max_triangles>(RAPS_PARAM_MAX_TRIANGLES, "max_triangles", 1, kMaxElements),
+    int_param<&Settings::threads>(RAPS_PARAM_THREADS, "threads", 0, 1024),
+    int_param<&Settings::sphere_method>(RAPS_PARAM_SPHERE_METHOD, "sphere_method",
+                                        RAPS_SPHERE_LITERAL, RAPS_SPHERE_ROBUST),
+    int_param<&Settings::sphere_uv>(RAPS_PARAM_SPHERE_UV, "sphere_uv", RAPS_SPHERE_UV_NONE,
+                                    RAPS_SPHERE_UV_OCTAHEDRAL),
+    float_param<&Settings::sphere_damping>(RAPS_PARAM_SPHERE_DAMPING, "sphere_damping",
+                                           2.2250738585072014e-308, 1.0),
+    float_param<&Settings::sphere_tolerance>(RAPS_PARAM_SPHERE_TOLERANCE, "sphere_tolerance", 1e-12,
+                                             1.0),
+    int_param<&Settings::sphere_max_sweeps>(RAPS_PARAM_SPHERE_MAX_SWEEPS, "sphere_max_sweeps", 0,
+                                            10000000),
+    int_param<&Settings::sphere_alpha_steps>(RAPS_PARAM_SPHERE_ALPHA_STEPS, "sphere_alpha_steps", 1,
+                                             100),
+    int_param<&Settings::max_memory_mb>(RAPS_PARAM_MAX_MEMORY_MB, "max_memory_mb", 0, kMaxElements),
+    int_param<&Settings::atlas_resolution>(RAPS_PARAM_ATLAS_RESOLUTION, "atlas_resolution", 16,
+                                           16384),
+    int_param<&Settings::atlas_padding>(RAPS_PARAM_ATLAS_PADDING, "atlas_padding", 0, 64),
+    float_param<&Settings::weld_tolerance>(RAPS_PARAM_WELD_TOLERANCE, "weld_tolerance", 0.0,
+                                           1.7976931348623157e308),
+    float_param<&Settings::hard_edge_angle_deg>(RAPS_PARAM_HARD_EDGE_ANGLE, "hard_edge_angle", 0.0,
+                                                180.0),
+    float_param<&Settings::atlas_target_l2>(RAPS_PARAM_ATLAS_MAX_L2_STRETCH, "atlas_max_l2_stretch",
+                                            1.0, 10.0),
+    float_param<&Settings::atlas_max_linf>(RAPS_PARAM_ATLAS_MAX_LINF_STRETCH,
+                                           "atlas_max_linf_stretch", 1.0, 1000.0),
+    float_param<&Settings::atlas_texels_per_unit>(RAPS_PARAM_ATLAS_TEXELS_PER_UNIT,
+                                                  "atlas_texels_per_unit", 0.0, 1e15),
+    int_param<&Settings::atlas_max_width>(RAPS_PARAM_ATLAS_MAX_WIDTH, "atlas_max_width", 16, 16384),
+    int_param<&Settings::atlas_max_height>(RAPS_PARAM_ATLAS_MAX_HEIGHT, "atlas_max_height", 16,
+                                           16384),
+    int_param<&Settings::atlas_rotation>(RAPS_PARAM_ATLAS_ROTATION, "atlas_rotation",
+                                         RAPS_ROTATION_ANY, RAPS_ROTATION_NONE),
+    int_param<&Settings::atlas_margin>(RAPS_PARAM_ATLAS_MARGIN, "atlas_margin", 0, 1024),
+    int_param<&Settings::atlas_block_align>(RAPS_PARAM_ATLAS_BLOCK_ALIGN, "atlas_block_align", 0,
+                                            1),
+    int_param<&Settings::atlas_mesh_per_page>(RAPS_PARAM_ATLAS_MESH_PER_PAGE, "atlas_mesh_per_page",
+                                              0, 1),
+    int_param<&Settings::atlas_whole_texels>(RAPS_PARAM_ATLAS_WHOLE_TEXELS, "atlas_whole_texels", 0,
+                                             1),
+    int_param<&Settings::atlas_keep_input_seams>(RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS,
+                                                 "atlas_keep_input_seams", 0, 1),
+    int_param<&Settings::atlas_repack>(RAPS_PARAM_ATLAS_REPACK, "atlas_repack", 0, 1),
+    int_param<&Settings::atlas_stack>(RAPS_PARAM_ATLAS_STACK, "atlas_stack", RAPS_STACK_NONE,
+                                      RAPS_STACK_MIRRORED),
+    float_param<&Settings::atlas_stack_tolerance>(RAPS_PARAM_ATLAS_STACK_TOLERANCE,
+                                                  "atlas_stack_tolerance", 0.0, 0.1),
 };
 
 // "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
@@ -222,179 +269,13 @@ const ParamInfo& checked_param(raps_param id, bool want_float) {
     if (!info) {
         throw Error(ErrorCode::kInvalidArgument, "unknown parameter " + std::to_string(id));
     }
-    if (info->is_float != want_float) {
+    if (info->is_float() != want_float) {
         throw Error(ErrorCode::kInvalidArgument,
                     std::string("parameter ") + info->name + " is " +
-                        (info->is_float ? "a float: use raps_settings_set_float/get_float"
-                                        : "an int: use raps_settings_set_int/get_int"));
+                        (info->is_float() ? "a float: use raps_settings_set_float/get_float"
+                                          : "an int: use raps_settings_set_int/get_int"));
     }
     return *info;
-}
-
-int64_t get_int(const raps::Settings& s, raps_param id) {
-    switch (id) {
-        case RAPS_PARAM_DOMAIN:
-            return static_cast<int64_t>(s.domain);
-        case RAPS_PARAM_WEIGHTS:
-            return static_cast<int64_t>(s.weights);
-        case RAPS_PARAM_MONITOR:
-            return static_cast<int64_t>(s.monitor);
-        case RAPS_PARAM_ITERATIONS:
-            return s.iterations;
-        case RAPS_PARAM_ITERATION_MODE:
-            return static_cast<int64_t>(s.iteration_mode);
-        case RAPS_PARAM_BOUNDARY:
-            return static_cast<int64_t>(s.boundary);
-        case RAPS_PARAM_MAX_TRIANGLES:
-            return s.max_triangles;
-        case RAPS_PARAM_THREADS:
-            return s.threads;
-        case RAPS_PARAM_ATLAS_RESOLUTION:
-            return s.atlas_resolution;
-        case RAPS_PARAM_ATLAS_PADDING:
-            return s.atlas_padding;
-        case RAPS_PARAM_SPHERE_METHOD:
-            return static_cast<int64_t>(s.sphere_method);
-        case RAPS_PARAM_SPHERE_UV:
-            return static_cast<int64_t>(s.sphere_uv);
-        case RAPS_PARAM_SPHERE_MAX_SWEEPS:
-            return s.sphere_max_sweeps;
-        case RAPS_PARAM_SPHERE_ALPHA_STEPS:
-            return s.sphere_alpha_steps;
-        case RAPS_PARAM_MAX_MEMORY_MB:
-            return s.max_memory_mb;
-        case RAPS_PARAM_ATLAS_MAX_WIDTH:
-            return s.atlas_max_width;
-        case RAPS_PARAM_ATLAS_MAX_HEIGHT:
-            return s.atlas_max_height;
-        case RAPS_PARAM_ATLAS_ROTATION:
-            return static_cast<int64_t>(s.atlas_rotation);
-        case RAPS_PARAM_ATLAS_MARGIN:
-            return s.atlas_margin;
-        case RAPS_PARAM_ATLAS_BLOCK_ALIGN:
-            return s.atlas_block_align ? 1 : 0;
-        case RAPS_PARAM_ATLAS_MESH_PER_PAGE:
-            return s.atlas_mesh_per_page ? 1 : 0;
-        case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
-            return s.atlas_whole_texels ? 1 : 0;
-        case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
-            return s.atlas_keep_input_seams ? 1 : 0;
-        case RAPS_PARAM_ATLAS_REPACK:
-            return s.atlas_repack ? 1 : 0;
-        case RAPS_PARAM_ATLAS_STACK:
-            return static_cast<int64_t>(s.atlas_stack);
-        default:
-            throw Error(ErrorCode::kInternal, "int parameter without a field");
-    }
-}
-
-void set_int(raps::Settings& s, raps_param id, int64_t v) {
-    switch (id) {
-        case RAPS_PARAM_DOMAIN:
-            s.domain = static_cast<raps::Domain>(v);
-            break;
-        case RAPS_PARAM_WEIGHTS:
-            s.weights = static_cast<raps::WeightScheme>(v);
-            break;
-        case RAPS_PARAM_MONITOR:
-            s.monitor = static_cast<raps::Monitor>(v);
-            break;
-        case RAPS_PARAM_ITERATIONS:
-            s.iterations = static_cast<int>(v);
-            break;
-        case RAPS_PARAM_ITERATION_MODE:
-            s.iteration_mode = static_cast<raps::IterationMode>(v);
-            break;
-        case RAPS_PARAM_BOUNDARY:
-            s.boundary = static_cast<raps::BoundaryShape>(v);
-            break;
-        case RAPS_PARAM_MAX_TRIANGLES:
-            s.max_triangles = v;
-            break;
-        case RAPS_PARAM_THREADS:
-            s.threads = static_cast<int>(v);
-            break;
-        case RAPS_PARAM_ATLAS_RESOLUTION:
-            s.atlas_resolution = static_cast<int32_t>(v);
-            break;
-        case RAPS_PARAM_ATLAS_PADDING:
-            s.atlas_padding = static_cast<int32_t>(v);
-            break;
-        case RAPS_PARAM_SPHERE_METHOD:
-            s.sphere_method = static_cast<raps::SphereMethod>(v);
-            break;
-        case RAPS_PARAM_SPHERE_UV:
-            s.sphere_uv = static_cast<raps::SphereUv>(v);
-            break;
-        case RAPS_PARAM_SPHERE_MAX_SWEEPS:
-            s.sphere_max_sweeps = v;
-            break;
-        case RAPS_PARAM_SPHERE_ALPHA_STEPS:
-            s.sphere_alpha_steps = static_cast<int>(v);
-            break;
-        case RAPS_PARAM_MAX_MEMORY_MB:
-            s.max_memory_mb = v;
-            break;
-        case RAPS_PARAM_ATLAS_MAX_WIDTH:
-            s.atlas_max_width = static_cast<int32_t>(v);
-            break;
-        case RAPS_PARAM_ATLAS_MAX_HEIGHT:
-            s.atlas_max_height = static_cast<int32_t>(v);
-            break;
-        case RAPS_PARAM_ATLAS_ROTATION:
-            s.atlas_rotation = static_cast<raps::ChartRotation>(v);
-            break;
-        case RAPS_PARAM_ATLAS_MARGIN:
-            s.atlas_margin = static_cast<int32_t>(v);
-            break;
-        case RAPS_PARAM_ATLAS_BLOCK_ALIGN:
-            s.atlas_block_align = v != 0;
-            break;
-        case RAPS_PARAM_ATLAS_MESH_PER_PAGE:
-            s.atlas_mesh_per_page = v != 0;
-            break;
-        case RAPS_PARAM_ATLAS_WHOLE_TEXELS:
-            s.atlas_whole_texels = v != 0;
-            break;
-        case RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS:
-            s.atlas_keep_input_seams = v != 0;
-            break;
-        case RAPS_PARAM_ATLAS_REPACK:
-            s.atlas_repack = v != 0;
-            break;
-        case RAPS_PARAM_ATLAS_STACK:
-            s.atlas_stack = static_cast<raps::ChartStacking>(v);
-            break;
-        default:
-            throw Error(ErrorCode::kInternal, "int parameter without a field");
-    }
-}
-
-// The field of a float parameter (const or not, as the settings are).
-template <typename AnySettings>
-auto float_field(AnySettings& s, raps_param id) -> decltype(&s.alpha) {
-    switch (id) {
-        case RAPS_PARAM_ALPHA:
-            return &s.alpha;
-        case RAPS_PARAM_SPHERE_DAMPING:
-            return &s.sphere_damping;
-        case RAPS_PARAM_SPHERE_TOLERANCE:
-            return &s.sphere_tolerance;
-        case RAPS_PARAM_WELD_TOLERANCE:
-            return &s.weld_tolerance;
-        case RAPS_PARAM_HARD_EDGE_ANGLE:
-            return &s.hard_edge_angle_deg;
-        case RAPS_PARAM_ATLAS_MAX_L2_STRETCH:
-            return &s.atlas_target_l2;
-        case RAPS_PARAM_ATLAS_MAX_LINF_STRETCH:
-            return &s.atlas_max_linf;
-        case RAPS_PARAM_ATLAS_TEXELS_PER_UNIT:
-            return &s.atlas_texels_per_unit;
-        case RAPS_PARAM_ATLAS_STACK_TOLERANCE:
-            return &s.atlas_stack_tolerance;
-        default:
-            throw Error(ErrorCode::kInternal, "float parameter without a field");
-    }
 }
 
 // Coordinates beyond this are refused like non-finite ones: the algorithms multiply up to a few
@@ -836,6 +717,19 @@ raps_status raps_mesh_set_triangle_groups(raps_mesh* mesh, const uint32_t* group
     });
 }
 
+raps_status raps_mesh_set_triangle_polygons(raps_mesh* mesh, const uint32_t* polygons,
+                                            size_t triangle_count) {
+    return guarded(mesh ? &mesh->last_error : nullptr, [&] {
+        require(mesh != nullptr, "mesh is NULL");
+        require(polygons != nullptr || triangle_count == 0, "polygons is NULL");
+        if (triangle_count > static_cast<size_t>(kMaxTriangles)) {
+            throw Error(ErrorCode::kTooLarge, "triangle_count " + std::to_string(triangle_count) +
+                                                  " is more than raps accepts (2^28)");
+        }
+        mesh->mesh.triangle_polygon.assign(polygons, polygons + triangle_count);
+    });
+}
+
 raps_status raps_mesh_set_seam_edges(raps_mesh* mesh, const uint32_t* vertex_pairs,
                                      size_t edge_count) {
     return guarded(mesh ? &mesh->last_error : nullptr, [&] {
@@ -907,7 +801,7 @@ raps_status raps_settings_set_int(raps_settings* settings, raps_param param, int
                             info.name + " is outside [" + std::to_string(int64_t(info.min)) + ", " +
                             std::to_string(int64_t(info.max)) + "]");
         }
-        set_int(settings->settings, param, value);
+        info.set_int(settings->settings, value);
     });
 }
 
@@ -920,7 +814,7 @@ raps_status raps_settings_set_float(raps_settings* settings, raps_param param, d
                                                          " of parameter " + info.name +
                                                          " is outside " + float_bounds(info));
         }
-        *float_field(settings->settings, param) = value;
+        settings->settings.*info.real = value;
     });
 }
 
@@ -928,8 +822,7 @@ raps_status raps_settings_get_int(const raps_settings* settings, raps_param para
                                   int64_t* out_value) {
     return guarded_read(settings, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
-        checked_param(param, false);
-        *out_value = get_int(settings->settings, param);
+        *out_value = checked_param(param, false).get_int(settings->settings);
     });
 }
 
@@ -937,8 +830,7 @@ raps_status raps_settings_get_float(const raps_settings* settings, raps_param pa
                                     double* out_value) {
     return guarded_read(settings, [&] {
         require(settings != nullptr && out_value != nullptr, "NULL pointer");
-        checked_param(param, true);
-        *out_value = *float_field(settings->settings, param);
+        *out_value = settings->settings.*checked_param(param, true).real;
     });
 }
 
@@ -947,10 +839,10 @@ raps_status raps_param_info(raps_param param, const char** out_name, int32_t* ou
     const ParamInfo* info = find_param(param);
     if (!info) return RAPS_ERROR_INVALID_ARGUMENT;
     if (out_name) *out_name = info->name;
-    if (out_is_float) *out_is_float = info->is_float ? 1 : 0;
+    if (out_is_float) *out_is_float = info->is_float() ? 1 : 0;
     if (out_min) *out_min = info->min;
     if (out_max) *out_max = info->max;
-    if (out_default) *out_default = info->fallback;
+    if (out_default) *out_default = info->fallback();
     return RAPS_OK;
 }
 

@@ -341,6 +341,32 @@ static void hostile_meshes_get_valid_atlases(void** state) {
     test_mesh_free(&fan);
 }
 
+/* Parts collapsed to one point (exporters leave hidden or morph-driven geometry so): 200,000
+ * zero-area triangles over 600,000 distinct input vertices at one position, beside a grid. Every
+ * corner keeps its own input vertex and the grid its valid chart. All those vertices weld to one
+ * point, and finding each corner's output vertex among those seen at that point was quadratic:
+ * 4.5 s at 10,000 such triangles, so about 30 minutes here, past this test's CTest timeout. */
+static void collapsed_parts_keep_their_vertices(void** state) {
+    (void)state;
+    test_mesh mesh = make_grid(20, 20, 1.0, 1.0);
+    const size_t grid_vertices = mesh.vertex_count, grid_indices = mesh.index_count;
+    const size_t n = 200000;
+    mesh.positions = realloc(mesh.positions, 3 * (grid_vertices + 3 * n) * sizeof(double));
+    mesh.indices = realloc(mesh.indices, (grid_indices + 3 * n) * sizeof(uint32_t));
+    for (size_t v = grid_vertices; v < grid_vertices + 3 * n; ++v) {
+        mesh.positions[3 * v] = mesh.positions[3 * v + 1] = 0.5;
+        mesh.positions[3 * v + 2] = 2.0;
+    }
+    for (size_t i = 0; i < 3 * n; ++i) mesh.indices[grid_indices + i] = (uint32_t)(grid_vertices + i);
+    mesh.vertex_count += 3 * n;
+    mesh.index_count += 3 * n;
+    atlas a = run_atlas(&mesh, 0, 1);
+    check_structure(&mesh, &a);
+    assert_int_equal(a.stats.flipped_triangles, 0);
+    atlas_free(&a);
+    test_mesh_free(&mesh);
+}
+
 /* Vertices at exactly one position are one vertex of the surface (RAPS_PARAM_WELD_TOLERANCE 0):
  * a flat disk given as a triangle soup, every corner its own vertex and some of the copies with
  * -0 for a zero coordinate (z, and x or y at the centre and on the axes), is still one chart
@@ -600,6 +626,7 @@ int main(void) {
         cmocka_unit_test(output_is_identical_for_any_thread_count),
         cmocka_unit_test(hostile_meshes_get_valid_atlases),
         cmocka_unit_test(split_vertices_are_welded_back),
+        cmocka_unit_test(collapsed_parts_keep_their_vertices),
         cmocka_unit_test(an_atlas_of_zero_area_is_refused),
         cmocka_unit_test(atlas_progress_and_cancellation),
         cmocka_unit_test(progress_calls_never_overlap),

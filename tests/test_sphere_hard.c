@@ -310,11 +310,13 @@ static sphere_check check_sphere_map(const test_mesh* mesh, const double* u) {
     return c;
 }
 
-static raps_settings* sphere_settings(int32_t monitor) {
+/* max_sweeps: RAPS_PARAM_SPHERE_MAX_SWEEPS (0: the method's own). */
+static raps_settings* sphere_settings(int32_t monitor, int64_t max_sweeps) {
     raps_settings* s = NULL;
     assert_status(raps_settings_create(&s), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_SPHERE), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_MONITOR, monitor), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_SPHERE_MAX_SWEEPS, max_sweeps), RAPS_OK);
     return s;
 }
 
@@ -327,9 +329,10 @@ typedef struct outcome {
 /* Runs the robust method with `monitor`; on RAPS_OK the map must be a bijection of the unit
  * sphere and centred (the 3D-area-weighted centre of mass within 0.05 of the origin), otherwise the
  * refusal must be SOLVER_FAILED with a message about folds. Prints the figures either way. */
-static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t monitor) {
+static outcome map_or_refuse_with(const char* name, const test_mesh* mesh, int32_t monitor,
+                                  int64_t max_sweeps) {
     raps_mesh* handle = to_raps_mesh(mesh);
-    raps_settings* settings = sphere_settings(monitor);
+    raps_settings* settings = sphere_settings(monitor, max_sweeps);
     raps_result* result = NULL;
     assert_status(raps_result_create(&result), RAPS_OK);
     outcome o;
@@ -373,11 +376,17 @@ static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t mo
     return o;
 }
 
-/* Maps `mesh` twice, initial and area-adapted: both must come back, and the area monitor must
- * lower the area distortion to at most `fraction` of the initial map's (0.6: issue 18's 40 %). */
-static void assert_area_lowered(const char* name, const test_mesh* mesh, double fraction) {
-    const outcome initial = map_or_refuse(name, mesh, RAPS_MONITOR_NONE);
-    const outcome adapted = map_or_refuse(name, mesh, RAPS_MONITOR_AREA);
+static outcome map_or_refuse(const char* name, const test_mesh* mesh, int32_t monitor) {
+    return map_or_refuse_with(name, mesh, monitor, 0);
+}
+
+/* Maps `mesh` twice, initial and area-adapted, with at most `max_sweeps` per relaxation (0: the
+ * method's own): both must come back, and the area monitor must lower the area distortion to at
+ * most `fraction` of the initial map's (0.6: issue 18's 40 %). */
+static void assert_area_lowered_with(const char* name, const test_mesh* mesh, double fraction,
+                                     int64_t max_sweeps) {
+    const outcome initial = map_or_refuse_with(name, mesh, RAPS_MONITOR_NONE, max_sweeps);
+    const outcome adapted = map_or_refuse_with(name, mesh, RAPS_MONITOR_AREA, max_sweeps);
     assert_status(initial.status, RAPS_OK);
     assert_status(adapted.status, RAPS_OK);
     if (!(adapted.area_log_mean <= fraction * initial.area_log_mean)) {
@@ -386,36 +395,53 @@ static void assert_area_lowered(const char* name, const test_mesh* mesh, double 
     }
 }
 
+static void assert_area_lowered(const char* name, const test_mesh* mesh, double fraction) {
+    assert_area_lowered_with(name, mesh, fraction, 0);
+}
+
 /* ---- the cases ----------------------------------------------------------------------------- */
 
-/* Capsules: the conformal initial map squeezes each end by about e^-aspect. Aspect 10 to 30
- * map bijectively; aspect 50, whose ends would need 1e-22 of the sphere where doubles resolve
- * 1e-16, is refused with its status (the pathological set of docs/sphere-status.md). The area
- * monitor lowers the area distortion by at least 40 % (measured 70 %, 62 % and 52 %). */
-static void capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused(void** state) {
+/* Capsules: the conformal initial map squeezes each end by about e^-aspect. Up to aspect 30 the
+ * one-puncture map resolves that; from aspect 40 its plane loses the far end in rounding, and the
+ * two-puncture cylinder map (src/sphere/cylinder_initial_map.h) puts both ends at the poles,
+ * where it is resolved (before: aspect 40 and 50 refused). The area monitor starts from the
+ * equal-area cylinder map and lowers the area distortion by at least 40 % (measured 99 % at
+ * every aspect: 6.31 -> 0.070 at 10, 41.8 -> 0.452 at 50; before, 70 % at 10 to 56 % at 30).
+ * Under the sanitizers (RAPS_TEST_SANITIZER) aspect 50 is left out (the same paths as 40). */
+static void capsules_map_bijectively_to_aspect_50(void** state) {
     (void)state;
-    const double aspects[] = {10, 20, 30, 50};
-    for (int k = 0; k < 4; ++k) {
+    const double aspects[] = {10, 20, 30, 40, 50};
+    const int count = getenv("RAPS_TEST_SANITIZER") != NULL ? 4 : 5;
+    for (int k = 0; k < count; ++k) {
         test_mesh m = make_capsule(aspects[k], 24);
         char name[64];
         snprintf(name, sizeof(name), "capsule aspect %.0f", aspects[k]);
-        if (aspects[k] <= 30) assert_area_lowered(name, &m, 0.6);
-        if (aspects[k] >= 50) {
-            assert_status(map_or_refuse(name, &m, RAPS_MONITOR_AREA).status,
-                          RAPS_ERROR_SOLVER_FAILED);
-        }
+        assert_area_lowered(name, &m, 0.6);
         test_mesh_free(&m);
     }
 }
 
+/* Necks of 0.2 and 0.05 (48 sectors) and 0.02 (24 sectors; refused before the cylinder map):
+ * the area monitor lowers the area distortion by at least 40 % (measured 6.21 -> 0.017, 22.4 ->
+ * 0.069 and 53.1 -> 0.088 from the equal-area start; 0.02 reached 15 % before its floor on sliver
+ * areas, src/sphere/cylinder_initial_map.cpp). A neck of 0.01 squeezes each ball by about e^-100
+ * against the other: it maps or is refused with its status, never folded with RAPS_OK
+ * (measured: the initial map refused, 16 folds; the adapted one maps). Under the sanitizers only
+ * the first two. */
 static void dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
-    const double necks[] = {0.2, 0.05};
-    for (int k = 0; k < 2; ++k) {
-        test_mesh m = make_dumbbell(necks[k], 48);
+    const double necks[] = {0.2, 0.05, 0.02, 0.01};
+    const int sectors[] = {48, 48, 24, 24};
+    const int count = getenv("RAPS_TEST_SANITIZER") != NULL ? 2 : 4;
+    for (int k = 0; k < count; ++k) {
+        test_mesh m = make_dumbbell(necks[k], sectors[k]);
         char name[64];
         snprintf(name, sizeof(name), "dumbbell neck %.2f", necks[k]);
-        assert_area_lowered(name, &m, 0.6);
+        if (k < 3) assert_area_lowered(name, &m, 0.6);
+        if (k == 3) {
+            map_or_refuse(name, &m, RAPS_MONITOR_NONE);
+            map_or_refuse(name, &m, RAPS_MONITOR_AREA);
+        }
         test_mesh_free(&m);
     }
 }
@@ -486,15 +512,28 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
     }
 }
 
+/* A relaxation cut short: 4 sweeps per relaxation on spot (5.8K triangles), the way every
+ * relaxation of a mesh of several 100K triangles stops far from its fixed point at the default
+ * sweeps (bunny subdivided to 446K: 27 % lower before). Where the continuation ends less than 40 %
+ * below the initial map, the equal-area cylinder map competes as the result (measured: spot
+ * 1.735 -> 0.615 with 4 sweeps; bunny x64 1.645 -> 0.505 at the defaults). */
+static void sweep_limited_relaxation_still_lowers_the_area_by_40_percent(void** state) {
+    (void)state;
+    test_mesh m = load_shared_mesh("spot.obj");
+    assert_area_lowered_with("spot.obj, 4 sweeps", &m, 0.6, 4);
+    test_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(capsules_map_bijectively_to_aspect_30_and_aspect_50_is_refused),
+        cmocka_unit_test(capsules_map_bijectively_to_aspect_50),
         cmocka_unit_test(dumbbell_with_a_thin_neck_maps_bijectively_and_area_adapted),
         cmocka_unit_test(starfish_with_five_long_arms_maps_bijectively_and_area_adapted),
         cmocka_unit_test(noisy_scan_like_sphere_maps_bijectively_and_area_adapted),
         cmocka_unit_test(pancake_maps_bijectively_and_area_adapted),
         cmocka_unit_test(high_degree_vertices_and_needles_map_bijectively_and_centred),
         cmocka_unit_test(subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred),
+        cmocka_unit_test(sweep_limited_relaxation_still_lowers_the_area_by_40_percent),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

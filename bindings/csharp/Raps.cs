@@ -354,6 +354,19 @@ namespace Raps
                           LastError);
         }
 
+        /// <summary>Atlas domain: a polygon id per triangle, for quads and n-gons
+        /// triangulated for raps; triangles that share an edge and an id stay in one chart with
+        /// no cut between them, so each polygon corner gets one output vertex. null or an empty
+        /// array removes them. A count other than the triangle count throws Status.GroupCount
+        /// when the mesh is used.</summary>
+        public void SetTrianglePolygons(uint[] polygons)
+        {
+            uint[] data = polygons != null && polygons.Length > 0 ? polygons : null;
+            Interop.Check(Native.raps_mesh_set_triangle_polygons(
+                              handle, data, Interop.Size(data == null ? 0 : data.Length)),
+                          LastError);
+        }
+
         /// <summary>Atlas domain: seam edges as pairs of vertex indices, packed (a0, b0, a1,
         /// b1, ...); no chart grows or merges across them. null or an empty array removes them.
         /// When the mesh is used, a pair that is not an edge throws Status.SeamNotAnEdge, one

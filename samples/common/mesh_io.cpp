@@ -1,5 +1,7 @@
 #include "mesh_io.h"
 
+#include "ply_reader.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -37,13 +39,14 @@ std::string read_all(const std::string& path) {
     return buffer.str();
 }
 
-// A cursor over one line of text.
+// A cursor over one line of text. A token that starts with '#' starts a comment, which runs to
+// the end of the line (exporters write them after faces; a '#' inside a name is kept).
 struct Tokens {
     const char* p;
     const char* end;
     bool next(std::string_view& token) {
         while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
-        if (p >= end) return false;
+        if (p >= end || *p == '#') return false;
         const char* start = p;
         while (p < end && *p != ' ' && *p != '\t' && *p != '\r') ++p;
         token = std::string_view(start, static_cast<size_t>(p - start));
@@ -107,6 +110,27 @@ uint32_t texcoord_of(std::string_view corner, size_t texcoord_count) {
     return static_cast<uint32_t>(resolved);
 }
 
+// The next logical line of an OBJ file at p: physical lines that end in a backslash are joined
+// with the next (the format's line continuation). Advances p and counts physical lines.
+std::string_view next_obj_line(const char*& p, const char* end, size_t& line_number,
+                               std::string& joined) {
+    joined.clear();
+    for (;;) {
+        const char* line_end = static_cast<const char*>(std::memchr(p, '\n', end - p));
+        if (!line_end) line_end = end;
+        ++line_number;
+        const char* last = line_end;
+        while (last > p && (last[-1] == '\r' || last[-1] == ' ' || last[-1] == '\t')) --last;
+        const bool continues = last > p && last[-1] == '\\' && line_end < end;
+        const char* start = p;
+        p = line_end < end ? line_end + 1 : end;
+        if (!continues && joined.empty()) return std::string_view(start, line_end - start);
+        joined.append(start, continues ? last - 1 : line_end);
+        joined += ' ';
+        if (!continues) return joined;
+    }
+}
+
 PolygonMesh read_obj(const std::string& path, const std::string& text) {
     PolygonMesh mesh;
     mesh.polygon_offsets.push_back(0);
@@ -114,40 +138,38 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
     std::string group_name, material;
     std::map<std::pair<std::string, std::string>, uint32_t> group_ids;
     size_t line_number = 0;
+    std::string joined;
     const char* p = text.data();
     const char* end = p + text.size();
     while (p < end) {
-        const char* line_end = static_cast<const char*>(std::memchr(p, '\n', end - p));
-        if (!line_end) line_end = end;
-        ++line_number;
-        Tokens tokens{p, line_end};
-        p = line_end + 1;
+        const size_t first_line = line_number + 1;
+        const std::string_view line = next_obj_line(p, end, line_number, joined);
+        Tokens tokens{line.data(), line.data() + line.size()};
         std::string_view keyword;
         if (!tokens.next(keyword)) continue;
         if (keyword == "v") {
             std::string_view coordinate;
             for (int c = 0; c < 3; ++c) {
                 if (!tokens.next(coordinate))
-                    fail(path, line_number, "vertex with fewer than 3 coordinates");
-                mesh.positions.push_back(parse_double(coordinate, path, line_number));
+                    fail(path, first_line, "vertex with fewer than 3 coordinates");
+                mesh.positions.push_back(parse_double(coordinate, path, first_line));
             }
         } else if (keyword == "f") {
             std::string_view corner;
             size_t corners = 0;
             while (tokens.next(corner)) {
                 const std::string_view vertex = corner.substr(0, corner.find('/'));
-                const long long index = parse_integer(vertex, path, line_number);
+                const long long index = parse_integer(vertex, path, first_line);
                 const long long resolved =
                     index > 0 ? index - 1 : static_cast<long long>(mesh.vertex_count()) + index;
                 if (index == 0 || resolved < 0 || resolved > 0xffffffffLL) {
-                    fail(path, line_number,
-                         "vertex index " + std::to_string(index) + " is invalid");
+                    fail(path, first_line, "vertex index " + std::to_string(index) + " is invalid");
                 }
                 mesh.corners.push_back(static_cast<uint32_t>(resolved));
                 mesh.texcoord_corners.push_back(texcoord_of(corner, texcoord_count));
                 ++corners;
             }
-            if (corners < 3) fail(path, line_number, "face with fewer than 3 vertices");
+            if (corners < 3) fail(path, first_line, "face with fewer than 3 vertices");
             mesh.polygon_offsets.push_back(static_cast<uint32_t>(mesh.corners.size()));
             mesh.polygon_groups.push_back(group_ids
                                               .emplace(std::make_pair(group_name, material),
@@ -166,6 +188,38 @@ PolygonMesh read_obj(const std::string& path, const std::string& text) {
         // vn, o, s, mtllib, l, p and comments carry nothing raps uses.
     }
     return mesh;
+}
+
+// The OFF header, tokens[0]: "OFF", or Geomview's variants with numbers after x y z on every
+// vertex line (ST texture coordinates, C colour, N normal: "STCNOFF" at most), and with the
+// vertex count run into it ("OFF1234 5678 0", as ModelNet writes it: the count becomes a token
+// of its own). Returns whether vertex lines carry such extras (skipped).
+bool read_off_header(const std::string& path,
+                     std::vector<std::pair<std::string_view, size_t>>& tokens) {
+    if (tokens.empty()) fail(path, 1, "file ends before the OFF header");
+    std::string_view header = tokens[0].first;
+    const size_t line = tokens[0].second;
+    const size_t off = header.find("OFF");
+    if (off == std::string_view::npos) fail(path, line, "does not start with OFF");
+    const std::string_view prefix = header.substr(0, off);
+    if (prefix.find_first_of("4n") != std::string_view::npos) {
+        fail(path, line, "'" + std::string(header) + "': only 3D OFF is read (not 4OFF or nOFF)");
+    }
+    if (prefix != "" && prefix != "ST" && prefix != "C" && prefix != "N" && prefix != "STC" &&
+        prefix != "STN" && prefix != "CN" && prefix != "STCN") {
+        fail(path, line, "does not start with OFF");
+    }
+    const std::string_view rest = header.substr(off + 3);
+    if (!rest.empty()) {
+        if (rest.find_first_not_of("0123456789") != std::string_view::npos)
+            fail(path, line, "does not start with OFF");
+        tokens[0].first = header.substr(0, off + 3);
+        tokens.insert(tokens.begin() + 1, std::make_pair(rest, line));
+    }
+    if (tokens.size() > 1 && tokens[1].first == "BINARY") {
+        fail(path, line, "binary OFF is not read (only the text form)");
+    }
+    return !prefix.empty();
 }
 
 PolygonMesh read_off(const std::string& path, const std::string& text) {
@@ -190,8 +244,8 @@ PolygonMesh read_off(const std::string& path, const std::string& text) {
         if (at >= tokens.size()) fail(path, line_number, std::string("file ends before ") + what);
         return tokens[at++];
     };
-    const auto header = next("the OFF header");
-    if (header.first != "OFF") fail(path, header.second, "does not start with OFF");
+    const bool vertex_extras = read_off_header(path, tokens);
+    ++at;
     auto count = [&](const char* what) {
         const auto token = next(what);
         const long long value = parse_integer(token.first, path, token.second);
@@ -206,6 +260,9 @@ PolygonMesh read_off(const std::string& path, const std::string& text) {
     for (size_t i = 0; i < 3 * vertex_count; ++i) {
         const auto token = next("all vertices are read");
         mesh.positions.push_back(parse_double(token.first, path, token.second));
+        if (vertex_extras && i % 3 == 2) {  // texcoords, colour, normal
+            while (at < tokens.size() && tokens[at].second == token.second) ++at;
+        }
     }
     mesh.polygon_offsets.push_back(0);
     for (size_t f = 0; f < face_count; ++f) {
@@ -289,10 +346,12 @@ PolygonMesh PolygonMesh::split_at_texcoord_seams() const {
 
 PolygonMesh read_mesh(const std::string& path) {
     const std::string ext = lower_extension(path);
-    if (ext != "obj" && ext != "off") {
-        throw std::runtime_error(path + ": unknown mesh format (expected .obj or .off)");
+    if (ext != "obj" && ext != "off" && ext != "ply") {
+        throw std::runtime_error(path + ": unknown mesh format (expected .obj, .off or .ply)");
     }
-    const std::string text = read_all(path);
+    std::string text = read_all(path);
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // a UTF-8 byte order mark
+    if (ext == "ply") return read_ply(path, text);
     return ext == "obj" ? read_obj(path, text) : read_off(path, text);
 }
 

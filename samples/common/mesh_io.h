@@ -1,4 +1,4 @@
-// Reading OBJ and OFF meshes and writing OBJ with texture coordinates, for the command-line
+// Reading OBJ, OFF and PLY meshes and writing OBJ with texture coordinates, for the command-line
 // samples, the benchmarks and the tests. Not part of the library: raps itself never touches
 // files. Polygons are kept as they are for writing back and fan-triangulated for the library.
 #pragma once
@@ -35,9 +35,10 @@ struct PolygonMesh {
     PolygonMesh split_at_texcoord_seams() const;
 };
 
-// Reads .obj or .off (chosen by extension, case-insensitive). Throws std::runtime_error with the
-// file, line and problem on anything it cannot read (a malformed number, an index 0 or one that
-// resolves below 1, a face with fewer than 3 corners, a truncated OFF).
+// Reads .obj, .off or .ply (chosen by extension, case-insensitive; PLY: ply_reader.h). Throws
+// std::runtime_error with the file, line and problem on anything it cannot read (a malformed
+// number, an index 0 or one that resolves below 1, a face with fewer than 3 corners, a truncated
+// OFF).
 PolygonMesh read_mesh(const std::string& path);
 
 // Writes OBJ: `v` for every vertex, `vt` for every uv pair, and each polygon as

@@ -174,6 +174,51 @@ std::vector<uint8_t> read_accessor(const Asset& asset, int index) {
     return out;
 }
 
+std::vector<uint8_t> read_accessor_at(const Asset& asset, int index,
+                                      const std::vector<uint32_t>& vertices) {
+    const AccessorLayout a = accessor_layout(asset.doc, index);
+    const uint64_t element = element_size(a.type, a.component_type);
+    // A primitive using most of the accessor: reading it whole is as fast, and checks it all.
+    if (element == 0 || !accessor_has_data(asset, index) || vertices.size() >= a.count / 2) {
+        const std::vector<uint8_t> whole = read_accessor(asset, index);
+        std::vector<uint8_t> out(vertices.size() * element);
+        for (size_t i = 0; i < vertices.size(); ++i)
+            std::memcpy(&out[i * element], &whole[uint64_t(vertices[i]) * element], element);
+        return out;
+    }
+    std::vector<uint8_t> out(vertices.size() * element, 0);
+    if (a.view >= 0) {
+        const ViewBytes view = view_bytes(asset, static_cast<uint64_t>(a.view));
+        const uint64_t stride = view.stride ? view.stride : element;
+        const uint64_t begin = view.offset + a.offset;
+        if (begin + stride * (a.count - 1) + element > view.buffer->size()) {
+            throw GltfError("accessor",
+                            "accessor " + std::to_string(index) + " runs past its buffer");
+        }
+        for (size_t i = 0; i < vertices.size(); ++i) {
+            if (vertices[i] >= a.count) throw GltfError("internal", "vertex past the accessor");
+            std::memcpy(&out[i * element], &(*view.buffer)[begin + vertices[i] * stride], element);
+        }
+    }
+    if (a.sparse) {
+        const std::vector<uint32_t> targets = read_sparse_indices(asset, index);
+        const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
+        const ViewBytes vv = view_bytes(asset, s["values"]["bufferView"].get<uint64_t>());
+        const uint64_t vbegin = vv.offset + s["values"].value("byteOffset", uint64_t(0));
+        if (vbegin + targets.size() * element > vv.buffer->size()) {
+            throw GltfError("accessor", "accessor " + std::to_string(index) +
+                                            ": sparse values run past their buffer");
+        }
+        for (size_t i = 0; i < vertices.size(); ++i) {  // targets are increasing
+            const auto it = std::lower_bound(targets.begin(), targets.end(), vertices[i]);
+            if (it == targets.end() || *it != vertices[i]) continue;
+            std::memcpy(&out[i * element], &(*vv.buffer)[vbegin + (it - targets.begin()) * element],
+                        element);
+        }
+    }
+    return out;
+}
+
 double component_value(const uint8_t* element, int component_type, bool normalized, int c) {
     const uint8_t* p = element + uint64_t(c) * component_size(component_type);
     switch (component_type) {

@@ -40,6 +40,11 @@ bool accessor_has_data(const Asset& asset, int accessor);
 // substitution applied and zeros when it has no bufferView. Checks sparse indices (strictly
 // increasing, below count).
 std::vector<uint8_t> read_accessor(const Asset& asset, int accessor);
+// Its elements at `vertices` (each below its count), dense and in that order, read without
+// decoding the rest: a primitive may use a few elements of a large accessor that hundreds of
+// primitives share.
+std::vector<uint8_t> read_accessor_at(const Asset& asset, int accessor,
+                                      const std::vector<uint32_t>& vertices);
 
 // The element indices an accessor's sparse substitution replaces, increasing (empty without one).
 std::vector<uint32_t> read_sparse_indices(const Asset& asset, int accessor);

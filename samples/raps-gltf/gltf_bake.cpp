@@ -196,10 +196,48 @@ Done write_group(const Asset& asset, const BakeOptions& options, AccessorWriter&
     return done;
 }
 
+// The space a group of --group mesh or primitive is mapped in: its own, unless the default
+// scene draws the mesh only under maps that are not similarities (KHR_mesh_quantization's
+// dequantizing scales, a stretched node), where its own uvs would be stretched in the world.
+// Then the instance it covers the most surface on, rescaled to the mesh's own area, so that a
+// density stays per unit of the mesh's own surface. Returns whether `shape` was set.
+bool group_shape(const SceneInstances& instances, int mesh, const GroupGeometry& geometry,
+                 Linear3* shape) {
+    const std::vector<Linear3>& distinct = instances.meshes[mesh].distinct;
+    if (distinct.empty() || std::any_of(distinct.begin(), distinct.end(), is_similarity))
+        return false;
+    const ChosenInstance chosen =
+        choose_instance(distinct, [&](const Linear3& t) { return surface_area(geometry, t); });
+    if (!(chosen.scale > 0) || !std::isfinite(chosen.scale)) return false;
+    for (int i = 0; i < 9; ++i) (*shape)[i] = chosen.transform[i] / chosen.scale;
+    return true;
+}
+
+// The group mapped in the space group_shape gives. A shape so uneven that the library finds no
+// map at double precision (a node scaling one axis by 1e18) falls back to the mesh's own space,
+// where it mapped before, and a note says so.
+GroupMap map_as_drawn(const GroupGeometry& geometry, const SceneInstances& instances,
+                      const BakeOptions& options, GroupReport* report, BakeResult* result) {
+    const std::string label = group_label(*report);
+    Linear3 shape{};
+    if (!group_shape(instances, report->mesh, geometry, &shape)) {
+        return map_group(geometry, nullptr, options, label, report);
+    }
+    try {
+        return map_group(geometry, &shape, options, label, report);
+    } catch (const GltfError& e) {
+        if (e.kind != "raps") throw;
+        result->notes.push_back(label + ": mapped in its own space: as its node draws it, " +
+                                e.what());
+        return map_group(geometry, nullptr, options, label, report);
+    }
+}
+
 // --group mesh and --group primitive: an atlas per group.
 void bake_groups(const Asset& asset, const BakeOptions& options, AccessorWriter& writer,
                  BakeResult& result) {
     const Selection selection = select_primitives(asset, options, &result.skipped);
+    const SceneInstances instances = scene_instances(asset);
     std::map<std::string, Done> done;
     for (size_t g = 0; g < selection.groups.size(); ++g) {
         const std::vector<PrimitiveInput>& group = selection.groups[g];
@@ -211,7 +249,7 @@ void bake_groups(const Asset& asset, const BakeOptions& options, AccessorWriter&
             continue;
         }
         const GroupGeometry geometry = group_geometry(asset, group, options.keep_uv_seams);
-        const GroupMap map = map_group(geometry, options, group_label(report), &report);
+        const GroupMap map = map_as_drawn(geometry, instances, options, &report, &result);
         done.emplace(key, write_group(asset, options, writer, group, map, report, result));
     }
 }

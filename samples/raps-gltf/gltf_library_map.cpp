@@ -1,10 +1,13 @@
 #include "gltf_library_map.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
+#include <unordered_map>
 
 #include "gltf_accessors.h"
 #include "gltf_error.h"
@@ -43,11 +46,16 @@ int32_t forward_progress(void* user, raps_phase phase, double fraction) {
 // The settings of a run: the user's, in the atlas domain. With a density every mesh keeps its
 // charts on one page: a primitive's uvs address one texture. (A resolution makes one page, and
 // there the setting would only keep --stack from sharing charts between meshes.)
-void prepare_run(const BakeOptions& options, ProgressContext* progress, RunHandles* h) {
+// `unit` is the length of one of the mesh's units in the library's (see scaled_exponent).
+void prepare_run(const BakeOptions& options, ProgressContext* progress, RunHandles* h,
+                 double unit = 1) {
     double density = 0;
     raps_settings_get_float(options.settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, &density);
     if (raps_result_create(&h->result) != RAPS_OK ||
         raps_settings_clone(options.settings, &h->settings) != RAPS_OK ||
+        (density > 0 && unit != 1 &&
+         raps_settings_set_float(h->settings, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, density / unit) !=
+             RAPS_OK) ||
         raps_settings_set_int(h->settings, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS) != RAPS_OK ||
         (density > 0 &&
          raps_settings_set_int(h->settings, RAPS_PARAM_ATLAS_MESH_PER_PAGE, 1) != RAPS_OK)) {
@@ -165,6 +173,57 @@ std::vector<double> texcoord0(const Asset& asset, const PrimitiveInput& p) {
     return uv;
 }
 
+// The geometry under a linear map (raps_parameterize ignores a mesh's transform). A mirroring
+// map is mirrored back, so that triangles keep the winding, and uvs the side, they had.
+GroupGeometry shaped(const GroupGeometry& g, const Linear3& m) {
+    const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                       m[2] * (m[3] * m[7] - m[4] * m[6]);
+    const double flip = det < 0 ? -1 : 1;
+    GroupGeometry out = g;
+    for (size_t v = 0; v + 2 < g.xyz.size(); v += 3) {
+        const double* p = &g.xyz[v];
+        out.xyz[v] = flip * (m[0] * p[0] + m[1] * p[1] + m[2] * p[2]);
+        out.xyz[v + 1] = m[3] * p[0] + m[4] * p[1] + m[5] * p[2];
+        out.xyz[v + 2] = m[6] * p[0] + m[7] * p[1] + m[8] * p[2];
+    }
+    return out;
+}
+
+// The library refuses coordinates past 1e30 (its products of coordinates must stay finite). A
+// map does not depend on the mesh's scale (at a density, once the density follows), so a mesh
+// that large is scaled by 2^-k: exact, every ratio, hence every uv, kept. Returns k (0: none).
+// `reach` bounds how far the mesh's transform moves a coordinate (1 without one).
+double largest_coordinate(const GroupGeometry& g, double reach = 1) {
+    double largest = 0;
+    for (double c : g.xyz) largest = std::max(largest, std::fabs(c));
+    return largest * reach;
+}
+
+int scaled_exponent(double largest) {
+    return largest > 1e24 ? std::ilogb(largest) - 60 : 0;
+}
+
+GroupGeometry scaled(const GroupGeometry& g, int k) {
+    GroupGeometry out = g;
+    for (double& c : out.xyz) c = std::ldexp(c, -k);
+    return out;
+}
+
+// A primitive's vertex -> library vertex (-1 until given): an array over the accessor when the
+// primitive uses much of it, a hash map when it uses little.
+class LocalIds {
+  public:
+    LocalIds(uint64_t vertex_count, size_t corners)
+        : dense_(corners >= vertex_count / 4 ? vertex_count : 0, -1) {}
+    int64_t& of(uint32_t v) {
+        return dense_.empty() ? sparse_.emplace(v, -1).first->second : dense_[v];
+    }
+
+  private:
+    std::vector<int64_t> dense_;
+    std::unordered_map<uint32_t, int64_t> sparse_;
+};
+
 }  // namespace
 
 GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInput>& group,
@@ -173,26 +232,30 @@ GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInpu
     for (const PrimitiveInput& p : group) {
         const int position = (*p.json)["attributes"]["POSITION"].get<int>();
         const AccessorLayout pa = accessor_layout(asset.doc, position);
-        const std::vector<uint8_t> data = read_accessor(asset, position);
+        // Read at the corners only: primitives may each use a few vertices of one large
+        // accessor (1000 such primitives of a 251001-vertex accessor: 10 s of copies before).
+        const std::vector<uint8_t> data = read_accessor_at(asset, position, p.triangles);
         const uint64_t element = element_size("VEC3", pa.component_type);
         const std::vector<double> uv = weld_by_uv ? texcoord0(asset, p) : std::vector<double>();
-        std::vector<int64_t> local(p.vertex_count, -1);
+        LocalIds local(p.vertex_count, p.triangles.size());
         std::map<WeldKey, uint32_t> welded;
         g.first_triangle.push_back(g.indices.size() / 3);
-        for (uint32_t v : p.triangles) {
-            if (local[v] < 0) {
+        for (size_t k = 0; k < p.triangles.size(); ++k) {
+            const uint32_t v = p.triangles[k];
+            int64_t& id = local.of(v);
+            if (id < 0) {
                 WeldKey key{};
                 for (int c = 0; c < 3; ++c) {
                     key[c] =
-                        component_value(&data[v * element], pa.component_type, pa.normalized, c);
+                        component_value(&data[k * element], pa.component_type, pa.normalized, c);
                 }
                 if (!uv.empty()) key = {key[0], key[1], key[2], uv[2 * v], uv[2 * v + 1]};
                 const uint32_t next = static_cast<uint32_t>(g.xyz.size() / 3);
                 const auto found = weld_by_uv ? welded.emplace(key, next).first : welded.end();
-                local[v] = found != welded.end() ? found->second : next;
-                if (local[v] == next) g.xyz.insert(g.xyz.end(), key.begin(), key.begin() + 3);
+                id = found != welded.end() ? found->second : next;
+                if (id == next) g.xyz.insert(g.xyz.end(), key.begin(), key.begin() + 3);
             }
-            g.indices.push_back(static_cast<uint32_t>(local[v]));
+            g.indices.push_back(static_cast<uint32_t>(id));
         }
         g.input_vertices += p.vertex_count;
     }
@@ -219,13 +282,17 @@ double surface_area(const GroupGeometry& g, const Linear3& m) {
     return area;
 }
 
-GroupMap map_group(const GroupGeometry& geometry, const BakeOptions& options,
+GroupMap map_group(const GroupGeometry& geometry, const Linear3* shape, const BakeOptions& options,
                    const std::string& label, GroupReport* report) {
+    std::optional<GroupGeometry> moved;
+    if (shape) moved = shaped(geometry, *shape);
+    const int k = scaled_exponent(largest_coordinate(moved ? *moved : geometry));
+    if (k != 0) moved = scaled(moved ? *moved : geometry, k);
     RunHandles h;
     ProgressContext progress{&options, label};
-    prepare_run(options, &progress, &h);
+    prepare_run(options, &progress, &h, std::ldexp(1.0, -k));
     MeshHandle mesh;
-    load_mesh(geometry, nullptr, label, &mesh);
+    load_mesh(moved ? *moved : geometry, nullptr, label, &mesh);
     report->input_vertices = geometry.input_vertices;
     report->triangles = geometry.indices.size() / 3;
     const auto start = std::chrono::steady_clock::now();
@@ -234,6 +301,7 @@ GroupMap map_group(const GroupGeometry& geometry, const BakeOptions& options,
     }
     report->total_ms = elapsed_ms(start);
     read_figures(h.result, &report->stats, report->phase_ms);
+    report->stats.texels_per_unit = std::ldexp(report->stats.texels_per_unit, -k);
     GroupMap map = slice(h.result, copy_result(h.result, label), 0, geometry);
     map.page = page_of(h.result, map);
     map.page_width = report->stats.atlas_width;
@@ -244,15 +312,26 @@ GroupMap map_group(const GroupGeometry& geometry, const BakeOptions& options,
 std::vector<GroupMap> map_scene(const std::vector<const GroupGeometry*>& geometries,
                                 const std::vector<Linear3>& transforms, const BakeOptions& options,
                                 SceneReport* report) {
+    // One scale for the whole scene (scaled_exponent), from the farthest world coordinate.
+    double largest = 0;
+    for (size_t i = 0; i < geometries.size(); ++i) {
+        const Linear3& m = transforms[i];
+        double reach = 0;
+        for (int r = 0; r < 3; ++r)
+            reach = std::max(
+                reach, std::fabs(m[3 * r]) + std::fabs(m[3 * r + 1]) + std::fabs(m[3 * r + 2]));
+        largest = std::max(largest, largest_coordinate(*geometries[i], reach));
+    }
+    const int k = scaled_exponent(largest);
     RunHandles h;
     ProgressContext progress{&options, "scene"};
-    prepare_run(options, &progress, &h);
+    prepare_run(options, &progress, &h, std::ldexp(1.0, -k));
     std::vector<std::unique_ptr<MeshHandle>> meshes;
     std::vector<const raps_mesh*> pointers;
     for (size_t i = 0; i < geometries.size(); ++i) {
         meshes.push_back(std::make_unique<MeshHandle>());
-        load_mesh(*geometries[i], &transforms[i], "scene mesh " + std::to_string(i),
-                  meshes.back().get());
+        load_mesh(k ? scaled(*geometries[i], k) : *geometries[i], &transforms[i],
+                  "scene mesh " + std::to_string(i), meshes.back().get());
         pointers.push_back(meshes.back()->mesh);
     }
     const auto start = std::chrono::steady_clock::now();
@@ -262,10 +341,12 @@ std::vector<GroupMap> map_scene(const std::vector<const GroupGeometry*>& geometr
     }
     report->total_ms = elapsed_ms(start);
     read_figures(h.result, &report->stats, report->phase_ms);
+    report->stats.texels_per_unit = std::ldexp(report->stats.texels_per_unit, -k);
     report->charts.resize(report->stats.chart_count);
     for (size_t c = 0; c < report->charts.size(); ++c) {
         report->charts[c].struct_size = sizeof(raps_chart);
         raps_result_get_chart(h.result, c, &report->charts[c]);
+        report->charts[c].area_3d = std::ldexp(report->charts[c].area_3d, 2 * k);
     }
     const WholeResult whole = copy_result(h.result, "scene");
     std::vector<GroupMap> maps;

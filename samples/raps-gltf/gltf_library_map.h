@@ -40,8 +40,9 @@ struct GroupMap {
 GroupGeometry group_geometry(const Asset& asset, const std::vector<PrimitiveInput>& group,
                              bool weld_by_uv);
 
-// One group, one atlas. Fills the report's stats and times.
-GroupMap map_group(const GroupGeometry& geometry, const BakeOptions& options,
+// One group, one atlas, in the group's own space or, when `shape` is given, under that linear
+// map. Fills the report's stats and times.
+GroupMap map_group(const GroupGeometry& geometry, const Linear3* shape, const BakeOptions& options,
                    const std::string& label, GroupReport* report);
 
 // Every group in one atlas; transforms[i] places geometries[i] in the world. Fills the scene's

@@ -11,8 +11,8 @@ namespace {
 constexpr uint64_t kMaxBufferBytes = uint64_t(1) << 40;
 
 // Every buffer's bytes, checked against its byteLength: a data uri (either encoding), a file
-// inside the asset's folder, a GLB's BIN chunk (buffer 0 without a uri; the chunk may carry
-// padding past byteLength), or none (a placeholder).
+// inside the asset's folder, a GLB's BIN chunk (buffer 0 without a uri), or none (a
+// placeholder). Data may run past byteLength (padding): only byteLength bytes are kept.
 void load_buffers(Asset& asset, const std::vector<uint8_t>& file, const GlbParts* glb) {
     const Json& buffers = array_of(asset.doc, "buffers");
     for (size_t i = 0; i < buffers.size(); ++i) {
@@ -45,10 +45,18 @@ void load_buffers(Asset& asset, const std::vector<uint8_t>& file, const GlbParts
                 }
                 bytes = read_file(path, kMaxFileBytes);
             }
-            if (bytes.size() != length) {
+            // The specification asks for at least byteLength bytes (the validator's
+            // BUFFER_BYTE_LENGTH_MISMATCH is "less than"): exporters pad .bin files to 4 bytes.
+            if (bytes.size() < length) {
                 throw GltfError("buffer", what + ": byteLength " + std::to_string(length) +
-                                              " but its data has " + std::to_string(bytes.size()) +
-                                              " bytes");
+                                              " but its data has only " +
+                                              std::to_string(bytes.size()) + " bytes");
+            }
+            if (bytes.size() > length) {
+                asset.warnings.push_back(what + ": its data has " + std::to_string(bytes.size()) +
+                                         " bytes, past its byteLength " + std::to_string(length) +
+                                         ": the rest is ignored");
+                bytes.resize(length);
             }
         }
         if (!has_data) {

@@ -34,7 +34,17 @@ const Json* texture_info(const Json& object, const char* key) {
     return it != object.end() && it->is_object() ? &*it : nullptr;
 }
 
+// The set a texture reads: KHR_texture_transform's texCoord, when given, overrides the
+// textureInfo's own.
 int texcoord_of(const Json& info) {
+    const Json* extensions = member(info, "extensions");
+    const Json* transform = extensions && extensions->is_object()
+                                ? member(*extensions, "KHR_texture_transform")
+                                : nullptr;
+    if (transform && transform->is_object()) {
+        const auto set = transform->find("texCoord");
+        if (set != transform->end() && set->is_number_unsigned()) return set->get<int>();
+    }
     const auto set = info.find("texCoord");
     return set != info.end() && set->is_number_unsigned() ? set->get<int>() : 0;
 }
@@ -90,31 +100,36 @@ void check_indices(const std::vector<uint32_t>& indices, int component_type, uin
     }
 }
 
-std::vector<double> read_positions(const Asset& asset, int accessor, const std::string& where) {
+// The positions at the triangles' corners, three per triangle, read only there (a primitive
+// may use a few vertices of an accessor that hundreds of primitives share).
+std::vector<double> corner_positions(const Asset& asset, int accessor,
+                                     const std::vector<uint32_t>& triangles,
+                                     const std::string& where) {
     const AccessorLayout a = accessor_layout(asset.doc, accessor);
-    const std::vector<uint8_t> data = read_accessor(asset, accessor);
+    const std::vector<uint8_t> data = read_accessor_at(asset, accessor, triangles);
     const uint64_t element = element_size("VEC3", a.component_type);
-    std::vector<double> xyz(3 * a.count);
-    for (uint64_t v = 0; v < a.count; ++v) {
+    std::vector<double> xyz(3 * triangles.size());
+    for (size_t k = 0; k < triangles.size(); ++k) {
         for (int c = 0; c < 3; ++c) {
-            xyz[3 * v + c] = component_value(&data[v * element], a.component_type, a.normalized, c);
+            xyz[3 * k + c] = component_value(&data[k * element], a.component_type, a.normalized, c);
             // NaN would poison the map and every min/max.
-            if (!std::isfinite(xyz[3 * v + c])) {
+            if (!std::isfinite(xyz[3 * k + c])) {
                 throw GltfError("accessor", where + ": POSITION accessor " +
                                                 std::to_string(accessor) + " vertex " +
-                                                std::to_string(v) + " is not finite");
+                                                std::to_string(triangles[k]) + " is not finite");
             }
         }
     }
     return xyz;
 }
 
-bool any_triangle_has_area(const std::vector<uint32_t>& t, const std::vector<double>& xyz) {
+// Whether a triangle has area: neither two corners the same vertex nor the three collinear.
+bool any_triangle_has_area(const std::vector<uint32_t>& t, const std::vector<double>& corners) {
     for (size_t i = 0; i + 2 < t.size(); i += 3) {
         if (t[i] == t[i + 1] || t[i + 1] == t[i + 2] || t[i] == t[i + 2]) continue;
-        const double* a = &xyz[3 * t[i]];
-        const double* b = &xyz[3 * t[i + 1]];
-        const double* c = &xyz[3 * t[i + 2]];
+        const double* a = &corners[3 * i];
+        const double* b = &corners[3 * i + 3];
+        const double* c = &corners[3 * i + 6];
         const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
@@ -139,6 +154,29 @@ std::string missing_data(const Asset& asset, const Json& prim) {
         return "indices";
     }
     return "";
+}
+
+// An accessor without a bufferView or a sparse substitution holds zeros (glTF 2.0, 3.6.2.3):
+// every vertex at the origin, or every index 0. Known without reading what may be a billion of
+// them (a 300-byte file once took 4 GB to find its triangles degenerate).
+bool all_zeros(const Asset& asset, int accessor) {
+    const AccessorLayout a = accessor_layout(asset.doc, accessor);
+    return a.view < 0 && !a.sparse;
+}
+
+// The primitive's indices, checked; false when they are all zeros (without reading them).
+bool read_checked_indices(const Asset& asset, int accessor, uint64_t vertex_count,
+                          const std::string& where, std::vector<uint32_t>* vertices) {
+    const AccessorLayout a = accessor_layout(asset.doc, accessor);
+    if (a.type != "SCALAR" ||
+        (a.component_type != kUnsignedByte && a.component_type != kUnsignedShort &&
+         a.component_type != kUnsignedInt)) {
+        throw GltfError("accessor", where + ": indices must be an unsigned SCALAR accessor");
+    }
+    if (all_zeros(asset, accessor)) return false;
+    *vertices = read_indices(asset, accessor);
+    check_indices(*vertices, a.component_type, vertex_count, where);
+    return true;
 }
 
 // One primitive: its triangles, or the reason it is left as it is (returned; "" when baked).
@@ -169,23 +207,21 @@ std::string read_primitive(const Asset& asset, const BakeOptions& options, const
     input->mode = mode;
     input->vertex_count = pa.count;
     std::vector<uint32_t> vertices;
+    const char* zeros =
+        "every triangle is degenerate (POSITION or indices all zeros: no "
+        "bufferView, no sparse substitution): nothing to map";
     if (prim.contains("indices")) {
-        const int ia = prim["indices"].get<int>();
-        const AccessorLayout a = accessor_layout(asset.doc, ia);
-        if (a.type != "SCALAR" ||
-            (a.component_type != kUnsignedByte && a.component_type != kUnsignedShort &&
-             a.component_type != kUnsignedInt)) {
-            throw GltfError("accessor", where + ": indices must be an unsigned SCALAR accessor");
-        }
-        vertices = read_indices(asset, ia);
-        check_indices(vertices, a.component_type, input->vertex_count, where);
-    } else {
+        if (!read_checked_indices(asset, prim["indices"].get<int>(), pa.count, where, &vertices))
+            return zeros;
+    } else if (!all_zeros(asset, position)) {
         vertices.resize(input->vertex_count);
         for (uint32_t i = 0; i < vertices.size(); ++i) vertices[i] = i;
     }
+    if (all_zeros(asset, position)) return zeros;
     input->triangles = triangle_list(mode, vertices);
     if (input->triangles.empty()) return "no complete triangle";
-    if (!any_triangle_has_area(input->triangles, read_positions(asset, position, where))) {
+    if (!any_triangle_has_area(input->triangles,
+                               corner_positions(asset, position, input->triangles, where))) {
         return "every triangle is degenerate (repeated vertices or zero area): nothing to map";
     }
     input->tangents = tangent_policy(asset.doc, prim, options.texcoord);

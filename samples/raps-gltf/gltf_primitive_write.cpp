@@ -13,15 +13,6 @@ namespace raps_gltf {
 
 namespace {
 
-// Gathers the elements of `source` (dense) at `vertices`.
-std::vector<uint8_t> gather(const std::vector<uint8_t>& source, uint64_t element,
-                            const std::vector<uint32_t>& vertices) {
-    std::vector<uint8_t> out(vertices.size() * element);
-    for (size_t i = 0; i < vertices.size(); ++i)
-        std::memcpy(&out[i * element], &source[uint64_t(vertices[i]) * element], element);
-    return out;
-}
-
 std::vector<float> as_floats(const std::vector<uint8_t>& data, const AccessorLayout& a) {
     const int components = component_count(a.type);
     const uint64_t element = element_size(a.type, a.component_type);
@@ -46,10 +37,10 @@ uint64_t unnormalized_weights(const Asset& asset, const Json& attributes,
         if (it.key().compare(0, 8, "WEIGHTS_") != 0) continue;
         const int accessor = it.value().get<int>();
         const AccessorLayout a = accessor_layout(asset.doc, accessor);
-        const std::vector<float> w = as_floats(read_accessor(asset, accessor), a);
+        const std::vector<float> w = as_floats(read_accessor_at(asset, accessor, vertex_of), a);
         const int n = component_count(a.type);
         for (size_t k = 0; k < vertex_of.size(); ++k) {
-            for (int c = 0; c < n; ++c) sum[k] += w[size_t(vertex_of[k]) * n + c];
+            for (int c = 0; c < n; ++c) sum[k] += w[k * n + c];
         }
         any = true;
     }
@@ -85,10 +76,7 @@ class GatheredAttributes {
         auto it = gathered_.find(accessor);
         if (it == gathered_.end()) {
             const AccessorLayout a = accessor_layout(asset_.doc, accessor);
-            it = gathered_
-                     .emplace(accessor, gather(read_accessor(asset_, accessor),
-                                               element_size(a.type, a.component_type), vertex_of_))
-                     .first;
+            it = gathered_.emplace(accessor, read_accessor_at(asset_, accessor, vertex_of_)).first;
         }
         return it->second;
     }

@@ -287,4 +287,21 @@ ChosenInstance choose_instance(const std::vector<Linear3>& candidates,
     return out;
 }
 
+bool is_similarity(const Linear3& m) {
+    double g[3][3];  // the Gram matrix of the columns
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            g[i][j] = m[i] * m[j] + m[3 + i] * m[3 + j] + m[6 + i] * m[6 + j];
+        }
+    }
+    const double scale = (g[0][0] + g[1][1] + g[2][2]) / 3;
+    if (!(scale > 0)) return false;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            if (std::fabs(g[i][j] - (i == j ? scale : 0)) > 1e-6 * scale) return false;
+        }
+    }
+    return true;
+}
+
 }  // namespace raps_gltf

@@ -53,4 +53,8 @@ struct ChosenInstance {
 ChosenInstance choose_instance(const std::vector<Linear3>& candidates,
                                const std::function<double(const Linear3&)>& area);
 
+// Whether the map keeps shapes (a rotation, a reflection and one uniform scale: its columns
+// orthogonal and of one length, to 1e-6): a mesh's own uvs are then undistorted in the world.
+bool is_similarity(const Linear3& m);
+
 }  // namespace raps_gltf

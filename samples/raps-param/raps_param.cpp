@@ -1,8 +1,8 @@
 // raps-param: parameterize a mesh file through the raps C API and write it back with UVs.
 //
-//   raps-param IN.(obj|off) -o OUT.obj [options]
+//   raps-param IN.(obj|off|ply) -o OUT.obj [options]
 //   raps-param --atlas IN1 [IN2 ...] -o OUT.obj [options]
-//   raps-param --sphere IN.(obj|off) -o OUT.obj [options]
+//   raps-param --sphere IN.(obj|off|ply) -o OUT.obj [options]
 //
 // Prints one JSON object on stdout (statistics, settings, per-phase times); see --help. This
 // tool is a contract other tools and tests drive: keep its name, flags and OBJ-in/OBJ-out
@@ -28,7 +28,7 @@ namespace {
 using param_report::json_number;
 using param_report::json_string;
 
-const char* kUsage = R"(usage: raps-param [--atlas | --sphere] IN.(obj|off) -o OUT.obj [options]
+const char* kUsage = R"(usage: raps-param [--atlas | --sphere] IN.(obj|off|ply) -o OUT.obj [options]
        raps-param --atlas IN1 [IN2 ...] -o OUT.obj [options]
 
 Computes texture coordinates with r-adaptive parameterization (Zayer, Roessl, Seidel) and writes

@@ -9,25 +9,12 @@
 #include <vector>
 
 #include "atlas/atlas_surface.h"
-#include "atlas/chart_disk.h"
-#include "atlas/chart_packing.h"
-#include "atlas/chart_parameterization.h"
+#include "atlas/chart_mapping.h"
 #include "core/progress.h"
 #include "core/settings.h"
 #include "parallel/thread_pool.h"
 
 namespace raps {
-
-struct AtlasChart {
-    ChartDisk disk;
-    ChartMap map;
-    ChartBox box;  // of the map: merging weighs its fill, packing turns the chart by it
-};
-
-struct ChartLimits {
-    double target_stretch_l2 = 1.01;  // for the whole atlas
-    double max_stretch_linf = 2.5;    // for every chart
-};
 
 // Charts in a deterministic order (by smallest surface triangle), whatever the pool's size.
 std::vector<AtlasChart> build_charts(const AtlasSurface& surface,

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "atlas/atlas_charts.h"
 #include "atlas/atlas_surface.h"
@@ -15,9 +17,11 @@
 #include "atlas/corner_sources.h"
 #include "atlas/instanced_parts.h"
 #include "atlas/page_packing.h"
+#include "atlas/polygon_units.h"
 #include "atlas/user_seams.h"
 #include "atlas/uv_repack.h"
 #include "atlas/vertex_welding.h"
+#include "core/hash_mix.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
 
@@ -94,7 +98,9 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
     for (size_t h = 0; h < seam.size(); ++h) {
         progress.at(static_cast<int64_t>(h), static_cast<int64_t>(seam.size()));
         const int32_t o = surface.twin[h];
-        seam[h] = o >= 0 && normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
+        // A polygon's own edges stay inside it, bent or not (its corners get one uv each).
+        seam[h] = o >= 0 && !joins_polygon(surface, static_cast<int32_t>(h)) &&
+                  normal(static_cast<int32_t>(h / 3)).dot(normal(o / 3)) < limit;
     }
     return seam;
 }
@@ -128,8 +134,11 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
             if (first_chart_of_welded[w] < 0) first_chart_of_welded[w] = static_cast<int32_t>(c);
         }
     }
-    // Triangles set aside: duplicates copy their primary; degenerate ones go on the chart of one
-    // of their vertices (their uv triangle is then as degenerate as their 3D one).
+    // Triangles set aside: duplicates copy their primary; degenerate ones go on the chart of
+    // their polygon or else of one of their vertices (their uv triangle is then as degenerate
+    // as their 3D one).
+    const std::vector<int32_t> polygon_chart =
+        aside_polygon_charts(mesh, welded, surface, sources.chart);
     std::vector<int32_t> point_chart_of_part(parts.count(), -1);
     const int64_t aside_count = static_cast<int64_t>(surface.aside_triangles.size());
     progress.part(0.8, 1.0).in_runs(aside_count, [&](int64_t run_begin, int64_t run_end) {
@@ -139,6 +148,8 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
             int32_t chart = -1;
             if (surface.aside_primary[i] >= 0) {
                 chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
+            } else if (polygon_chart[i] >= 0) {
+                chart = polygon_chart[i];
             } else {
                 for (int k = 0; k < 3 && chart < 0; ++k)
                     chart = first_chart_of_welded[welded[v[k]]];
@@ -166,6 +177,51 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
     return sources;
 }
 
+// Output vertex numbers by key (chart vertex << 32 | input vertex): open addressing with
+// linear probing, doubled at half load, so it stays about as large as the output.
+class OutputVertexTable {
+public:
+    explicit OutputVertexTable(size_t expected)
+        : keys_(hash_table_size(expected), kEmpty), values_(keys_.size()) {}
+
+    // The number stored under `key`, or `candidate` stored there now (second: true).
+    std::pair<uint32_t, bool> find_or_add(uint64_t key, uint32_t candidate) {
+        size_t i = slot_of(key);
+        if (keys_[i] == key) return {values_[i], false};
+        keys_[i] = key;
+        values_[i] = candidate;
+        if (++used_ > keys_.size() / 2) grow();
+        return {candidate, true};
+    }
+
+private:
+    static constexpr uint64_t kEmpty = ~uint64_t{0};  // chart vertices stay below 2^31
+
+    size_t slot_of(uint64_t key) const {
+        const size_t mask = keys_.size() - 1;
+        size_t i = mix_bits(key) & mask;
+        while (keys_[i] != kEmpty && keys_[i] != key) i = (i + 1) & mask;
+        return i;
+    }
+
+    void grow() {
+        std::vector<uint64_t> keys(2 * keys_.size(), kEmpty);
+        std::vector<uint32_t> values(keys.size());
+        keys.swap(keys_);
+        values.swap(values_);
+        for (size_t i = 0; i < keys.size(); ++i) {
+            if (keys[i] == kEmpty) continue;
+            const size_t j = slot_of(keys[i]);
+            keys_[j] = keys[i];
+            values_[j] = values[i];
+        }
+    }
+
+    std::vector<uint64_t> keys_;
+    std::vector<uint32_t> values_;
+    size_t used_ = 0;
+};
+
 // Output: walk the input triangles in order; each corner becomes the output vertex of its
 // (input vertex, chart, chart vertex), created on first sight. Parts never share a chart, so
 // each part's output vertices come out contiguous.
@@ -173,8 +229,10 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
                  const std::vector<AtlasChart>& charts, const CornerSources& sources,
                  const PackResult& packed, AtlasOutput& out, const ProgressSpan& progress) {
     // Chart vertices numbered globally (chart offsets, the point charts last, one vertex
-    // each); each keeps the short list of (input vertex, output vertex) pairs seen at it,
-    // usually one.
+    // each). An output vertex is a (chart vertex, input vertex) pair, numbered in the order the
+    // corners first name it, found in a hash table of the pairs: a list per chart vertex was
+    // quadratic where many input vertices weld to one point (30,000 collapsed triangles: 27 s),
+    // and a list per input vertex would be where one vertex lies in many charts.
     const size_t all_charts = charts.size() + sources.point_chart_part.size();
     std::vector<int64_t> chart_offset(all_charts + 1, 0);
     for (size_t c = 0; c < all_charts; ++c) {
@@ -182,13 +240,7 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
             chart_offset[c] +
             (c < charts.size() ? static_cast<int64_t>(charts[c].disk.mesh.positions.size()) : 1);
     }
-    struct Seen {
-        int32_t input_vertex;
-        uint32_t output_vertex;
-        int32_t next;
-    };
-    std::vector<int32_t> head(static_cast<size_t>(chart_offset.back()), -1);
-    std::vector<Seen> seen;
+    OutputVertexTable table(mesh.positions.size());
     const int32_t triangle_count = mesh.triangle_count();
     out.indices.resize(3 * static_cast<size_t>(triangle_count));
     out.chart_of.resize(triangle_count);
@@ -203,18 +255,15 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
             for (int k = 0; k < 3; ++k) {
                 const int32_t input_vertex = mesh.triangles[t][k];
                 const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
-                const int64_t global = chart_offset[c] + chart_vertex;
-                int32_t found = head[global];
-                while (found >= 0 && seen[found].input_vertex != input_vertex)
-                    found = seen[found].next;
-                if (found < 0) {
-                    seen.push_back(
-                        {input_vertex, static_cast<uint32_t>(out.uv.size()), head[global]});
-                    found = head[global] = static_cast<int32_t>(seen.size() - 1);
+                const uint64_t global = static_cast<uint64_t>(chart_offset[c] + chart_vertex);
+                const auto [output_vertex, added] = table.find_or_add(
+                    global << 32 | static_cast<uint32_t>(input_vertex),
+                    static_cast<uint32_t>(out.uv.size()));
+                if (added) {
                     out.remap.push_back(static_cast<uint32_t>(input_vertex));
                     out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
                 }
-                out.indices[3 * static_cast<size_t>(t) + k] = seen[found].output_vertex;
+                out.indices[3 * static_cast<size_t>(t) + k] = output_vertex;
             }
         }
     });

@@ -124,6 +124,15 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         });
     }
     surface.twin.assign(halfedge_count, -1);
+    // Half-edges h and g of one edge become twins when they run opposite ways and no seam cuts
+    // them.
+    auto join = [&](int32_t h, int32_t g) {
+        if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
+            !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
+            surface.twin[h] = g;
+            surface.twin[g] = h;
+        }
+    };
     const int64_t bucket_count = static_cast<int64_t>(bucket_offset.size()) - 1;
     progress.part(0.45, 0.65).in_runs(bucket_count, [&](int64_t run_begin, int64_t run_end) {
         for (int64_t v = static_cast<int64_t>(run_begin); v < run_end; ++v) {
@@ -134,11 +143,17 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
                 auto j = i;
                 while (j != end && j->first == i->first) ++j;
                 if (j - i == 2) {
-                    const int32_t h = i->second, g = (i + 1)->second;
-                    if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
-                        !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
-                        surface.twin[h] = g;
-                        surface.twin[g] = h;
+                    join(i->second, (i + 1)->second);
+                } else if (j - i > 2 && !input.triangle_polygon.empty()) {
+                    // A non-manifold edge stays cut, except between two triangles of one
+                    // polygon (a quad folded onto its neighbour, as on Suzanne): it stays whole.
+                    for (auto p = i; p != j; ++p) {
+                        for (auto q = p + 1; q != j; ++q) {
+                            if (surface.twin[p->second] < 0 && surface.twin[q->second] < 0 &&
+                                input.triangle_polygon[kept[p->second / 3]] ==
+                                    input.triangle_polygon[kept[q->second / 3]])
+                                join(p->second, q->second);
+                        }
                     }
                 }
                 i = j;
@@ -172,6 +187,15 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         }
     });
     surface.input_triangle = std::move(kept);
+    if (!input.triangle_polygon.empty()) {
+        surface.polygon_inner.assign(surface.twin.size(), 0);
+        for (size_t h = 0; h < surface.twin.size(); ++h) {
+            const int32_t o = surface.twin[h];
+            surface.polygon_inner[h] =
+                o >= 0 && input.triangle_polygon[surface.input_triangle[h / 3]] ==
+                              input.triangle_polygon[surface.input_triangle[o / 3]];
+        }
+    }
     return surface;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "atlas/local_index.h"
 #include "mesh/mesh_topology.h"
 #include "planar/laplace_system.h"
 
@@ -11,14 +12,15 @@ namespace {
 
 // Local twins of the chart's triangles: the surface's, kept inside the chart and off seams.
 std::vector<int32_t> local_twins(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-                                 const std::vector<int32_t>& local_of,
                                  const std::vector<char>& seam) {
+    const LocalIndex local_of(triangles, surface.mesh.triangles.size());
     std::vector<int32_t> twin(3 * triangles.size(), -1);
     for (size_t i = 0; i < triangles.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
             const int32_t h = 3 * triangles[i] + k, o = surface.twin[h];
-            if (o < 0 || seam[h] || local_of[o / 3] < 0) continue;
-            twin[3 * i + k] = 3 * local_of[o / 3] + o % 3;
+            if (o < 0 || seam[h]) continue;
+            const int32_t other = local_of(o / 3);
+            if (other >= 0) twin[3 * i + k] = 3 * other + o % 3;
         }
     }
     return twin;
@@ -53,8 +55,6 @@ bool is_disk(const ChartDisk& disk, const Halfedges& halfedges,
 // The chart's topology (everything but its vertex order), or false when it is no disk.
 bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                       const std::vector<char>& seam, ChartDisk& disk) {
-    std::vector<int32_t> local_of(surface.mesh.triangles.size(), -1);
-    for (size_t i = 0; i < triangles.size(); ++i) local_of[triangles[i]] = static_cast<int32_t>(i);
     disk.surface_triangle = triangles;
     disk.corner_angle.resize(3 * triangles.size());
     for (size_t i = 0; i < triangles.size(); ++i) {
@@ -62,23 +62,39 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
             disk.corner_angle[3 * i + k] = surface.corner_angle[3 * triangles[i] + k];
     }
     Halfedges halfedges;
-    halfedges.twin = local_twins(surface, triangles, local_of, seam);
+    halfedges.twin = local_twins(surface, triangles, seam);
     build_vertices(surface, triangles, halfedges.twin, disk);
     std::vector<std::vector<int32_t>> loops;
     if (!is_disk(disk, halfedges, loops)) {
         // Spanning tree of the triangles (breadth first from triangle 0); every uncut edge it
-        // does not cross is a cut candidate.
+        // does not cross is a cut candidate. It enters each input polygon whole, across the
+        // polygon's own edges, so that no cut runs through a polygon.
         const int32_t corners = static_cast<int32_t>(halfedges.twin.size());
         std::vector<char> crossed(corners, 0), visited(triangles.size(), 0);
-        std::vector<int32_t> frontier = {0};
-        visited[0] = 1;
+        std::vector<int32_t> frontier;
+        auto enter = [&](int32_t first) {
+            visited[first] = 1;
+            const size_t begin = frontier.size();
+            frontier.push_back(first);
+            for (size_t j = begin; j < frontier.size(); ++j) {  // only this polygon's triangles
+                for (int k = 0; k < 3; ++k) {
+                    const int32_t h = 3 * frontier[j] + k, o = halfedges.twin[h];
+                    if (o < 0 || visited[o / 3] ||
+                        !joins_polygon(surface, 3 * triangles[frontier[j]] + k))
+                        continue;
+                    visited[o / 3] = 1;
+                    crossed[h] = crossed[o] = 1;
+                    frontier.push_back(o / 3);
+                }
+            }
+        };
+        enter(0);
         for (size_t i = 0; i < frontier.size(); ++i) {
             for (int k = 0; k < 3; ++k) {
                 const int32_t h = 3 * frontier[i] + k, o = halfedges.twin[h];
                 if (o < 0 || visited[o / 3]) continue;
-                visited[o / 3] = 1;
                 crossed[h] = crossed[o] = 1;
-                frontier.push_back(o / 3);
+                enter(o / 3);
             }
         }
         if (frontier.size() != triangles.size()) return false;  // not connected
@@ -158,22 +174,24 @@ bool make_union_chart_disk(const AtlasSurface& surface, const std::vector<int32_
     // whole atlas, against ordering the unions by minimum degree: fandisk 543.2M -> 524.4M
     // instructions, cheburashka 875.7M -> 852.5M, lion 1071.6M -> 1040.4M; the factorizations
     // did not grow (fandisk's Cholesky and LU kernels 40.1M -> 39.1M).
-    const size_t surface_vertices = surface.mesh.positions.size();
-    std::vector<int32_t> position_in_a(surface_vertices, -1), position_in_b(surface_vertices, -1);
-    auto note_positions = [](const ChartDisk& part, std::vector<int32_t>& position) {
-        for (size_t k = part.vertex_order.size(); k-- > 0;)  // first chart vertex wins
-            position[part.surface_vertex[part.vertex_order[k]]] = static_cast<int32_t>(k);
+    // Per part, the surface vertex at each position of its order (the first position wins).
+    auto ordered_vertices = [](const ChartDisk& part) {
+        std::vector<int32_t> vertex(part.vertex_order.size());
+        for (size_t k = 0; k < vertex.size(); ++k)
+            vertex[k] = part.surface_vertex[part.vertex_order[k]];
+        return vertex;
     };
-    note_positions(a, position_in_a);
-    note_positions(b, position_in_b);
+    const size_t surface_vertices = surface.mesh.positions.size();
+    const LocalIndex position_in_a(ordered_vertices(a), surface_vertices);
+    const LocalIndex position_in_b(ordered_vertices(b), surface_vertices);
     // A counting sort by (group, position in its part's order), ties in vertex order.
     const int32_t n = disk.mesh.vertex_count();
     const int32_t size_a = static_cast<int32_t>(a.vertex_order.size());
     const int32_t size_b = static_cast<int32_t>(b.vertex_order.size());
     std::vector<int32_t> key(n), start(2 * static_cast<size_t>(size_a) + size_b + 1, 0);
     for (int32_t v = 0; v < n; ++v) {
-        const int32_t in_a = position_in_a[disk.surface_vertex[v]];
-        const int32_t in_b = position_in_b[disk.surface_vertex[v]];
+        const int32_t in_a = position_in_a(disk.surface_vertex[v]);
+        const int32_t in_b = position_in_b(disk.surface_vertex[v]);
         key[v] = in_a < 0 ? size_a + in_b : in_b < 0 ? in_a : size_a + size_b + in_a;
         ++start[key[v] + 1];
     }

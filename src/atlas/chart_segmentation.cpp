@@ -43,8 +43,10 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
             const int32_t o = surface.twin[h];
             if (o >= 0) g.step[h] = (centroid[o / 3] - centroid[h / 3]).norm();
-            g.barrier[h] = o < 0 || (settings.hard_edge_angle_deg < 180.0 &&
-                                     g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
+            // A polygon's own edges are never barriers: the polygon grows as one.
+            g.barrier[h] =
+                o < 0 || (settings.hard_edge_angle_deg < 180.0 && !joins_polygon(surface, h) &&
+                          g.normal[h / 3].dot(g.normal[o / 3]) < hard_cosine);
         }
     });
     return g;
@@ -200,15 +202,27 @@ class Grower {
         assign(seed, c, 0.0);
     }
 
-    void assign(int32_t t, int32_t c, double distance) {
-        progress_.at(++assigned_, surface_.mesh.triangle_count());
-        chart_[t] = c;
+    // Assigns `first` and the rest of its input polygon (across the polygon's own edges, which
+    // are never a chart boundary: a polygon is one unit of growth).
+    void assign(int32_t first, int32_t c, double distance) {
+        chart_[first] = c;
+        polygon_.assign(1, first);
         Chart& chart = charts_[c];
-        chart.normal_sum += g_.area[t] * g_.normal[t];
-        for (int k = 0; k < 3; ++k) {
-            const int32_t o = surface_.twin[3 * t + k];
-            if (o < 0 || g_.barrier[3 * t + k] || chart_[o / 3] >= 0) continue;
-            queue_.push({distance + g_.step[3 * t + k], o / 3, c});
+        while (!polygon_.empty()) {
+            const int32_t t = polygon_.back();
+            polygon_.pop_back();
+            progress_.at(++assigned_, surface_.mesh.triangle_count());
+            chart.normal_sum += g_.area[t] * g_.normal[t];
+            for (int k = 0; k < 3; ++k) {
+                const int32_t o = surface_.twin[3 * t + k];
+                if (o < 0 || g_.barrier[3 * t + k] || chart_[o / 3] >= 0) continue;
+                if (joins_polygon(surface_, 3 * t + k)) {
+                    chart_[o / 3] = c;
+                    polygon_.push_back(o / 3);
+                } else {
+                    queue_.push({distance + g_.step[3 * t + k], o / 3, c});
+                }
+            }
         }
     }
 
@@ -231,6 +245,7 @@ class Grower {
     std::vector<int32_t> chart_;
     std::vector<Chart> charts_;
     CandidateQueue queue_;
+    std::vector<int32_t> polygon_;  // triangles of the polygon being assigned
     ProgressSpan progress_;
     int64_t assigned_ = 0;
 };
@@ -250,25 +265,29 @@ std::vector<int32_t> compact_ids(std::vector<int32_t> chart) {
 
 }  // namespace
 
-void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
-                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
-                             const ProgressSpan& progress) {
-    // Region growing over triangles leaves saw-tooth boundaries (single triangles poking into
-    // the neighbour, most visibly on triangulated quad meshes); they lengthen seams and waste
-    // packing space. A triangle whose two uncut neighbours share another chart joins it; a
-    // few sweeps in index order remove the teeth (the order makes it deterministic).
+namespace {
+
+// Region growing over triangles leaves saw-tooth boundaries (single triangles poking into the
+// neighbour, most visibly on triangulated quad meshes); they lengthen seams and waste packing
+// space. A triangle whose two uncut neighbours share another chart joins it; a few sweeps in
+// index order remove the teeth (the order makes it deterministic). slot(i): the i-th triangle
+// visited, as an index into `chart`; across(t, k): the triangle across side k of t, or -1;
+// pinned(t): t is part of a polygon and never moves alone.
+template <typename Slot, typename Across, typename Pinned>
+void smooth_sweeps(int64_t count, const Slot& slot, const Across& across, const Pinned& pinned,
+                   std::vector<int32_t>& chart, const ProgressSpan& progress) {
     for (int sweep = 0; sweep < 4; ++sweep) {
         bool changed = false;
-        const int64_t count = static_cast<int64_t>(triangles.size());
         progress.part(sweep / 4.0, (sweep + 1) / 4.0)
             .in_runs(count, [&](int64_t run_begin, int64_t run_end) {
-                for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
-                    const int32_t t = triangles[i];
+                for (int64_t i = run_begin; i < run_end; ++i) {
+                    const int32_t t = slot(i);
+                    // A triangle of a polygon moves only with it: the teeth are triangles.
+                    if (pinned(t)) continue;
                     int32_t other[3], found = 0;
                     for (int k = 0; k < 3; ++k) {
-                        const int32_t o = surface.twin[3 * t + k];
-                        if (o >= 0 && !barrier[3 * t + k] && chart[o / 3] != chart[t])
-                            other[found++] = chart[o / 3];
+                        const int32_t o = across(t, k);
+                        if (o >= 0 && chart[o] != chart[t]) other[found++] = chart[o];
                     }
                     int32_t winner = -1;
                     if (found >= 2 && other[0] == other[1]) winner = other[0];
@@ -282,6 +301,32 @@ void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char
             });
         if (!changed) break;
     }
+}
+
+}  // namespace
+
+void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char>& barrier,
+                             const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress) {
+    smooth_sweeps(
+        static_cast<int64_t>(triangles.size()), [&](int64_t i) { return triangles[i]; },
+        [&](int32_t t, int k) {
+            const int32_t o = surface.twin[3 * t + k];
+            return o >= 0 && !barrier[3 * t + k] ? o / 3 : -1;
+        },
+        [&](int32_t t) {
+            return joins_polygon(surface, 3 * t) || joins_polygon(surface, 3 * t + 1) ||
+                   joins_polygon(surface, 3 * t + 2);
+        },
+        chart, progress);
+}
+
+void smooth_chart_boundaries(const std::vector<int32_t>& neighbour, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress, const std::vector<char>& pinned) {
+    smooth_sweeps(
+        static_cast<int64_t>(chart.size()), [](int64_t i) { return static_cast<int32_t>(i); },
+        [&](int32_t t, int k) { return neighbour[3 * t + k]; },
+        [&](int32_t t) { return !pinned.empty() && pinned[t]; }, chart, progress);
 }
 
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,

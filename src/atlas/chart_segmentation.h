@@ -28,6 +28,13 @@ void smooth_chart_boundaries(const AtlasSurface& surface, const std::vector<char
                              const std::vector<int32_t>& triangles, std::vector<int32_t>& chart,
                              const ProgressSpan& progress = {});
 
+// The same on a chart of its own: chart[i] per chart triangle i, neighbour[3i+k] the chart
+// triangle across its side k, or -1 where a barrier is; pinned[i] (empty: none) keeps triangle
+// i where it is (a part of a polygon, polygon_units.h).
+void smooth_chart_boundaries(const std::vector<int32_t>& neighbour, std::vector<int32_t>& chart,
+                             const ProgressSpan& progress = {},
+                             const std::vector<char>& pinned = {});
+
 // Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
                                     const SegmentationSettings& settings,

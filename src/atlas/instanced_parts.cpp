@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <tuple>
+#include <unordered_map>
 
 #include "atlas/chart_stacking.h"
 #include "core/hash_mix.h"
@@ -54,13 +55,17 @@ std::vector<Instances::Piece> pieces_of(const TriangleMesh& mesh, const AtlasPar
 }
 
 // What an instance must repeat exactly: its triangles over its vertices numbered by first use,
-// its groups and its seam edges (in that numbering, each pair sorted, the list sorted).
+// its groups, its polygons (each triangle's polygon named by its first triangle's rank in the
+// piece, as ids are only compared) and its seam edges (in that numbering, each pair sorted, the
+// list sorted).
 struct PieceLayout {
     std::vector<Triangle> triangles;
     std::vector<uint32_t> groups;
+    std::vector<int32_t> polygons;
     std::vector<std::pair<int32_t, int32_t>> seams;
     bool operator==(const PieceLayout& o) const {
-        return triangles == o.triangles && groups == o.groups && seams == o.seams;
+        return triangles == o.triangles && groups == o.groups && polygons == o.polygons &&
+               seams == o.seams;
     }
 };
 
@@ -68,11 +73,18 @@ PieceLayout layout_of(const TriangleMesh& mesh, const std::vector<int32_t>& weld
                       const std::vector<int32_t>& local_index, const Instances::Piece& piece,
                       const std::vector<int32_t>& seams) {
     PieceLayout layout;
-    for (int32_t t : piece.triangles) {
+    std::unordered_map<uint32_t, int32_t> first_of_polygon;
+    for (size_t k = 0; k < piece.triangles.size(); ++k) {
+        const int32_t t = piece.triangles[k];
         const Triangle& v = mesh.triangles[t];
         layout.triangles.push_back(
             {local_index[welded[v[0]]], local_index[welded[v[1]]], local_index[welded[v[2]]]});
         if (!mesh.triangle_group.empty()) layout.groups.push_back(mesh.triangle_group[t]);
+        if (!mesh.triangle_polygon.empty()) {
+            layout.polygons.push_back(
+                first_of_polygon.emplace(mesh.triangle_polygon[t], static_cast<int32_t>(k))
+                    .first->second);
+        }
     }
     for (int32_t e : seams) {
         const int32_t a = welded[mesh.seam_edges[e][0]], b = welded[mesh.seam_edges[e][1]];

@@ -37,8 +37,8 @@ struct Instances {
 
 // welded[v]: input vertex v's representative, welded within its part. A piece repeats an earlier
 // one when both have the same triangles over their vertices numbered by first use (corner for
-// corner), the same groups and seam edges, and vertices that agree up to a rigid motion (or a
-// mirror, when allowed) within tolerance times the piece's extent; with across_parts false,
+// corner), the same groups, polygons and seam edges, and vertices that agree up to a rigid motion
+// (or a mirror, when allowed) within tolerance times the piece's extent; with across_parts false,
 // only pieces of one part. Pieces with degenerate triangles that no chart holds are never
 // sources or instances (their point charts are not copied). Each piece is compared with the
 // first 16 originals of its layout at most.

@@ -45,10 +45,11 @@ SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
                         const std::vector<Eigen::Matrix<double, 3, 4>>& transforms, bool repack) {
     SceneMesh scene;
     int64_t vertices = 0, triangles = 0;
-    bool any_groups = false;
+    bool any_groups = false, any_polygons = false;
     for (size_t i = 0; i < meshes.size(); ++i) {
         check_part(*meshes[i], i, repack);
         any_groups = any_groups || !meshes[i]->triangle_group.empty();
+        any_polygons = any_polygons || !meshes[i]->triangle_polygon.empty();
         vertices += meshes[i]->vertex_count();
         triangles += meshes[i]->triangle_count();
     }
@@ -86,6 +87,19 @@ SceneMesh combine_scene(const std::vector<const TriangleMesh*>& meshes,
             } else {
                 scene.mesh.triangle_group.insert(scene.mesh.triangle_group.end(), group.begin(),
                                                  group.end());
+            }
+        }
+        // Polygon ids are only compared across an edge, which never joins two meshes; a mesh
+        // without them gets one id per triangle (its scene triangle index: no two equal).
+        if (any_polygons) {
+            const std::vector<uint32_t>& polygon = meshes[i]->triangle_polygon;
+            if (polygon.empty()) {
+                for (size_t t = scene.mesh.triangle_polygon.size(); t < scene.mesh.triangles.size();
+                     ++t)
+                    scene.mesh.triangle_polygon.push_back(static_cast<uint32_t>(t));
+            } else {
+                scene.mesh.triangle_polygon.insert(scene.mesh.triangle_polygon.end(),
+                                                   polygon.begin(), polygon.end());
             }
         }
         // uvs are not transformed: the repacking scales each chart to its world-unit area.

@@ -24,6 +24,12 @@ void check_user_seams(const TriangleMesh& mesh, const std::string& name) {
                         std::to_string(mesh.triangle_group.size()) + " but the mesh has " +
                         std::to_string(mesh.triangles.size()) + " triangles");
     }
+    if (!mesh.triangle_polygon.empty() && mesh.triangle_polygon.size() != mesh.triangles.size()) {
+        throw Error(ErrorCode::kGroupCount,
+                    lead(name) + "the triangle polygons number " +
+                        std::to_string(mesh.triangle_polygon.size()) + " but the mesh has " +
+                        std::to_string(mesh.triangles.size()) + " triangles");
+    }
     if (mesh.seam_edges.empty()) return;
     std::vector<uint64_t> edges;
     edges.reserve(3 * mesh.triangles.size());

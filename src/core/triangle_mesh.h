@@ -22,6 +22,9 @@ struct TriangleMesh {
     // (empty: one group), and input vertex pairs that are seams. Checked when the mesh is used.
     std::vector<uint32_t> triangle_group;
     std::vector<std::array<uint32_t, 2>> seam_edges;
+    // Per triangle its polygon (empty: each triangle its own), which the atlas keeps whole
+    // (atlas/polygon_units.h). Checked when the mesh is used.
+    std::vector<uint32_t> triangle_polygon;
     // The input's own uvs, per triangle corner 3t+k (empty: none), which only the atlas's
     // repacking reads (atlas/uv_repack.h). Checked when the mesh is used.
     std::vector<Eigen::Vector2d> corner_uv;

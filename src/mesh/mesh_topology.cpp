@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/fill_in_runs.h"
 
 namespace raps {
 namespace {
@@ -37,7 +38,7 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& 
         }
     });
     std::partial_sum(out.offsets.begin(), out.offsets.end(), out.offsets.begin());
-    out.halfedges.resize(halfedge_count);
+    assign_in_runs(out.halfedges, halfedge_count, 0, progress.part(0.5, 0.5));
     std::vector<int32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
     for (int32_t h = 0; h < halfedge_count; ++h) {
         progress.at(halfedge_count + h, 2 * static_cast<int64_t>(halfedge_count));
@@ -51,14 +52,14 @@ OutgoingHalfedges group_by_origin(const TriangleMesh& mesh, const ProgressSpan& 
 Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress) {
     const OutgoingHalfedges out = group_by_origin(mesh, progress.part(0.0, 0.15));
     const int32_t halfedge_count = 3 * mesh.triangle_count();
-    std::vector<int32_t> target(halfedge_count);
+    std::vector<int32_t> target = filled_in_runs(halfedge_count, 0, progress.part(0.15, 0.15));
     progress.part(0.15, 0.2).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
             target[h] = halfedge_target(mesh, h);
         }
     });
     Halfedges result;
-    result.twin.assign(halfedge_count, -1);
+    assign_in_runs(result.twin, halfedge_count, -1, progress.part(0.2, 0.2));
     const ProgressSpan pairing = progress.part(0.2, 1.0);
     pairing.in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
@@ -164,15 +165,20 @@ std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfe
 }
 
 std::vector<std::vector<int32_t>> boundary_loops(const TriangleMesh& mesh,
-                                                 const Halfedges& halfedges) {
+                                                 const Halfedges& halfedges,
+                                                 const ProgressSpan& progress) {
     // With manifold vertices every boundary vertex starts exactly one boundary half-edge.
     std::vector<int32_t> boundary_out(mesh.positions.size(), -1);
-    for (int32_t h = 0; h < static_cast<int32_t>(halfedges.twin.size()); ++h) {
-        if (halfedges.twin[h] < 0) boundary_out[halfedge_origin(mesh, h)] = h;
-    }
+    progress.part(0.0, 0.7).in_runs(
+        static_cast<int64_t>(halfedges.twin.size()), [&](int64_t begin, int64_t end) {
+            for (int32_t h = static_cast<int32_t>(begin); h < end; ++h) {
+                if (halfedges.twin[h] < 0) boundary_out[halfedge_origin(mesh, h)] = h;
+            }
+        });
     std::vector<std::vector<int32_t>> loops;
     std::vector<char> done(mesh.positions.size(), 0);
     for (int32_t v0 = 0; v0 < mesh.vertex_count(); ++v0) {
+        progress.at(v0, mesh.vertex_count(), 0.7, 1.0);
         if (boundary_out[v0] < 0 || done[v0]) continue;
         std::vector<int32_t> loop;
         for (int32_t v = v0; !done[v]; v = halfedge_target(mesh, boundary_out[v])) {
@@ -224,10 +230,10 @@ int64_t euler_characteristic(const TriangleMesh& mesh, const Halfedges& halfedge
 
 std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedges& halfedges,
                                         const ProgressSpan& progress) {
-    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
-    check_one_piece(mesh, halfedges, "a disk", progress.part(0.5, 1.0));
-    progress.report(1.0);
-    std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.4));
+    check_one_piece(mesh, halfedges, "a disk", progress.part(0.4, 0.8));
+    std::vector<std::vector<int32_t>> loops =
+        boundary_loops(mesh, halfedges, progress.part(0.8, 0.95));
     if (loops.empty()) {
         throw Error(ErrorCode::kNoBoundary,
                     "the mesh is closed (it has no boundary loop); a disk has exactly one");
@@ -239,6 +245,7 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
                         " boundary loops (holes), through vertices " + starts +
                         "; a disk has exactly one");
     }
+    progress.report(0.95);  // the Euler characteristic: one pass over the half-edges
     const int64_t euler = euler_characteristic(mesh, halfedges);
     if (euler != 1) {
         throw Error(ErrorCode::kNonzeroGenus,
@@ -251,10 +258,10 @@ std::vector<int32_t> disk_boundary_loop(const TriangleMesh& mesh, const Halfedge
 
 void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedges,
                              const ProgressSpan& progress) {
-    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.5));
-    check_one_piece(mesh, halfedges, "a sphere", progress.part(0.5, 1.0));
-    progress.report(1.0);
-    const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, halfedges);
+    check_manifold_vertices(mesh, halfedges, progress.part(0.0, 0.4));
+    check_one_piece(mesh, halfedges, "a sphere", progress.part(0.4, 0.8));
+    const std::vector<std::vector<int32_t>> loops =
+        boundary_loops(mesh, halfedges, progress.part(0.8, 0.95));
     if (!loops.empty()) {
         const std::string starts = loop_starts(loops);
         throw Error(ErrorCode::kOpenMesh, "the sphere domain needs a closed mesh: it has " +
@@ -262,6 +269,7 @@ void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedge
                                               (loops.size() > 1 ? "s" : "") +
                                               " (through vertices " + starts + ")");
     }
+    progress.report(0.95);  // the Euler characteristic: one pass over the half-edges
     const int64_t euler = euler_characteristic(mesh, halfedges);
     if (euler != 2) {
         throw Error(ErrorCode::kNonzeroGenus, "the mesh has handles: genus " +
@@ -328,7 +336,8 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
     // Each entry carries its edge's half-edge h and direction (2h: in the row of h's origin,
     // 2h + 1: of its target) through the sort, so the slots come out of the sort itself: binary
     // searches for them afterwards were most of this function.
-    std::vector<std::pair<int32_t, int32_t>> entries(adjacency.offsets.back());
+    std::vector<std::pair<int32_t, int32_t>> entries = filled_in_runs(
+        adjacency.offsets.back(), std::pair<int32_t, int32_t>(), progress.part(0.2, 0.2));
     std::vector<int32_t> fill(adjacency.offsets.begin(), adjacency.offsets.end() - 1);
     progress.part(0.2, 0.4).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
@@ -339,9 +348,9 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
         }
     });
     const ProgressSpan sorting = progress.part(0.4, 0.9);
-    adjacency.neighbors.resize(entries.size());
-    adjacency.forward_slot.resize(halfedge_count);
-    adjacency.backward_slot.resize(halfedge_count);
+    assign_in_runs(adjacency.neighbors, entries.size(), 0, progress.part(0.4, 0.4));
+    assign_in_runs(adjacency.forward_slot, halfedge_count, 0, progress.part(0.4, 0.4));
+    assign_in_runs(adjacency.backward_slot, halfedge_count, 0, progress.part(0.4, 0.4));
     sorting.in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
             // Insertion sort by neighbour: a vertex has about six.

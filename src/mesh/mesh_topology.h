@@ -51,7 +51,8 @@ std::vector<int32_t> piece_representatives(const TriangleMesh& mesh, const Halfe
 // runs counter-clockwise around it), starting at its smallest vertex index; loops sorted by that
 // vertex. Needs manifold vertices.
 std::vector<std::vector<int32_t>> boundary_loops(const TriangleMesh& mesh,
-                                                 const Halfedges& halfedges);
+                                                 const Halfedges& halfedges,
+                                                 const ProgressSpan& progress = {});
 
 // Undirected edge count: interior edges once, boundary edges once.
 int64_t edge_count(const Halfedges& halfedges);

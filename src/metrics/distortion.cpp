@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
 
 namespace raps {
@@ -110,12 +111,14 @@ struct Figures {
 DistortionStats measure_distortion(const std::vector<Eigen::Vector3d>& positions,
                                    const MapGeometry& map, const std::vector<Triangle>& triangles,
                                    ThreadPool& pool, const ProgressSpan& progress) {
-    // Progress: three passes, each block of a pass reporting as it starts (whichever thread
-    // takes it); the last pass is most of the work.
-    const ProgressSpan areas = progress.part(0.0, 0.15), sums = progress.part(0.15, 0.2),
-                       figures_span = progress.part(0.2, 1.0);
+    // Progress: the per-triangle arrays' fills (in runs: 2 x 46 MB of fresh pages at 5.8M
+    // triangles were 40 ms of CPU without a call), then three passes, each block of a pass
+    // reporting as it starts (whichever thread takes it); the last pass is most of the work.
+    const ProgressSpan fills = progress.part(0.0, 0.03), areas = progress.part(0.03, 0.15),
+                       sums = progress.part(0.15, 0.2), figures_span = progress.part(0.2, 1.0);
     const int64_t count = static_cast<int64_t>(triangles.size());
-    std::vector<double> area(count), uv_signed_area(count);
+    std::vector<double> area = filled_in_runs(count, 0.0, fills.part(0.0, 0.5));
+    std::vector<double> uv_signed_area = filled_in_runs(count, 0.0, fills.part(0.5, 1.0));
     const double area_sum = parallel_sum<double>(pool, count, [&](int64_t begin, int64_t end) {
         areas.at(begin, count);
         double sum = 0;

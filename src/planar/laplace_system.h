@@ -54,6 +54,7 @@ class LaplaceSystem {
     std::vector<int32_t> value_of_slot_;  // per slot of an interior row: its entry, or -1
     std::vector<int32_t> diagonal_of_unknown_;
     std::unique_ptr<SparseSolver> solver_;
+    std::vector<double> values_, rhs_;  // solve()'s matrix and right-hand sides, kept for the next
 };
 
 }  // namespace raps

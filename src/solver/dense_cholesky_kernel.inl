@@ -31,19 +31,19 @@ bool unblocked_cholesky(double* front, int32_t m, int32_t first, int32_t count, 
 // Recursive Cholesky of a column panel, as recursive_lu: factor the left half, update the
 // right half's lower part by one product, factor it.
 bool recursive_cholesky(double* front, int32_t m, int32_t first, int32_t count,
-                        const double* pivot_scale, const KernelProgress* progress) {
+                        const double* pivot_scale, WorkCounter& work) {
     constexpr int32_t kUnblocked = 8;
     if (count <= kUnblocked)
         return unblocked_cholesky(front, m, first, count, first + count, pivot_scale);
     const int32_t left = count / 2, right = count - left, mid = first + left;
-    if (!recursive_cholesky(front, m, first, left, pivot_scale, progress)) return false;
+    if (!recursive_cholesky(front, m, first, left, pivot_scale, work)) return false;
     // The lower part of columns [mid, mid + right), from row mid to the front's end, less
     // L L^T, L the factored left half's rows from mid on (L^T's top rows: the same block's
     // first `right` rows, read transposed).
     const double* l = front + mid + static_cast<int64_t>(first) * m;
-    subtract_product_in_chunks(front + mid + static_cast<int64_t>(mid) * m, m, l, m, l, m, 1,
-                               m - mid, right, left, true, progress);
-    return recursive_cholesky(front, m, mid, right, pivot_scale, progress);
+    subtract_product(front + mid + static_cast<int64_t>(mid) * m, m, l, m, l, m, 1, m - mid, right,
+                     left, true, work);
+    return recursive_cholesky(front, m, mid, right, pivot_scale, work);
 }
 
 }  // namespace
@@ -53,13 +53,18 @@ bool RAPS_PARTIAL_CHOLESKY(double* front, int32_t m, int32_t k, const double* pi
     // Small fronts column by column, the Schur complement included (as in the LU).
     constexpr int32_t kSmallFront = 64;
     if (m <= kSmallFront) return unblocked_cholesky(front, m, 0, k, m, pivot_scale);
-    if (!recursive_cholesky(front, m, 0, k, pivot_scale, progress)) return false;
+    WorkCounter work{progress, 0.0};
+    if (!recursive_cholesky(front, m, 0, k, pivot_scale, work)) return false;
     const int32_t rest = m - k;
-    if (rest == 0) return true;
+    if (rest == 0) {
+        work.flush();
+        return true;
+    }
     // F22's lower triangle -= L21 L21^T.
     const double* l21 = front + k;
-    subtract_product_in_chunks(front + k + static_cast<int64_t>(k) * m, m, l21, m, l21, m, 1, rest,
-                               rest, k, true, progress);
+    subtract_product(front + k + static_cast<int64_t>(k) * m, m, l21, m, l21, m, 1, rest, rest, k,
+                     true, work);
+    work.flush();
     return true;
 }
 

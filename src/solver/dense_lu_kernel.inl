@@ -27,20 +27,19 @@ bool unblocked_lu(double* front, int32_t m, int32_t first, int32_t count, int32_
 // with one triangular solve and one matrix product, factor the right half. Nearly all the work
 // lands in matrix products, unlike a column-by-column loop.
 bool recursive_lu(double* front, int32_t m, int32_t first, int32_t count, const double* pivot_scale,
-                  const KernelProgress* progress) {
+                  WorkCounter& work) {
     constexpr int32_t kUnblocked = 8;
     if (count <= kUnblocked)
         return unblocked_lu(front, m, first, count, first + count, pivot_scale);
     const int32_t left = count / 2, right = count - left, mid = first + left;
-    if (!recursive_lu(front, m, first, left, pivot_scale, progress)) return false;
+    if (!recursive_lu(front, m, first, left, pivot_scale, work)) return false;
     // A12 = L11^-1 A12, then A22 -= L21 A12 (A22 and L21 from row mid to the front's end).
     double* a12 = front + first + static_cast<int64_t>(mid) * m;
-    solve_unit_lower_in_chunks(front + first + static_cast<int64_t>(first) * m, m, left, a12, m,
-                               right, progress);
-    subtract_product_in_chunks(front + mid + static_cast<int64_t>(mid) * m, m,
-                               front + mid + static_cast<int64_t>(first) * m, m, a12, 1, m, m - mid,
-                               right, left, false, progress);
-    return recursive_lu(front, m, mid, right, pivot_scale, progress);
+    solve_unit_lower(front + first + static_cast<int64_t>(first) * m, m, left, a12, m, right, work);
+    subtract_product(front + mid + static_cast<int64_t>(mid) * m, m,
+                     front + mid + static_cast<int64_t>(first) * m, m, a12, 1, m, m - mid, right,
+                     left, false, work);
+    return recursive_lu(front, m, mid, right, pivot_scale, work);
 }
 
 }  // namespace
@@ -53,15 +52,20 @@ bool RAPS_PARTIAL_LU(double* front, int32_t m, int32_t k, const double* pivot_sc
     // than in arithmetic at these sizes.
     constexpr int32_t kSmallFront = 64;
     if (m <= kSmallFront) return unblocked_lu(front, m, 0, k, m, pivot_scale);
-    if (!recursive_lu(front, m, 0, k, pivot_scale, progress)) return false;
+    WorkCounter work{progress, 0.0};
+    if (!recursive_lu(front, m, 0, k, pivot_scale, work)) return false;
     const int32_t rest = m - k;
-    if (rest == 0) return true;
+    if (rest == 0) {
+        work.flush();
+        return true;
+    }
     // The Schur complement as one product of inner dimension k: U12 = L11^-1 F12, then
     // F22 -= L21 U12.
     double* u12 = front + static_cast<int64_t>(k) * m;
-    solve_unit_lower_in_chunks(front, m, k, u12, m, rest, progress);
-    subtract_product_in_chunks(front + k + static_cast<int64_t>(k) * m, m, front + k, m, u12, 1, m,
-                               rest, rest, k, false, progress);
+    solve_unit_lower(front, m, k, u12, m, rest, work);
+    subtract_product(front + k + static_cast<int64_t>(k) * m, m, front + k, m, u12, 1, m, rest,
+                     rest, k, false, work);
+    work.flush();
     return true;
 }
 

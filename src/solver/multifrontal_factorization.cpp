@@ -1,12 +1,12 @@
 #include "solver/multifrontal_factorization.h"
 
-#include "solver/dense_kernels.h"
-
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include <Eigen/Core>
+
+#include "core/fill_in_runs.h"
+#include "solver/dense_kernels.h"
 
 namespace raps {
 namespace {
@@ -14,305 +14,7 @@ namespace {
 using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
 using Block = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
 
-// Relaxed amalgamation (Ashcraft & Grimes; the thresholds CHOLMOD uses): merging a supernode
-// into its parent stores some explicit zeros but turns many tiny dense kernels into fewer larger
-// ones, which is faster as long as the zeros stay a small fraction.
-bool worth_merging(int64_t columns, double zero_fraction) {
-    return columns <= 4 || (columns <= 16 && zero_fraction < 0.8) ||
-           (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
-}
-
 }  // namespace
-
-void MultifrontalFactorization::analyze(const SparsePattern& pattern,
-                                        const std::vector<int32_t>& order,
-                                        const ProgressSpan& progress) {
-    const int32_t n = pattern.size;
-    size_ = n;
-    prepared_ = false;
-
-    // Elimination tree of the permuted matrix (Liu's algorithm with path compression).
-    std::vector<int32_t> position(n);
-    for (int32_t k = 0; k < n; ++k) position[order[k]] = k;
-    std::vector<int32_t> parent(n, -1), ancestor(n, -1);
-    const ProgressSpan tree = progress.part(0.0, 0.2);
-    for (int32_t i = 0; i < n; ++i) {
-        tree.at(i, n);
-        const int32_t row = order[i];
-        for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
-            int32_t j = position[pattern.columns[p]];
-            while (j < i) {
-                const int32_t next = ancestor[j];
-                ancestor[j] = i;
-                if (next < 0) {
-                    parent[j] = i;
-                    break;
-                }
-                j = next;
-            }
-        }
-    }
-
-    // Postorder the tree so that every subtree is a contiguous range ending at its root; the
-    // fill is unchanged and supernodes become ranges of consecutive columns.
-    std::vector<int32_t> first_child(n, -1), next_sibling(n, -1);
-    for (int32_t j = n - 1; j >= 0; --j) {
-        if (parent[j] >= 0) {
-            next_sibling[j] = first_child[parent[j]];
-            first_child[parent[j]] = j;
-        }
-    }
-    std::vector<int32_t> postorder;
-    postorder.reserve(n);
-    {
-        std::vector<int32_t> stack;
-        for (int32_t root = 0; root < n; ++root) {
-            if (parent[root] >= 0) continue;
-            stack.push_back(root);
-            while (!stack.empty()) {
-                const int32_t j = stack.back();
-                if (first_child[j] >= 0) {
-                    const int32_t c = first_child[j];
-                    first_child[j] = next_sibling[c];
-                    stack.push_back(c);
-                } else {
-                    stack.pop_back();
-                    postorder.push_back(j);
-                }
-            }
-        }
-    }
-    order_.resize(n);
-    std::vector<int32_t> renumber(n);
-    for (int32_t k = 0; k < n; ++k) {
-        order_[k] = order[postorder[k]];
-        renumber[postorder[k]] = k;
-    }
-    for (int32_t k = 0; k < n; ++k) position[order_[k]] = k;
-    {
-        std::vector<int32_t> renumbered_parent(n, -1);
-        for (int32_t j = 0; j < n; ++j) {
-            if (parent[j] >= 0) renumbered_parent[renumber[j]] = renumber[parent[j]];
-        }
-        parent.swap(renumbered_parent);
-    }
-
-    // Column counts of L (diagonal included) without forming L (Gilbert, Ng & Peyton 1994, as
-    // in CSparse's cs_counts): row i of L is the row subtree spanned by the columns of A's row
-    // i; each column j counts the row subtrees it lies in, found from the subtrees' leaves and
-    // their least common ancestors. Walking every row subtree instead, O(|L|), was a quarter of
-    // this analysis. Columns are numbered in postorder, so j's subtree is first[j] .. j.
-    std::vector<int64_t> column_count(n, 0);
-    {
-        std::vector<int32_t> first(n, -1), max_first(n, -1), previous_leaf(n, -1);
-        std::iota(ancestor.begin(), ancestor.end(), 0);  // now: union-find of finished subtrees
-        for (int32_t j = 0; j < n; ++j) {
-            if (first[j] < 0) {
-                column_count[j] = 1;  // a leaf of the tree
-                for (int32_t k = j; k >= 0 && first[k] < 0; k = parent[k]) first[k] = j;
-            }
-        }
-        const ProgressSpan counts = progress.part(0.2, 0.45);
-        for (int32_t j = 0; j < n; ++j) {
-            counts.at(j, n);
-            if (parent[j] >= 0) --column_count[parent[j]];
-            const int32_t row = order_[j];
-            for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
-                const int32_t i = position[pattern.columns[p]];
-                if (i <= j || first[j] <= max_first[i]) continue;  // j is no leaf of i's subtree
-                max_first[i] = first[j];
-                const int32_t previous = previous_leaf[i];
-                previous_leaf[i] = j;
-                ++column_count[j];
-                if (previous < 0) continue;  // i's first leaf
-                int32_t common = previous;   // least common ancestor of the two leaves
-                while (common != ancestor[common]) common = ancestor[common];
-                for (int32_t k = previous; k != common;) {  // path compression
-                    const int32_t up = ancestor[k];
-                    ancestor[k] = common;
-                    k = up;
-                }
-                --column_count[common];
-            }
-            if (parent[j] >= 0) ancestor[j] = parent[j];
-        }
-        for (int32_t j = 0; j < n; ++j) {
-            if (parent[j] >= 0) column_count[parent[j]] += column_count[j];
-        }
-    }
-
-    // Fundamental supernodes: chains j -> j + 1 where j is the only child and the structure
-    // shrinks by exactly the diagonal.
-    std::vector<int32_t> child_count(n, 0);
-    for (int32_t j = 0; j < n; ++j) {
-        if (parent[j] >= 0) ++child_count[parent[j]];
-    }
-    std::vector<int32_t> super_first;  // first column of each fundamental supernode
-    for (int32_t j = 0; j < n; ++j) {
-        const bool continues = j > 0 && parent[j - 1] == j && child_count[j] == 1 &&
-                               column_count[j - 1] == column_count[j] + 1;
-        if (!continues) super_first.push_back(j);
-    }
-    super_first.push_back(n);
-
-    // Relaxed amalgamation, from the last supernode down: supernode s merges into the group
-    // that starts right after it when that group holds its parent column.
-    const int32_t fundamental_count = static_cast<int32_t>(super_first.size()) - 1;
-    std::vector<char> merged_with_next(fundamental_count, 0);
-    {
-        // Stats of the group starting at supernode s+1 (the one s may join).
-        int64_t group_columns = 0, group_rows = 0;
-        double group_nonzeros = 0;
-        for (int32_t s = fundamental_count - 1; s >= 0; --s) {
-            const int32_t f = super_first[s], l = super_first[s + 1] - 1;
-            const int64_t cols = l - f + 1;
-            double nonzeros = 0;
-            for (int32_t j = f; j <= l; ++j) nonzeros += static_cast<double>(column_count[j]);
-            const int64_t rows = column_count[f];
-            bool merge = false;
-            if (s + 1 < fundamental_count && parent[l] == super_first[s + 1]) {
-                const int64_t merged_columns = cols + group_columns;
-                const int64_t merged_rows = cols + group_rows;
-                const double entries = static_cast<double>(merged_columns) * merged_rows -
-                                       0.5 * static_cast<double>(merged_columns) *
-                                           static_cast<double>(merged_columns - 1);
-                const double zero_fraction = 1.0 - (nonzeros + group_nonzeros) / entries;
-                merge = worth_merging(merged_columns, zero_fraction);
-                if (merge) {
-                    group_columns = merged_columns;
-                    group_rows = merged_rows;
-                    group_nonzeros += nonzeros;
-                }
-            }
-            merged_with_next[s] = merge;
-            if (!merge) {
-                group_columns = cols;
-                group_rows = rows;
-                group_nonzeros = nonzeros;
-            }
-        }
-    }
-    std::vector<int32_t> supernode_of(n);
-    supernodes_.clear();
-    for (int32_t s = 0; s < fundamental_count; ++s) {
-        if (s == 0 || !merged_with_next[s - 1]) {
-            Supernode node{};
-            node.first_column = super_first[s];
-            supernodes_.push_back(node);
-        }
-        supernodes_.back().columns = super_first[s + 1] - supernodes_.back().first_column;
-    }
-    const int32_t supernode_count = static_cast<int32_t>(supernodes_.size());
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        const Supernode& node = supernodes_[s];
-        for (int32_t j = node.first_column; j < node.first_column + node.columns; ++j) {
-            supernode_of[j] = s;
-        }
-    }
-    std::vector<int32_t> super_parent(supernode_count, -1);
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        const int32_t last = supernodes_[s].first_column + supernodes_[s].columns - 1;
-        if (parent[last] >= 0) super_parent[s] = supernode_of[parent[last]];
-    }
-    // Children lists (postorder keeps them in increasing order, which the stack relies on).
-    std::vector<int32_t> children_count(supernode_count, 0);
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        if (super_parent[s] >= 0) ++children_count[super_parent[s]];
-    }
-    {
-        int32_t offset = 0;
-        for (int32_t s = 0; s < supernode_count; ++s) {
-            supernodes_[s].child_begin = supernodes_[s].child_end = offset;
-            offset += children_count[s];
-        }
-        child_list_.assign(offset, 0);
-        for (int32_t s = 0; s < supernode_count; ++s) {
-            if (super_parent[s] >= 0) {
-                Supernode& p = supernodes_[super_parent[s]];
-                child_list_[p.child_end++] = s;
-            }
-        }
-    }
-
-    // Front structures: the supernode's columns, then the rows below it from A's columns and
-    // from its children's update rows, sorted.
-    row_indices_.clear();
-    std::vector<int32_t> mark(n, -1);
-    const ProgressSpan fronts = progress.part(0.45, 0.8);
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        fronts.at(s, supernode_count);
-        Supernode& node = supernodes_[s];
-        const int32_t f = node.first_column, l = f + node.columns - 1;
-        node.row_offset = static_cast<int64_t>(row_indices_.size());
-        for (int32_t j = f; j <= l; ++j) row_indices_.push_back(j);
-        const size_t update_begin = row_indices_.size();
-        for (int32_t j = f; j <= l; ++j) {
-            const int32_t column = order_[j];
-            for (int32_t p = pattern.row_offsets[column]; p < pattern.row_offsets[column + 1];
-                 ++p) {
-                const int32_t i = position[pattern.columns[p]];
-                if (i > l && mark[i] != s) {
-                    mark[i] = s;
-                    row_indices_.push_back(i);
-                }
-            }
-        }
-        for (int32_t c = node.child_begin; c < node.child_end; ++c) {
-            const Supernode& child = supernodes_[child_list_[c]];
-            for (int64_t r = child.row_offset + child.columns; r < child.row_offset + child.rows;
-                 ++r) {
-                const int32_t i = row_indices_[r];
-                if (i > l && mark[i] != s) {
-                    mark[i] = s;
-                    row_indices_.push_back(i);
-                }
-            }
-        }
-        std::sort(row_indices_.begin() + static_cast<int64_t>(update_begin), row_indices_.end());
-        node.rows = static_cast<int32_t>(row_indices_.size() - node.row_offset);
-    }
-
-    // Where each child's update rows land in its parent's front.
-    std::vector<int32_t> local(n, -1);
-    relative_rows_.clear();
-    int64_t max_front = 0;
-    for (const Supernode& node : supernodes_) {
-        max_front = std::max(max_front, static_cast<int64_t>(node.rows) * node.rows);
-    }
-    const ProgressSpan relative = progress.part(0.8, 1.0);
-    for (int32_t s = 0; s < supernode_count; ++s) {
-        relative.at(s, supernode_count);
-        const Supernode& node = supernodes_[s];
-        for (int32_t r = 0; r < node.rows; ++r) local[row_indices_[node.row_offset + r]] = r;
-        for (int32_t c = node.child_begin; c < node.child_end; ++c) {
-            Supernode& child = supernodes_[child_list_[c]];
-            child.relative_offset = static_cast<int64_t>(relative_rows_.size());
-            for (int64_t r = child.row_offset + child.columns; r < child.row_offset + child.rows;
-                 ++r) {
-                relative_rows_.push_back(local[row_indices_[r]]);
-            }
-        }
-    }
-    // Peak of the contribution-block stack, simulated in the factorization's order.
-    {
-        int64_t stack = 0;
-        stack_peak_ = 0;
-        std::vector<int64_t> stack_sizes;
-        for (int32_t s = 0; s < supernode_count; ++s) {
-            const Supernode& node = supernodes_[s];
-            for (int32_t c = node.child_begin; c < node.child_end; ++c) {
-                stack -= stack_sizes.back();
-                stack_sizes.pop_back();
-            }
-            const int64_t update = node.rows - node.columns;
-            stack_sizes.push_back(update * update);
-            stack += update * update;
-            stack_peak_ = std::max(stack_peak_, stack);
-        }
-    }
-    front_ = allocate(max_front);
-    stack_ = allocate(stack_peak_);
-}
 
 void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorization kind,
                                         const ProgressSpan& progress) {
@@ -337,11 +39,12 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     // after its first column, and take the transposed entry (other, j) when other lies beyond.
     // transposed[p] is the index of the entry mirroring entry p; rows are sorted, so visiting
     // rows in order meets each row's entries in order. (Cholesky places no mirrors.)
-    std::vector<int64_t> transposed(cholesky_ ? 0 : pattern.nonzeros());
+    std::vector<int64_t> transposed;
     if (!cholesky_) {
+        assign_in_runs(transposed, pattern.nonzeros(), int64_t(0), progress.part(0.0, 0.1));
         std::vector<int64_t> cursor(pattern.row_offsets.begin(), pattern.row_offsets.end() - 1);
         for (int32_t row = 0; row < n; ++row) {
-            progress.at(row, 2 * static_cast<int64_t>(n));
+            progress.at(row, n, 0.1, 0.3);
             for (int32_t p = pattern.row_offsets[row]; p < pattern.row_offsets[row + 1]; ++p) {
                 transposed[p] = cursor[pattern.columns[p]]++;
             }
@@ -351,8 +54,8 @@ void MultifrontalFactorization::prepare(const SparsePattern& pattern, Factorizat
     // supernodes from the earlier row as itself and its mirror (the later row skips both).
     // Cholesky keeps only the lower triangle: each row j gives its entries (other >= j) at
     // (other, j), and the upper ones are never placed.
-    value_source_.resize(pattern.nonzeros());
-    value_target_.resize(pattern.nonzeros());
+    assign_in_runs(value_source_, pattern.nonzeros(), int64_t(0), progress.part(0.3, 0.4));
+    assign_in_runs(value_target_, pattern.nonzeros(), int64_t(0), progress.part(0.4, 0.5));
     diagonal_source_.assign(n, -1);
     int64_t next_value = 0, next_report = kItemsPerReport;
     for (Supernode& node : supernodes_) {
@@ -424,16 +127,24 @@ void front_work_done(void* context, double multiply_adds) {
 // Fronts with more work than this report from inside the kernel (a few milliseconds of work).
 constexpr double kFrontReportFlops = 1e7;
 constexpr int32_t kFrontsPerReport = 1024;
-constexpr int64_t kEntriesPerReport = int64_t(1) << 21;
+// 2 MB of entries: the first factorization touches the workspaces' fresh pages, 512 page faults
+// per report (16 MB took 44 ms of CPU between two calls at 3.3M triangles in a loaded VM).
+constexpr int64_t kEntriesPerReport = int64_t(1) << 18;
 
 }  // namespace
 
 bool MultifrontalFactorization::factorize(const double* values, const ProgressSpan& progress) {
-    std::vector<double> pivot_scale(size_);
-    for (int32_t j = 0; j < size_; ++j) {
-        pivot_scale[j] = diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
-        if (!(pivot_scale[j] > 0.0)) pivot_scale[j] = 1e-300;
-    }
+    // Each pivot's scale: its row's original diagonal (a pass over the unknowns, in runs).
+    std::vector<double> pivot_scale;
+    pivot_scale.reserve(size_);
+    progress.part(0.0, 0.01).in_runs(size_, [&](int64_t begin, int64_t end) {
+        for (int64_t j = begin; j < end; ++j) {
+            const double scale =
+                diagonal_source_[j] >= 0 ? std::abs(values[diagonal_source_[j]]) : 0.0;
+            pivot_scale.push_back(scale > 0.0 ? scale : 1e-300);
+        }
+    });
+    const ProgressSpan work = progress.part(0.01, 1.0);  // by flops
     int64_t stack_top = 0;
     std::vector<int64_t> block_starts;
     double flops_done = 0, next_report = std::min(0.01 * total_flops_, kFrontReportFlops);
@@ -445,7 +156,7 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
         entries_moved += entries;
         if (entries_moved < kEntriesPerReport) return;
         entries_moved = 0;
-        progress.report(flops_done / total_flops_);
+        work.report(flops_done / total_flops_);
     };
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns;
@@ -480,9 +191,9 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
             stack_top = block_starts[block_starts.size() - child_total];
             block_starts.resize(block_starts.size() - child_total);
         }
-        FrontProgress inside{&progress, flops_done, front_flops(node), total_flops_, 0.0};
+        FrontProgress inside{&work, flops_done, front_flops(node), total_flops_, 0.0};
         const KernelProgress kernel_progress{front_work_done, &inside};
-        const bool report_inside = progress.active() && inside.front > kFrontReportFlops;
+        const bool report_inside = work.active() && inside.front > kFrontReportFlops;
         if (!partial_factorization_(front, m, k, pivot_scale.data() + node.first_column,
                                     report_inside ? &kernel_progress : nullptr))
             return false;
@@ -518,9 +229,9 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
         flops_done += front_flops(node);
         // Every 1% of the work, or every kFrontReportFlops of it (small fronts cost more time
         // per flop), or every kFrontsPerReport fronts, whichever comes first.
-        if (progress.active() &&
+        if (work.active() &&
             (flops_done >= next_report || ++fronts_since_report >= kFrontsPerReport)) {
-            progress.report(flops_done / total_flops_);
+            work.report(flops_done / total_flops_);
             next_report = flops_done + std::min(0.01 * total_flops_, kFrontReportFlops);
             fronts_since_report = 0;
         }
@@ -528,43 +239,88 @@ bool MultifrontalFactorization::factorize(const double* values, const ProgressSp
     return true;
 }
 
+namespace {
+
+// Progress of the triangular solves by the factor's entries read (a supernode's panel is
+// rows x columns): columns alone were a poor measure, 8,192 of a separator's columns being
+// tens of milliseconds of work at millions of triangles and as many leaf columns almost none.
+constexpr double kEntriesPerSolveReport = 1 << 20;
+
+}  // namespace
+
+// Counts the panels' entries a triangular solve has read; a report every kEntriesPerSolveReport.
+struct MultifrontalFactorization::SolveWork {
+    const ProgressSpan& progress;
+    double total, done = 0, next = kEntriesPerSolveReport;
+    void add(const Supernode& node) {
+        done += static_cast<double>(node.rows) * node.columns;
+        if (done < next || !progress.active()) return;
+        next = done + kEntriesPerSolveReport;
+        progress.report(done / total);
+    }
+};
+
 void MultifrontalFactorization::solve(double* b, int rhs_count,
                                       const ProgressSpan& progress) const {
     const int32_t n = size_;
-    // Progress: by columns done, forward then backward; a report every kItemsPerReport
-    // columns.
-    int64_t columns_done = 0, next_report = kItemsPerReport;
-    auto count_columns = [&](int32_t columns) {
-        columns_done += columns;
-        if (columns_done < next_report || !progress.active()) return;
-        next_report = columns_done + kItemsPerReport;
-        progress.report(0.5 * static_cast<double>(columns_done) / n);
-    };
-    // Permute into elimination order.
-    Matrix x(n, rhs_count);
-    for (int c = 0; c < rhs_count; ++c) {
-        for (int32_t k = 0; k < n; ++k) x(k, c) = b[static_cast<int64_t>(c) * n + order_[k]];
+    // Progress: the permutations (a pass over the right-hand sides each), then the forward and
+    // the backward solve (a pass over the factor each).
+    double entries = 0;
+    int32_t most_update = 0;
+    for (const Supernode& node : supernodes_) {
+        entries += static_cast<double>(node.rows) * node.columns;
+        most_update = std::max(most_update, node.rows - node.columns);
     }
+    // Permute into elimination order (and back at the end), a column at a time.
+    Matrix x(n, rhs_count);
+    auto permute = [&](bool into, const ProgressSpan& span) {
+        for (int c = 0; c < rhs_count; ++c) {
+            double* xc = x.data() + static_cast<int64_t>(c) * n;
+            double* bc = b + static_cast<int64_t>(c) * n;
+            span.part(static_cast<double>(c) / rhs_count, static_cast<double>(c + 1) / rhs_count)
+                .in_runs(n, [&](int64_t begin, int64_t end) {
+                    for (int64_t k = begin; k < end; ++k) {
+                        if (into) {
+                            xc[k] = bc[order_[k]];
+                        } else {
+                            bc[order_[k]] = xc[k];
+                        }
+                    }
+                });
+        }
+    };
+    permute(true, progress.part(0.0, 0.05));
     // One buffer of the largest update size, used through blocks and never resized: Eigen frees
     // a matrix's storage before allocating the new one, so a resize that runs out of memory
     // leaves the matrix pointing at freed memory, freed again when it is destroyed (found by
     // failing each allocation in turn: tests/test_alloc_failures.c).
-    int32_t most_update = 0;
-    for (const Supernode& node : supernodes_)
-        most_update = std::max(most_update, node.rows - node.columns);
     Matrix gathered_buffer(most_update, rhs_count);
+    const ProgressSpan forward_span = progress.part(0.05, 0.5);
+    SolveWork forward_work{forward_span, entries};
+    solve_forward(x.data(), rhs_count, gathered_buffer.data(), most_update, forward_work);
+    const ProgressSpan backward_span = progress.part(0.5, 0.95);
+    SolveWork backward_work{backward_span, entries};
+    solve_backward(x.data(), rhs_count, gathered_buffer.data(), most_update, backward_work);
+    permute(false, progress.part(0.95, 1.0));
+}
+
+// Forward: L y = b, children before parents. L is unit lower for LU; Cholesky's holds its
+// diagonal. gathered_buffer: most_update x rhs columns of scratch.
+void MultifrontalFactorization::solve_forward(double* x_data, int rhs_count,
+                                              double* gathered_buffer, int32_t most_update,
+                                              SolveWork& work) const {
+    const int32_t n = size_;
+    Eigen::Map<Matrix> x(x_data, n, rhs_count);
     // Supernodes this small are solved with plain loops: Eigen's triangular solves and
     // products cost more in set-up than in arithmetic at these sizes (as in partial_lu).
     constexpr int32_t kSmallFront = 64;
-    // Forward: L y = b, children before parents. L is unit lower for LU; Cholesky's holds its
-    // diagonal.
     for (const Supernode& node : supernodes_) {
         const int32_t m = node.rows, k = node.columns, update = m - k;
-        count_columns(k);
+        work.add(node);
         const double* lower = factors_.get() + node.factor_offset;
         if (m <= kSmallFront) {
             const int32_t* rows = row_indices_.data() + node.row_offset + k;
-            double* gathered = gathered_buffer.data();
+            double* gathered = gathered_buffer;
             for (int c = 0; c < rhs_count; ++c) {
                 double* xc = x.data() + static_cast<int64_t>(c) * n;
                 double* xs = xc + node.first_column;
@@ -588,18 +344,27 @@ void MultifrontalFactorization::solve(double* b, int rhs_count,
             panel.topRows(k).triangularView<Eigen::UnitLower>().solveInPlace(xs);
         }
         if (update == 0) continue;
-        auto gathered = gathered_buffer.topRows(update);
+        Eigen::Map<Matrix, 0, Eigen::OuterStride<>> gathered(gathered_buffer, update, rhs_count,
+                                                             Eigen::OuterStride<>(most_update));
         gathered.noalias() = panel.bottomRows(update) * xs;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         for (int c = 0; c < rhs_count; ++c) {
             for (int32_t r = 0; r < update; ++r) x(rows[r], c) -= gathered(r, c);
         }
     }
-    // Backward: U x = y (LU) or L^T x = y (Cholesky), parents before children.
+}
+
+// Backward: U x = y (LU) or L^T x = y (Cholesky), parents before children.
+void MultifrontalFactorization::solve_backward(double* x_data, int rhs_count,
+                                               double* gathered_buffer, int32_t most_update,
+                                               SolveWork& work) const {
+    const int32_t n = size_;
+    Eigen::Map<Matrix> x(x_data, n, rhs_count);
+    constexpr int32_t kSmallFront = 64;
     for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
         const Supernode& node = *it;
         const int32_t m = node.rows, k = node.columns, update = m - k;
-        count_columns(k);
+        work.add(node);
         const double* lower = factors_.get() + node.factor_offset;
         const int32_t* rows = row_indices_.data() + node.row_offset + k;
         if (m <= kSmallFront && cholesky_) {
@@ -638,7 +403,8 @@ void MultifrontalFactorization::solve(double* b, int rhs_count,
         Eigen::Map<const Matrix> panel(lower, m, k);
         auto xs = x.middleRows(node.first_column, k);
         if (update > 0) {
-            auto gathered = gathered_buffer.topRows(update);
+            Eigen::Map<Matrix, 0, Eigen::OuterStride<>> gathered(gathered_buffer, update, rhs_count,
+                                                                 Eigen::OuterStride<>(most_update));
             for (int c = 0; c < rhs_count; ++c) {
                 for (int32_t r = 0; r < update; ++r) gathered(r, c) = x(rows[r], c);
             }
@@ -654,9 +420,6 @@ void MultifrontalFactorization::solve(double* b, int rhs_count,
         } else {
             panel.topRows(k).triangularView<Eigen::Upper>().solveInPlace(xs);
         }
-    }
-    for (int c = 0; c < rhs_count; ++c) {
-        for (int32_t k = 0; k < n; ++k) b[static_cast<int64_t>(c) * n + order_[k]] = x(k, c);
     }
 }
 

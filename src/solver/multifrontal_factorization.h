@@ -65,6 +65,24 @@ class MultifrontalFactorization {
         int64_t value_end;
     };
 
+    // The steps of analyze() after the column counts: the supernodes (fundamental ones merged
+    // where merged_with_next says) with their children lists; each front's rows; where each
+    // child's update rows land in its parent, and the workspaces.
+    void build_supernodes(const std::vector<int32_t>& super_first,
+                          const std::vector<char>& merged_with_next,
+                          const std::vector<int32_t>& parent, const ProgressSpan& progress);
+    void build_front_rows(const SparsePattern& pattern, const std::vector<int32_t>& position,
+                          const ProgressSpan& progress);
+    void build_relative_rows(const ProgressSpan& progress);
+
+    // The triangular solves of solve(), on x (size() x rhs_count, column-major, in elimination
+    // order) with a most_update x rhs_count scratch buffer; work counts what they have read.
+    struct SolveWork;
+    void solve_forward(double* x_data, int rhs_count, double* gathered_buffer, int32_t most_update,
+                       SolveWork& work) const;
+    void solve_backward(double* x_data, int rhs_count, double* gathered_buffer, int32_t most_update,
+                        SolveWork& work) const;
+
     // Work of one front's partial factorization (progress reports, factor_flops()).
     double front_flops(const Supernode& node) const;
 

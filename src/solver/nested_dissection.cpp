@@ -133,6 +133,7 @@ class Dissection {
         fine.neighbors = pattern_.columns.data();
         fine.count = n;
         fine.weights.assign(n, 1);
+        progress_.report(0.0);
         fine.points = coordinates.data();
         while (levels_.back().size() > kCoarsestSize) {
             Level coarse;
@@ -144,10 +145,15 @@ class Dissection {
             levels_.push_back(std::move(coarse));
         }
         levels_.back().parent.clear();
+        // Scratch of every level: tens of megabytes of fresh pages at millions of vertices, a
+        // report per level and array.
         for (Level& l : levels_) {
             l.stamp.assign(l.size(), 0);
+            progress_.report(kBuilt);
             l.local.assign(l.size(), 0);
+            progress_.report(kBuilt);
             l.part_weight.assign(l.size(), 0);
+            progress_.report(kBuilt);
         }
     }
 
@@ -156,6 +162,7 @@ class Dissection {
     void coarsen(Level& fine, Level& coarse, const ProgressSpan& progress) {
         const int32_t n = fine.size();
         std::vector<int32_t> visit(n), match(n, -1);
+        progress.report(0.0);
         std::iota(visit.begin(), visit.end(), 0);
         if (n < kShuffleBelow) {
             uint64_t state = 0x9E3779B97F4A7C15ull;  // fixed seed: the order is deterministic
@@ -286,7 +293,7 @@ class Dissection {
             // A leaf: its weight is done; one report per separator or leaf (a few hundred
             // vertices each at least).
             leaf_weight_ += static_cast<double>(weight);
-            progress_.report(kBuilt + (kDissected - kBuilt) * leaf_weight_ / base_weight_);
+            report_dissected();
             for (int32_t v : ids) label_[v] = node;
             nodes_[node].end = node + 1;
             return node;
@@ -336,8 +343,18 @@ class Dissection {
             }
             ++top;
         }
+        report_dissected();
         inertial_flow(top, part);
-        for (size_t l = top; l-- > base_;) refine(l, part);
+        // The largest parts' bands hold tens of thousands of vertices: a report per level.
+        for (size_t l = top; l-- > base_;) {
+            report_dissected();
+            refine(l, part);
+        }
+    }
+
+    // Phase A's fraction: the weight of the leaves done.
+    void report_dissected() const {
+        progress_.report(kBuilt + (kDissected - kBuilt) * leaf_weight_ / base_weight_);
     }
 
     // Inertial flow (Schild & Sommer 2015): along each of a few directions, the minimum vertex
@@ -524,8 +541,11 @@ class Dissection {
     void project_labels(size_t l) {
         const Level& level = levels_[l];
         std::vector<int32_t> fine_label(level.size());
+        // Phase B's share of this level (run() reports its end).
+        const double step = (kRefined - kDissected) / static_cast<double>(base_);
+        const double from = kDissected + step * static_cast<double>(base_ - l - 1);
         for (int32_t v = 0; v < level.size(); ++v) {
-            progress_.at(v, level.size());
+            progress_.at(v, level.size(), from, from + step);
             fine_label[v] = label_[level.parent[v]];
         }
         label_.swap(fine_label);

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
 #include "core/portable_math.h"
 #include "planar/laplace_system.h"
+#include "sphere/cylinder_initial_map.h"
+#include "sphere/exact_orientation.h"
 #include "sphere/mobius_centring.h"
+#include "sphere/sphere_map_check.h"
 #include "weights/laplacian_weights.h"
 
 namespace raps {
@@ -23,11 +27,10 @@ int32_t choose_pole(const SphereProblem& problem) {
     return best;
 }
 
-// Angles on the unit circle for the ring of `pole`, counter-clockwise in ring order,
-// proportional to the 3D corner angles at the pole; equal angles if that would give one gap of
-// more than 0.9 pi (the star triangle would be nearly flat on the sphere).
-std::vector<double> ring_angles(const TriangleMesh& mesh, int32_t pole,
-                                const std::vector<int32_t>& ring) {
+}  // namespace
+
+std::vector<double> pole_ring_angles(const TriangleMesh& mesh, int32_t pole,
+                                     const std::vector<int32_t>& ring) {
     const size_t k = ring.size();
     std::vector<double> corner(k);
     double total = 0.0;
@@ -48,6 +51,21 @@ std::vector<double> ring_angles(const TriangleMesh& mesh, int32_t pole,
     return angle;
 }
 
+namespace {
+
+// Planar triangles (the pole's star left out) that are not clockwise, by the exact sign (the
+// disk comes out clockwise, below).
+int64_t count_planar_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector2d>& plane,
+                           int32_t pole) {
+    int64_t folded = 0;
+    for (const Triangle& t : mesh.triangles) {
+        if (t[0] == pole || t[1] == pole || t[2] == pole) continue;
+        const auto at = [&](int32_t v) { return Eigen::Vector3d(plane[v].x(), plane[v].y(), 1.0); };
+        folded += exact_orientation_sign(at(t[0]), at(t[1]), at(t[2])) >= 0;
+    }
+    return folded;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& problem,
@@ -65,7 +83,7 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& prob
     std::vector<char> fixed(mesh.positions.size(), 0);
     fixed[pole] = 1;
     std::vector<Eigen::Vector2d> plane(mesh.positions.size(), Eigen::Vector2d::Zero());
-    const std::vector<double> angle = ring_angles(mesh, pole, ring);
+    const std::vector<double> angle = pole_ring_angles(mesh, pole, ring);
     for (size_t m = 0; m < ring.size(); ++m) {
         fixed[ring[m]] = 1;
         plane[ring[m]] = Eigen::Vector2d(portable::cos(angle[m]), portable::sin(angle[m]));
@@ -86,8 +104,26 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& prob
     const double star_share = std::clamp(3.0 * problem.mass[pole], 1e-12, 0.5);
     const double s = std::sqrt(1.0 / star_share - 1.0);
     std::vector<Eigen::Vector3d> points =
-        mobius_centred_lift(problem, plane, pole, s, pool, 1e-4, 100, progress.part(0.9, 0.95));
-    mobius_centre(problem, points, pool, 1e-4, 100, progress.part(0.95, 1.0));
+        mobius_centred_lift(problem, plane, pole, s, pool, 1e-4, 100, progress.part(0.9, 0.93));
+    mobius_centre(problem, points, pool, 1e-4, 100, progress.part(0.93, 0.96));
+    // A planar fold is rounding (the exact solution is an embedding): a long part squeezed below
+    // the solve's absolute error. Then the two-puncture map, where it folds fewer triangles.
+    if (count_planar_folds(mesh, plane, pole) > 0) {
+        std::optional<CylinderCoordinates> coordinates;
+        try {
+            coordinates = cylinder_coordinates(problem, weights, progress.part(0.96, 0.98));
+        } catch (const Error& e) {
+            // A singular system leaves the one-puncture map (refused later if still folded).
+            if (e.code() != ErrorCode::kSolverFailed) throw;
+        }
+        if (coordinates) {
+            std::vector<Eigen::Vector3d> cylinder = conformal_cylinder_map(problem, *coordinates);
+            mobius_centre(problem, cylinder, pool, 1e-4, 100, progress.part(0.98, 1.0));
+            if (count_folds(mesh, cylinder).folded < count_folds(mesh, points).folded) {
+                points.swap(cylinder);
+            }
+        }
+    }
     progress.report(1.0);
     return points;
 }

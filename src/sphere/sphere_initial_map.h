@@ -18,6 +18,11 @@
 //     horse_quad subdivided to 88K and 77K triangles: centred on the sphere alone, their maps
 //     folded 243 and 442 triangles and the centring stalled 0.99 from the origin; centred in the
 //     plane first, neither folds and both end centred (docs/sphere-status.md).
+//  5. If the planar map has a fold (rounding: the exact solution has none), the two-puncture
+//     cylinder map (cylinder_initial_map.h) instead, where it folds fewer spherical triangles.
+//     Measured: capsules of aspect 40 and 50 and a dumbbell with a neck of 0.02 had 679, 2,754
+//     and 1,650 planar folds and were refused; their cylinder maps have none
+//     (docs/sphere-status.md). Every mesh without a planar fold keeps the map of step 4.
 //
 // Measured, why: the Gauss map of a mesh that is not star-shaped about its centroid starts with
 // folds (issue: hundreds to thousands), and relaxation cannot be trusted to undo them. Why a
@@ -42,6 +47,12 @@
 #include "sphere/sphere_problem.h"
 
 namespace raps {
+
+// Angles on the unit circle for the ring of `pole` (vertex_ring order, the first at 0),
+// counter-clockwise, proportional to the 3D corner angles at the pole; equal angles if that would
+// give one gap of more than 0.9 pi (the star triangle would be nearly flat on the sphere).
+std::vector<double> pole_ring_angles(const TriangleMesh& mesh, int32_t pole,
+                                     const std::vector<int32_t>& ring);
 
 // One unit vector per vertex. `progress` receives the fraction of the sparse factorization done
 // (it may throw to cancel).

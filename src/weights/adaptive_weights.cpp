@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
 
 namespace raps {
@@ -11,9 +12,9 @@ std::vector<double> adaptive_weights(const VertexAdjacency& adjacency,
                                      const std::vector<double>& weights,
                                      const std::vector<double>& monitor, double alpha,
                                      const ProgressSpan& progress) {
-    std::vector<double> adapted(weights.size());
+    std::vector<double> adapted = filled_in_runs(weights.size(), 0.0, progress.part(0.0, 0.1));
     const int32_t vertex_count = static_cast<int32_t>(adjacency.offsets.size()) - 1;
-    progress.in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
+    progress.part(0.1, 1.0).in_runs(vertex_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t v = static_cast<int32_t>(run_begin); v < run_end; ++v) {
             const int32_t begin = adjacency.offsets[v], end = adjacency.offsets[v + 1];
             double row_sum = 0.0;

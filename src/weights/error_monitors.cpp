@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
 
 namespace raps {
@@ -12,15 +13,17 @@ namespace {
 // Accumulates per-triangle values onto directed edges and averages them.
 class EdgeAverage {
   public:
-    explicit EdgeAverage(size_t slots) : sum_(slots, 0.0), count_(slots, 0) {}
+    EdgeAverage(size_t slots, const ProgressSpan& progress)
+        : sum_(filled_in_runs(slots, 0.0, progress.part(0.0, 0.5))),
+          count_(filled_in_runs(slots, 0, progress.part(0.5, 1.0))) {}
     void add(int32_t slot, double value) {
         sum_[slot] += value;
         ++count_[slot];
     }
-    std::vector<double> mean() && {
-        for (size_t s = 0; s < sum_.size(); ++s) {
-            sum_[s] = count_[s] ? sum_[s] / count_[s] : 1.0;
-        }
+    std::vector<double> mean(const ProgressSpan& progress) && {
+        progress.in_runs(static_cast<int64_t>(sum_.size()), [&](int64_t begin, int64_t end) {
+            for (int64_t s = begin; s < end; ++s) sum_[s] = count_[s] ? sum_[s] / count_[s] : 1.0;
+        });
         return std::move(sum_);
     }
 
@@ -32,9 +35,10 @@ class EdgeAverage {
 std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                                  const MapGeometry& map, const ProgressSpan& progress) {
     const int32_t triangle_count = mesh.triangle_count();
-    std::vector<double> ratio(triangle_count);
+    // Progress: the ratios (a pass over the triangles), then their average onto the edges.
+    std::vector<double> ratio = filled_in_runs(triangle_count, 0.0, progress.part(0.0, 0.05));
     double total_map = 0.0, total_3d = 0.0;
-    progress.in_runs(triangle_count, [&](int64_t run_begin, int64_t run_end) {
+    progress.part(0.05, 0.45).in_runs(triangle_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             const Triangle& v = mesh.triangles[t];
             const double map_area = map.area(v[0], v[1], v[2]);
@@ -47,23 +51,24 @@ std::vector<double> area_monitor(const TriangleMesh& mesh, const VertexAdjacency
         }
     });
     const double scale = total_3d / total_map;
-    EdgeAverage average(adjacency.neighbors.size());
+    EdgeAverage average(adjacency.neighbors.size(), progress.part(0.45, 0.5));
     for (int32_t t = 0; t < triangle_count; ++t) {
-        progress.at(triangle_count + t, 2 * static_cast<int64_t>(triangle_count));
+        progress.at(t, triangle_count, 0.5, 0.95);
         const double e = std::max(ratio[t] * scale, kMonitorFloor);
         for (int k = 0; k < 3; ++k) {
             average.add(adjacency.forward_slot[3 * t + k], e);
             average.add(adjacency.backward_slot[3 * t + k], e);
         }
     }
-    return std::move(average).mean();
+    return std::move(average).mean(progress.part(0.95, 1.0));
 }
 
 std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                                    const MapGeometry& map, const ProgressSpan& progress) {
-    std::vector<double> e(adjacency.neighbors.size());
+    std::vector<double> e =
+        filled_in_runs(adjacency.neighbors.size(), 0.0, progress.part(0.0, 0.1));
     double total_map = 0.0, total_3d = 0.0;
-    progress.in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
+    progress.part(0.1, 0.9).in_runs(mesh.vertex_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t i = static_cast<int32_t>(run_begin); i < run_end; ++i) {
             for (int32_t s = adjacency.offsets[i]; s < adjacency.offsets[i + 1]; ++s) {
                 const int32_t j = adjacency.neighbors[s];
@@ -76,14 +81,18 @@ std::vector<double> length_monitor(const TriangleMesh& mesh, const VertexAdjacen
         }
     });
     const double scale = total_3d / total_map;
-    for (double& value : e) value = std::max(value * scale, kMonitorFloor);
+    progress.part(0.9, 1.0).in_runs(static_cast<int64_t>(e.size()),
+                                    [&](int64_t begin, int64_t end) {
+                                        for (int64_t s = begin; s < end; ++s)
+                                            e[s] = std::max(e[s] * scale, kMonitorFloor);
+                                    });
     return e;
 }
 
 std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                                   const MapGeometry& map, const ProgressSpan& progress) {
-    EdgeAverage average(adjacency.neighbors.size());
-    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+    EdgeAverage average(adjacency.neighbors.size(), progress.part(0.0, 0.1));
+    progress.part(0.1, 0.9).in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             const Triangle& v = mesh.triangles[t];
             for (int k = 0; k < 3; ++k) {
@@ -101,7 +110,7 @@ std::vector<double> angle_monitor(const TriangleMesh& mesh, const VertexAdjacenc
             }
         }
     });
-    return std::move(average).mean();
+    return std::move(average).mean(progress.part(0.9, 1.0));
 }
 
 }  // namespace

@@ -1,15 +1,16 @@
 #include "weights/laplacian_weights.h"
 
+#include "core/fill_in_runs.h"
+
 namespace raps {
 
 std::vector<double> laplacian_weights(const TriangleMesh& mesh, const VertexAdjacency& adjacency,
                                       WeightScheme scheme, const ProgressSpan& progress) {
-    std::vector<double> weights(adjacency.neighbors.size(), 0.0);
-    if (scheme == WeightScheme::kUniform) {
-        weights.assign(weights.size(), 1.0);
-        return weights;
-    }
-    progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+    if (scheme == WeightScheme::kUniform)
+        return filled_in_runs(adjacency.neighbors.size(), 1.0, progress);
+    std::vector<double> weights =
+        filled_in_runs(adjacency.neighbors.size(), 0.0, progress.part(0.0, 0.1));
+    progress.part(0.1, 1.0).in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             for (int k = 0; k < 3; ++k) {
                 // Corner k at vertex i, with j following and l preceding it in the triangle.

@@ -18,6 +18,7 @@ import os
 import shutil
 import subprocess
 import sys
+import threading
 import time
 import unittest
 
@@ -26,6 +27,7 @@ import numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import loop_triangle_obj  # noqa: E402
+import mesh_file  # noqa: E402
 
 
 def _arguments():
@@ -60,6 +62,17 @@ def load(name):
     bpy.ops.import_scene.obj(filepath=os.path.join(ARGS.meshes, name), split_mode="OFF")
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
+    return obj
+
+
+def load_polygons(name):
+    """A shared mesh as one object built from its polygons (OFF too, which Blender's importer
+    does not read)."""
+    verts, faces = mesh_file.read_mesh_file(os.path.join(ARGS.meshes, name))
+    mesh = bpy.data.meshes.new(name.split(".")[0])
+    mesh.from_pydata(verts, [], faces)
+    obj = bpy.data.objects.new(mesh.name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
     return obj
 
 
@@ -119,6 +132,34 @@ def split_at_edge(obj, edge_index, layer=None):
     return all(corners[0][v] != corners[1][v] for v in ends)
 
 
+def raps_phase(name):
+    from raps_uv.native import raps
+    return getattr(raps.Phase, name)
+
+
+class _FakeOperator:
+    """The properties and report() an operator call gives operators.Run, for the tests that
+    drive the menu's path without Blender's event loop (which a headless Blender lacks)."""
+
+    def __init__(self, **options):
+        from raps_uv import operators
+        self.one_atlas, self.uv_map, self.new_uv_map = False, "", False
+        self.monitor, self.alpha, self.iterations = "AREA", 1.0, 1
+        self.size_mode, self.resolution, self.texels_per_unit = "RESOLUTION", 1024, 1.0
+        self.padding, self.rotation, self.lightmap = 1, "ANY", False
+        self.use_seams, self.use_materials = True, False
+        self.show_new_map = True
+        for key, value in options.items():
+            setattr(self, key, value)
+        self.reports = []
+        # The operators' own methods (raps_options, layer_name), on these properties.
+        for method in ("raps_options", "layer_name"):
+            setattr(self, method, getattr(operators.UnwrapProperties, method).__get__(self))
+
+    def report(self, kind, text):
+        self.reports.append((kind, text))
+
+
 # ------------------------------------------------------------------------------------------------
 # Tests
 # ------------------------------------------------------------------------------------------------
@@ -158,8 +199,10 @@ class AddonTest(unittest.TestCase):
         self.assertGreater(m["unit_square_coverage"], 0.5)
 
     def test_quads_and_ngons_stay_whole(self):
-        # suzanne: quads and triangles; horse_quad: quads, whose diagonals raps's charts cut
-        # unless the add-on reruns; the grid's middle is dissolved into one n-gon.
+        # suzanne: quads and triangles (two quads folded onto each other); horse_quad and
+        # halftunnel: quads, whose diagonals raps's charts cut unless told the polygons; the
+        # grid's middle is dissolved into one n-gon (with collinear corners). One run each, and no face needed the add-on's fallback
+        # (made an island of its own): raps kept every polygon in one chart.
         ngon = grid("ngon")
         bpy.context.view_layer.objects.active = ngon
         bpy.ops.object.mode_set(mode="EDIT")
@@ -171,9 +214,17 @@ class AddonTest(unittest.TestCase):
         bpy.ops.mesh.dissolve_faces()
         bpy.ops.object.mode_set(mode="OBJECT")
         self.assertTrue(any(len(p.vertices) > 4 for p in ngon.data.polygons))
-        for obj in (load("suzanne.obj"), load("horse_quad.obj"), ngon):
+        from raps_uv import operators
+        for obj in (load("suzanne.obj"), load("horse_quad.obj"), load_polygons("halftunnel.off"),
+                    ngon):
             select(obj)
-            self.assertEqual(bpy.ops.raps.unwrap(), {"FINISHED"})
+            operator = _FakeOperator()
+            run = operators.Run(operator, bpy.context)
+            self.assertIsNone(run.prepare())
+            run.job.run()
+            self.assertEqual(run.finish(bpy.context), {"FINISHED"})
+            self.assertEqual(run.job.outcomes[0].repaired_polygons, 0, obj.name)
+            self.assertNotIn("islands", operator.reports[0][1])
             self.assert_valid_map(obj)
 
     def test_edit_mode_unwraps_and_stays_in_edit_mode(self):
@@ -232,35 +283,62 @@ class AddonTest(unittest.TestCase):
         self.assertTrue(all(split_at_edge(obj, e) for e in between))
         self.assert_valid_map(obj)
 
-    def test_cancelling_changes_nothing(self):
+    def test_esc_cancels_mid_run_and_leaves_nothing_to_undo(self):
+        # The menu's path as Blender's event loop drives it (operators.ModalRun: what the
+        # operator's modal does with each event), with Esc arriving while the library maps the
+        # charts: the worker's progress call waits there until Esc has been handled, so the
+        # cancel lands mid-run whatever the machine's speed.
         from raps_uv import operators
         obj = load("spot.obj")
+        name = obj.name
+        loaded = uv_array(obj).copy()
+        bpy.ops.ed.undo_push(message="loaded")
+        bpy.ops.raps.unwrap()  # a map to keep: the state before the cancelled run
+        bpy.ops.ed.undo_push(message="first unwrap")
+        layers_before = [layer.name for layer in obj.data.uv_layers]
         before = uv_array(obj).copy()
-
-        class Operator(operators.UnwrapProperties):  # the properties an operator call has
-            def __init__(self):
-                self.one_atlas, self.uv_map, self.new_uv_map = False, "", False
-                self.monitor, self.alpha, self.iterations = "AREA", 1.0, 1
-                self.size_mode, self.resolution, self.texels_per_unit = "RESOLUTION", 1024, 1.0
-                self.padding, self.rotation, self.lightmap = 1, "ANY", False
-                self.use_seams, self.use_materials = True, False
-                self.show_new_map = True
-                self.reports = []
-
-            def report(self, kind, text):
-                self.reports.append((kind, text))
-
-        operator = Operator()
+        operator = _FakeOperator(lightmap=True, uv_map="Lightmap")
         run = operators.Run(operator, bpy.context)
         self.assertIsNone(run.prepare())
-        # What Esc does during the modal run: cancel the job the worker thread runs.
-        thread = run.job.start_thread()
-        run.job.cancel()
-        thread.join()
+        inside, esc_handled = threading.Event(), threading.Event()
+        job_progress = run.job._progress
+
+        def gated(number, count):
+            report = job_progress(number, count)
+
+            def wait_for_esc(phase, fraction):
+                if phase == raps_phase("INITIAL_MAP") and not inside.is_set():
+                    inside.set()
+                    esc_handled.wait()
+                return report(phase, fraction)
+            return wait_for_esc
+        run.job._progress = gated
+        modal = operators.ModalRun(run, bpy.context)
+        try:
+            self.assertTrue(inside.wait(60), "the library never reached its charts' maps")
+            self.assertEqual(modal.handle("TIMER", bpy.context), {"RUNNING_MODAL"})  # progress
+            fraction = run.job.fraction
+            self.assertEqual(modal.handle("ESC", bpy.context), {"RUNNING_MODAL"})
+        finally:
+            esc_handled.set()  # never leave the worker waiting, even when the test fails
+        self.assertGreater(fraction, 0.0)
+        self.assertLess(fraction, 1.0)
+        result = {"RUNNING_MODAL"}
+        while result == {"RUNNING_MODAL"}:
+            modal.thread.join(0.05)
+            result = modal.handle("TIMER", bpy.context)
+        self.assertEqual(result, {"CANCELLED"})
         self.assertTrue(run.job.cancelled)
-        self.assertEqual(run.finish(bpy.context), {"CANCELLED"})
-        self.assertEqual(operator.reports[0][0], {"WARNING"})
-        self.assertTrue(numpy.array_equal(uv_array(obj), before))
+        self.assertEqual(operator.reports, [({"WARNING"}, "raps: cancelled, no UV map changed")])
+        # Nothing half-written: no lightmap layer added, the other maps as they were.
+        self.assertEqual([layer.name for layer in obj.data.uv_layers], layers_before)
+        self.assertTrue(numpy.array_equal(uv_array(name), before))
+        # CANCELLED pushes no undo step (Blender's rule for operators): Ctrl-Z goes back
+        # past the first unwrap, and redo brings it back.
+        bpy.ops.ed.undo()
+        self.assertTrue(numpy.array_equal(uv_array(name), loaded))
+        bpy.ops.ed.redo()
+        self.assertTrue(numpy.array_equal(uv_array(name), before))
 
     def test_undo_restores_the_uv_map(self):
         obj = load("spot.obj")

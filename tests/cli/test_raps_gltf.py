@@ -496,6 +496,35 @@ class RapsGltfTest(unittest.TestCase):
             self.assertTrue(os.path.isfile(os.path.splitext(out)[0] + '.png'))
         self.assertFalse(os.path.exists(os.path.join(out_dir, 'nan_position.glb')))
 
+    def test_a_make_rule_per_asset_writes_what_batch_mode_writes(self):
+        """samples/raps-gltf/per-asset.mk (the README's way to spread assets over cores or
+        machines): make -j2 bakes every asset of a folder, sub-folders kept, and each output is
+        byte for byte the one batch mode writes for it; a second make does nothing."""
+        folder = os.path.join(self.tmp, 'assets')
+        os.makedirs(folder)
+        shutil.copytree(os.path.join(DATA, 'gltf', 'Duck'), os.path.join(folder, 'Duck'))
+        for name in ('BoxTextured.gltf', 'barrel.glb'):
+            shutil.copy(os.path.join(DATA, 'gltf', name), folder)
+        makefile = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..',
+                                'samples', 'raps-gltf', 'per-asset.mk')
+        made, batch = os.path.join(self.tmp, 'made'), os.path.join(self.tmp, 'batch')
+        make = ['make', '-f', makefile, '-j2', 'IN=' + folder, 'OUT=' + made,
+                'RAPS_GLTF=' + RAPS_GLTF]
+        p = subprocess.run(make, capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        rc, _, stderr = run(folder, '-o', batch, '--format', 'glb', '--overwrite')
+        self.assertEqual(rc, 0, stderr)
+        outputs = sorted(os.path.relpath(f, batch)
+                         for f in glob.glob(os.path.join(batch, '**', '*.glb'), recursive=True))
+        self.assertEqual(len(outputs), 3, outputs)
+        for rel in outputs:
+            with open(os.path.join(made, rel), 'rb') as a, open(os.path.join(batch, rel), 'rb') as b:
+                self.assertEqual(a.read(), b.read(), rel)
+            self.assertTrue(os.path.isfile(os.path.join(made, os.path.splitext(rel)[0] + '.json')))
+        again = subprocess.run(make, capture_output=True, text=True)
+        self.assertEqual(again.returncode, 0, again.stderr)
+        self.assertNotIn(RAPS_GLTF, again.stdout, 'a second make baked again')
+
     def test_output_never_overwrites_an_input(self):
         folder = os.path.join(self.tmp, 'duck')
         shutil.copytree(os.path.join(DATA, 'gltf', 'Duck'), folder)

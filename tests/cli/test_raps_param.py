@@ -221,6 +221,111 @@ class RapsParamTest(unittest.TestCase):
         self.assertIn('cannot open', err)
         self.assertFalse(os.path.exists(self.out))
 
+    def test_obj_and_off_as_exporters_write_them(self):
+        """The forms real files take read as the plain file does: a byte order mark, comments
+        after a face, line continuations, CRLF, tabs, no final newline, relative indices, vt/vn
+        corners; Geomview's COFF and NOFF (numbers after x y z), and ModelNet's header with the
+        vertex count run into it. 4D and binary OFF are refused by name."""
+        points = ['0 0 0', '1 0 0', '1 1 0.2', '0 1 0', '0.5 0.5 0.1']
+        faces = [(1, 2, 5), (2, 3, 5), (3, 4, 5), (4, 1, 5)]
+        plain = ''.join('v %s\n' % p for p in points) + ''.join('f %d %d %d\n' % f for f in faces)
+        obj_forms = {
+            'bom': '\ufeff' + plain,
+            'comments': plain.replace('f 2 3 5', 'f 2 3 5 # quad half').replace('v 1 0 0', 'v 1 0 0 1'),
+            'continuation': plain.replace('f 3 4 5', 'f 3 \\\n 4 \\\r\n5'),
+            'crlf_tabs': plain.replace('\n', '\r\n').replace(' ', '\t').rstrip(),
+            'relative': ''.join('v %s\n' % p for p in points) +
+                        ''.join('f %d/%d/1 %d//1 -1\n' % (a - 6, a, b) for a, b, _ in faces) +
+                        'vn 0 0 1\n',
+        }
+        off = ['%d %d 0' % (len(points), len(faces))] + points + \
+              ['3 %d %d %d' % tuple(i - 1 for i in f) for f in faces]
+        off_forms = {
+            'coff': 'COFF\n' + '\n'.join(off[:1] + [p + ' 255 0 0 255' for p in points] + off[6:]),
+            'noff': 'NOFF\n' + '\n'.join(off[:1] + [p + ' 0 0 1' for p in points] + off[6:]),
+            'modelnet': 'OFF' + '\n'.join(off) + '\n',
+            'crlf': 'OFF\r\n' + '\r\n'.join(off),
+        }
+        expected = None
+        for name, text in [('plain.obj', plain)] + [(k + '.obj', v) for k, v in obj_forms.items()] + \
+                [(k + '.off', v) for k, v in off_forms.items()]:
+            src = os.path.join(self.dir.name, name)
+            with open(src, 'w', encoding='utf-8', newline='') as fh:
+                fh.write(text)
+            rc, out, err = run(src, '-o', self.out)
+            self.assertEqual(rc, 0, name + ': ' + err)
+            v, _, f = obj_records(self.out)
+            got = (v, [[c[0] for c in face] for face in f])
+            expected = expected or got
+            self.assertEqual(got, expected, name)
+        os.remove(self.out)
+        for name, text in (('four.off', '4OFF\n1 0 0\n0 0 0 0\n'),
+                           ('binary.off', 'OFF BINARY\n')):
+            src = os.path.join(self.dir.name, name)
+            with open(src, 'w') as fh:
+                fh.write(text)
+            rc, out, err = run(src, '-o', self.out)
+            self.assertEqual(rc, 1)
+            self.assertIn('4OFF' if name == 'four.off' else 'binary OFF', err)
+            self.assertFalse(os.path.exists(self.out))
+
+    def test_ply_reads_as_the_same_mesh_in_every_encoding(self):
+        """A real mesh written as ASCII and both binary byte orders of PLY (with a colour per
+        vertex, another element, other list types) maps as its OFF does; PLY whose counts or
+        lists run past the file, negative or fractional indices, or no faces are refused."""
+        import struct
+        rc, _, err = run(self.mesh('lion.off'), '--atlas', '-o', self.out)
+        self.assertEqual(rc, 0, err)
+        expected = obj_records(self.out)
+        with open(self.mesh('lion.off')) as fh:
+            tokens = [t for line in fh for t in line.split('#')[0].split()]
+        nv, nf = int(tokens[1]), int(tokens[2])
+        points = [tuple(map(float, tokens[4 + 3 * i:7 + 3 * i])) for i in range(nv)]
+        at, faces = 4 + 3 * nv, []
+        for _ in range(nf):
+            k = int(tokens[at])
+            faces.append(tuple(int(x) for x in tokens[at + 1:at + 1 + k]))
+            at += 1 + k
+
+        def header(fmt, face='property list uchar int vertex_indices', tail=''):
+            return ('ply\nformat %s 1.0\ncomment test\nelement vertex %d\nproperty double x\n'
+                    'property double y\nproperty double z\nproperty uchar red\nelement face %d\n'
+                    '%s\n%send_header\n' % (fmt, nv, nf, face, tail)).encode()
+        files = {'ascii.ply': header('ascii') +
+                 b''.join(b'%r %r %r 7\n' % p for p in points) +
+                 b''.join(b'%d %s\n' % (len(q), ' '.join(map(str, q)).encode()) for q in faces)}
+        for name, e in (('little.ply', '<'), ('big.ply', '>')):
+            files[name] = header('binary_%s_endian' % name[:-4]) + \
+                b''.join(struct.pack(e + 'dddB', *p, 7) for p in points) + \
+                b''.join(struct.pack(e + 'B%di' % len(q), len(q), *q) for q in faces)
+        files['lists.ply'] = header('binary_little_endian', 'property list ushort uint vertex_index',
+                                    'element edge 1\nproperty int a\n') + \
+            b''.join(struct.pack('<dddB', *p, 7) for p in points) + \
+            b''.join(struct.pack('<H%dI' % len(q), len(q), *q) for q in faces) + b'\0' * 4
+        for name, data in files.items():
+            src = os.path.join(self.dir.name, name)
+            with open(src, 'wb') as fh:
+                fh.write(data)
+            rc, _, err = run(src, '--atlas', '-o', self.out)
+            self.assertEqual(rc, 0, name + ': ' + err)
+            self.assertEqual(obj_records(self.out), expected, name)
+        os.remove(self.out)
+        small = header('ascii').replace(b'vertex %d' % nv, b'vertex 3').replace(b'face %d' % nf, b'face 1')
+        for name, data, words in (
+                ('huge.ply', header('binary_little_endian'), 'more than the file holds'),
+                ('negative.ply', small + b'0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 -2\n', 'invalid vertex index'),
+                ('fraction.ply', small + b'0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 1.5\n', 'invalid vertex index'),
+                ('cut.ply', small + b'0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1', 'ends inside'),
+                ('points.ply', b'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n'
+                               b'property float y\nproperty float z\nend_header\n0 0 0\n', 'no face')):
+            src = os.path.join(self.dir.name, name)
+            with open(src, 'wb') as fh:
+                fh.write(data)
+            rc, out, err = run(src, '--atlas', '-o', self.out)
+            self.assertEqual(rc, 1, name)
+            self.assertIn(words, err, name)
+            self.assertFalse(os.path.exists(self.out), name)
+
     def test_usage_errors_exit_2(self):
         for args in ([], [self.mesh('lion.off')], [self.mesh('lion.off'), '-o', self.out, '--monitor', 'bogus'],
                      [self.mesh('lion.off'), '-o', self.out, '--alpha', '-1'],

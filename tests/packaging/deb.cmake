@@ -18,7 +18,7 @@ set(expect_libraps0 "lib/libraps\\.so\\.0")
 set(expect_libraps-dev "include/raps\\.h" "lib/libraps\\.so[ \n]" "lib/cmake/raps/rapsConfig\\.cmake"
     "lib/pkgconfig/raps\\.pc")
 set(expect_raps-tools "bin/raps-param" "bin/raps-gltf" "share/man/man1/raps-param\\.1\\.gz"
-    "share/man/man1/raps-gltf\\.1\\.gz")
+    "share/man/man1/raps-gltf\\.1\\.gz" "share/raps/per-asset\\.mk")
 foreach(package libraps0 libraps-dev raps-tools)
   file(GLOB deb ${WORK_DIR}/debs/${package}_*.deb)
   if(NOT deb)

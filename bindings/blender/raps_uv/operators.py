@@ -2,8 +2,10 @@
 
 Run from the menu (invoke), raps works on a worker thread while a modal timer shows its progress
 in the status bar and Esc cancels it (the library stops at its next progress call, and nothing
-is written). From a script, the redo panel or `blender -b` (execute), the same job runs to its
-end while Blender waits, showing progress on the cursor. Either way every selected object's uvs
+is written); ModalRun holds that path apart from Blender's event loop, so that a headless test
+drives it too. From a script or the redo panel (execute), the same job runs to its end while
+Blender waits, showing progress on the cursor; in `blender -b` without a progress callback
+(nothing to show, no Esc to press). Either way every selected object's uvs
 are written only once all have succeeded: a failure is reported naming the object, and leaves
 every object as it was. bl_options UNDO makes the write one Ctrl-Z step.
 """
@@ -131,8 +133,9 @@ class Run:
         self.job = None
         self.started = time.perf_counter()
 
-    def prepare(self):
-        """Builds the job; returns a problem to report (nothing is changed then), or None."""
+    def prepare(self, progress=True):
+        """Builds the job (progress: whether it reports progress and can be cancelled);
+        returns a problem to report (nothing is changed then), or None."""
         if not self.objects:
             return "select at least one mesh object"
         for obj in self.objects:
@@ -149,7 +152,7 @@ class Run:
         for name, data in inputs:
             if len(data.triangles) == 0:
                 return "%s: has no faces to unwrap" % name
-        self.job = Job(inputs, options)
+        self.job = Job(inputs, options, progress)
         return None
 
     def finish(self, context):
@@ -208,11 +211,9 @@ def _summary(outcome):
         outcome.name, outcome.charts, outcome.utilization, outcome.stretch_l2, outcome.time_ms)
     if outcome.pages > 1:
         text += ", %d pages (UDIM tiles)" % outcome.pages
-    if outcome.runs > 1:
-        text += ", %d runs to keep faces whole" % outcome.runs
     if outcome.repaired_polygons:
-        text += ", %d faces cut by a chart made islands of their own (fewer texels)" % \
-            outcome.repaired_polygons
+        text += ", %d faces raps could not keep whole made islands of their own (fewer " \
+            "texels)" % outcome.repaired_polygons
     return text
 
 
@@ -228,7 +229,9 @@ class _UnwrapBase(UnwrapProperties):
     def execute(self, context):
         """Script, redo panel and background: the job runs while Blender waits."""
         run = Run(self, context)
-        problem = run.prepare()
+        # Headless, nobody sees the progress or presses Esc: the library runs without calling
+        # back into Python.
+        problem = run.prepare(progress=not bpy.app.background)
         if problem:
             self.report({"ERROR"}, "raps: " + problem)
             return {"CANCELLED"}
@@ -247,41 +250,62 @@ class _UnwrapBase(UnwrapProperties):
         """From the interface: the job runs on a worker thread, Esc cancels it."""
         if context.window is None or bpy.app.background:
             return self.execute(context)
-        self._run = Run(self, context)
-        problem = self._run.prepare()
+        run = Run(self, context)
+        problem = run.prepare()
         if problem:
             self.report({"ERROR"}, "raps: " + problem)
             return {"CANCELLED"}
-        self._thread = self._run.job.start_thread()
-        wm = context.window_manager
-        self._timer = wm.event_timer_add(0.1, window=context.window)
-        wm.modal_handler_add(self)
-        self._status(context)
+        self._modal = ModalRun(run, context)
+        context.window_manager.modal_handler_add(self)
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
-        job = self._run.job
-        if event.type == "ESC" and not job.done:
+        return self._modal.handle(event.type, context)
+
+
+class ModalRun:
+    """The menu's path, apart from Blender's event loop (so that a test can drive it as the
+    loop does): the job on its worker thread, a timer that shows its progress, and handle(),
+    which is what the operator's modal does with each event: Esc cancels the job (the library
+    stops at its next progress call), a timer tick once the job is done writes every object's
+    uvs, or none, and reports."""
+
+    def __init__(self, run, context):
+        self.run = run
+        self.thread = run.job.start_thread()
+        self._timer = None
+        if context.window is not None:
+            self._timer = context.window_manager.event_timer_add(0.1, window=context.window)
+        self._status(context)
+
+    def handle(self, event_type, context):
+        """The operator's result for one event: RUNNING_MODAL (or PASS_THROUGH for view
+        navigation) while the job runs, then finish()'s FINISHED or CANCELLED."""
+        job = self.run.job
+        if event_type == "ESC" and not job.done:
             job.cancel()
-        if event.type == "TIMER":
+        if event_type == "TIMER":
             if job.done:
-                self._thread.join()
+                self.thread.join()
                 self._end(context)
-                return self._run.finish(context)
+                return self.run.finish(context)
             self._status(context)
         # The view may move; every other input waits, so that the objects stay as they were
         # read until the uvs are written.
-        return {"PASS_THROUGH"} if event.type in _NAVIGATION else {"RUNNING_MODAL"}
+        return {"PASS_THROUGH"} if event_type in _NAVIGATION else {"RUNNING_MODAL"}
 
     def _status(self, context):
-        text = "raps: unwrapping %d object%s, %d%% (Esc cancels)" % (
-            len(self._run.objects), "" if len(self._run.objects) == 1 else "s",
-            int(100 * self._run.job.fraction))
-        context.workspace.status_text_set(text)
+        if context.workspace is None:
+            return
+        count = len(self.run.objects)
+        context.workspace.status_text_set("raps: unwrapping %d object%s, %d%% (Esc cancels)" % (
+            count, "" if count == 1 else "s", int(100 * self.run.job.fraction)))
 
     def _end(self, context):
-        context.window_manager.event_timer_remove(self._timer)
-        context.workspace.status_text_set(None)
+        if self._timer is not None:
+            context.window_manager.event_timer_remove(self._timer)
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
 
 
 class RAPS_OT_unwrap(_UnwrapBase, bpy.types.Operator):

@@ -18,19 +18,13 @@ from .native import raps
 # run: mapping the charts dominates).
 _PHASE_SHARE = {"VALIDATE": 0.02, "TOPOLOGY": 0.05, "SEGMENT": 0.15, "INITIAL_MAP": 0.6,
                 "ADAPT": 0.0, "PACK": 0.13, "METRICS": 0.05}
-_PHASE_START = {}
+# Per phase number (raps.Phase): where its share of the bar starts, and the share.
+_PHASE_SPAN = {}
 _start = 0.0
 for _name in ("VALIDATE", "TOPOLOGY", "SEGMENT", "INITIAL_MAP", "ADAPT", "PACK", "METRICS"):
-    _PHASE_START[_name] = _start
+    _PHASE_SPAN[int(getattr(raps.Phase, _name))] = (_start, _PHASE_SHARE[_name])
     _start += _PHASE_SHARE[_name]
 
-
-# Runs of one atlas at most: the first; a rerun with each polygon's chart as its group, which
-# leaves a few polygons cut (where raps splits a chart by its stretch); a last rerun with each
-# of those a group of its own. A polygon cut even then becomes a small island of its own
-# (mesh_io).
-_ATTEMPTS = 3
-_ATTEMPT_SPAN = ((0.0, 0.6), (0.6, 0.9), (0.9, 1.0))
 
 
 class Options:
@@ -85,7 +79,6 @@ class Outcome:
         self.pages = 0
         self.repaired_polygons = 0
         self.time_ms = 0.0
-        self.runs = 0
 
 
 class Cancelled(Exception):
@@ -96,11 +89,15 @@ class Job:
     """Runs raps over named meshes: one atlas each, or one for all (options.one_atlas).
 
     inputs: [(object name, MeshInput)]. run() fills self.outcomes; progress is read from
-    self.fraction (0..1) and cancel() stops the run at the library's next progress call."""
+    self.fraction (0..1) and cancel() stops the run at the library's next progress call. With
+    progress=False the library runs without calling back into Python (a headless Blender has
+    no progress to show and no Esc to press): no fraction, no cancel, and none of the
+    callback's cost (a few microseconds per call, a thousand calls on a 1,000-face mesh)."""
 
-    def __init__(self, inputs, options):
+    def __init__(self, inputs, options, progress=True):
         self.inputs = inputs
         self.options = options
+        self.progress = progress
         self.outcomes = [Outcome(name) for name, _ in inputs]
         self.fraction = 0.0
         self.cancelled = False
@@ -130,45 +127,38 @@ class Job:
         thread.start()
         return thread
 
-    def _progress(self, number, count, attempt):
-        # The first run takes most of the object's share of the bar, the reruns the rest.
-        low, high = _ATTEMPT_SPAN[attempt]
+    def _progress(self, number, count):
+        """The library's progress callback for atlas `number` of `count`: it moves the bar
+        and is where a cancel() stops the run (the library stops at the call that says so)."""
+        cancel = self._cancel
 
         def report(phase, fraction):
-            if self._cancel.is_set():
+            if cancel.is_set():
                 return False
-            name = phase.name if hasattr(phase, "name") else ""
-            within = _PHASE_START.get(name, 0.0) + _PHASE_SHARE.get(name, 0.0) * fraction
-            self.fraction = (number + low + (high - low) * min(within, 1.0)) / count
+            start, share = _PHASE_SPAN.get(int(phase), (0.0, 0.0))
+            self.fraction = (number + min(start + share * fraction, 1.0)) / count
             return True
         return report
 
     def _run_atlas(self, members, number, count):
-        """One atlas: reruns with the charts of the run before as triangle groups while raps's
-        charts cut through polygons (their loops could not get one uv each)."""
+        """One atlas, one run: the library keeps each polygon's triangles in one chart (their
+        polygon ids), so every loop of a polygon gets one uv."""
         started = time.perf_counter()
-        groups = {i: self.inputs[i][1].groups for i in members}
-        for attempt in range(_ATTEMPTS):
-            result = self._solve(members, groups, self._progress(number, count, attempt))
-            if result is None:
-                return
-            with result:
-                regrouped = None if attempt + 1 == _ATTEMPTS else \
-                    self._polygon_groups(result, members, isolate=attempt > 0)
-                if not regrouped:
-                    self._collect(result, members, 1000.0 * (time.perf_counter() - started),
-                                  attempt + 1)
-                    return
-            groups.update(regrouped)
+        progress = self._progress(number, count) if self.progress else None
+        result = self._solve(members, progress)
+        if result is None:
+            return
+        with result:
+            self._collect(result, members, 1000.0 * (time.perf_counter() - started))
 
-    def _solve(self, members, groups, progress):
+    def _solve(self, members, progress):
         """The result of one raps run over members, or None after recording why not."""
         meshes = []
         try:
             with self.options.settings() as settings:
                 for i in members:
                     try:
-                        meshes.append(_raps_mesh(self.inputs[i][1], groups[i]))
+                        meshes.append(_raps_mesh(self.inputs[i][1]))
                     except raps.Error as error:  # this object's own data: name it alone
                         self._fail([i], error)
                         self._fail([j for j in members if j != i],
@@ -186,23 +176,6 @@ class Job:
             for mesh in meshes:
                 mesh.close()
 
-    def _polygon_groups(self, result, members, isolate):
-        """{member: triangle groups} for the meshes whose polygons raps's charts cut; with
-        isolate, each polygon still cut becomes a group of its own."""
-        indices = result.indices()
-        chart_ids = numpy.asarray(result.chart_ids(), dtype=numpy.int64)
-        regrouped = {}
-        for position, i in enumerate(members):
-            data = self.inputs[i][1]
-            span = result.mesh_range(position)
-            first_t, count_t = span.first_index // 3, span.index_count // 3
-            out_vertices = indices[first_t:first_t + count_t].astype(numpy.int64)
-            split = mesh_io.split_polygons(data, out_vertices)
-            if len(split):
-                regrouped[i] = mesh_io.polygon_chart_groups(
-                    data, chart_ids[first_t:first_t + count_t], split if isolate else None)
-        return regrouped
-
     def _fail(self, members, error):
         message = error.message or error.name
         if len(members) == 1:
@@ -219,7 +192,7 @@ class Job:
         for i in members:
             self.outcomes[i].error = "one atlas for all failed: " + message
 
-    def _collect(self, result, members, elapsed, runs):
+    def _collect(self, result, members, elapsed):
         stats = result.stats()
         uvs = result.uvs()
         indices = result.indices()
@@ -250,14 +223,15 @@ class Job:
             outcome.flipped = stats.flipped_triangles
             outcome.pages = max(1, stats.page_count)
             outcome.time_ms = elapsed
-            outcome.runs = runs
 
 
-def _raps_mesh(data, groups):
+def _raps_mesh(data):
     mesh = raps.Mesh(data.positions, data.triangles)
     mesh.set_transform(data.transform)
-    if groups is not None:
-        mesh.set_triangle_groups(groups)
+    if data.groups is not None:
+        mesh.set_triangle_groups(data.groups)
+    if data.polygons is not None:
+        mesh.set_triangle_polygons(data.polygons)
     if data.seams is not None:
         mesh.set_seam_edges(data.seams)
     return mesh

@@ -957,6 +957,12 @@ static class RapsTests
             mesh.SetTriangleGroups(new uint[] { 0, 1 });
             ExpectFailure(Status.GroupCount, () => charts());
             mesh.SetTriangleGroups(null);
+            // Polygons reach the library (what they do is the C suite's test_atlas_polygons).
+            mesh.SetTrianglePolygons(new uint[] { 0, 0, 1, 1, 2, 2 });
+            Expect(charts().Length == 6, "polygons accepted");
+            mesh.SetTrianglePolygons(new uint[] { 0, 1 });
+            ExpectFailure(Status.GroupCount, () => charts());
+            mesh.SetTrianglePolygons(null);
             mesh.SetSeamEdges(new uint[] { 0, 1, 4, 0 });  // rim to rim through the apex
             ids = charts();
             Expect(!ids.Take(3).Intersect(ids.Skip(3)).Any(), "the seams split the cap");

@@ -234,6 +234,30 @@ def _is_ndarray(value):
     return numpy is not None and isinstance(value, numpy.ndarray)
 
 
+def _uint32_array(values, what):
+    """values (None, a sequence or a numpy array of integers) as a flat uint32 buffer: a numpy
+    array without a copy per element where numpy is there, else a ctypes array."""
+    if values is None:
+        values = []
+    if _is_ndarray(values):
+        flat = values.reshape(-1)
+        if flat.size and (flat.min() < 0 or flat.max() > 0xFFFFFFFF):
+            raise ValueError("raps: %s is outside [0, 2^32)" % what)
+        return numpy.ascontiguousarray(flat, dtype=numpy.uint32)
+    flat = [int(v) for v in values]
+    if any(v < 0 or v > 0xFFFFFFFF for v in flat):
+        raise ValueError("raps: %s is outside [0, 2^32)" % what)
+    return (ctypes.c_uint32 * len(flat))(*flat)
+
+
+def _uint32_pointer(array):
+    if len(array) == 0:
+        return None
+    if _is_ndarray(array):
+        return array.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32))
+    return array
+
+
 def _flatten(values, width, what, check_count=True):
     """[a, b, c, ...] or [(a, b, c), ...] -> a flat list; checks the count is a multiple."""
     values = list(values)
@@ -342,13 +366,19 @@ class Mesh(_Handle):
         """Atlas domain: a group id per triangle (a material, a smoothing group, a region); no
         chart holds triangles of two groups. None removes them. A count that is not the
         triangle count raises Error(Status.GROUP_COUNT) when the mesh is used."""
-        if groups is None:
-            groups = []
-        flat = [int(g) for g in (groups.reshape(-1).tolist() if _is_ndarray(groups) else groups)]
-        if any(g < 0 or g > 0xFFFFFFFF for g in flat):
-            raise ValueError("raps: a group id is outside [0, 2^32)")
-        status = _lib.raps_mesh_set_triangle_groups(
-            self._ptr(), (ctypes.c_uint32 * len(flat))(*flat) if flat else None, len(flat))
+        array = _uint32_array(groups, "a group id")
+        status = _lib.raps_mesh_set_triangle_groups(self._ptr(), _uint32_pointer(array),
+                                                    len(array))
+        _check(status, _lib.raps_mesh_last_error, self._pointer)
+
+    def set_triangle_polygons(self, polygons):
+        """Atlas domain: a polygon id per triangle, for quads and n-gons triangulated for raps;
+        triangles that share an edge and an id stay in one chart with no cut between them, so
+        each polygon corner gets one output vertex. None removes them. A count that is not the
+        triangle count raises Error(Status.GROUP_COUNT) when the mesh is used."""
+        array = _uint32_array(polygons, "a polygon id")
+        status = _lib.raps_mesh_set_triangle_polygons(self._ptr(), _uint32_pointer(array),
+                                                      len(array))
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
     def set_seam_edges(self, pairs):
@@ -357,12 +387,15 @@ class Mesh(_Handle):
         Error(Status.SEAM_NOT_AN_EDGE), one beyond the vertices Error(Status.INDEX_OUT_OF_RANGE),
         when the mesh is used."""
         if _is_ndarray(pairs):
-            pairs = pairs.reshape(-1).tolist()
-        flat = [] if pairs is None else [int(i) for i in _flatten(pairs, 2, "seam edges")]
-        if any(i < 0 or i > 0xFFFFFFFF for i in flat):
-            raise ValueError("raps: a vertex index is outside [0, 2^32)")
-        status = _lib.raps_mesh_set_seam_edges(
-            self._ptr(), (ctypes.c_uint32 * len(flat))(*flat) if flat else None, len(flat) // 2)
+            if pairs.size % 2:
+                raise ValueError("raps: %d seam edges values are not a multiple of 2"
+                                 % pairs.size)
+            array = _uint32_array(pairs, "a vertex index")
+        else:
+            flat = [] if pairs is None else _flatten(pairs, 2, "seam edges")
+            array = _uint32_array(flat, "a vertex index")
+        status = _lib.raps_mesh_set_seam_edges(self._ptr(), _uint32_pointer(array),
+                                               len(array) // 2)
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
     def set_corner_uvs(self, uvs):

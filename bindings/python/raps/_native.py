@@ -67,8 +67,9 @@ RAPS_ERROR_OPEN_MESH = 22
 #   raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
 #   (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
 RAPS_ERROR_INVALID_TRANSFORM = 23
-#   Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) are not one per
-#   triangle (the indices changed since, or the count was wrong).
+#   Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) or triangle
+#   polygons (raps_mesh_set_triangle_polygons) are not one per triangle (the indices changed
+#   since, or the count was wrong).
 RAPS_ERROR_GROUP_COUNT = 24
 #   Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
 #   joins by an edge (the message names the pair).
@@ -229,10 +230,10 @@ RAPS_PARAM_ATLAS_REPACK = 47
 #   texel rectangle it has. Charts are not cut alike on turned copies, nor mesh by mesh in a
 #   scene, so a connected piece of a mesh that repeats an earlier piece, in the same mesh or
 #   an earlier one (the same triangles over its vertices numbered by first use, the same
-#   groups and seam edges, and vertices congruent as above, turned by any angle) takes copies
-#   of that piece's charts instead of its own, each then stacked on its original. A copy
-#   drawn mirrored (a transform with det < 0) is a mirror: it stacks only with
-#   RAPS_STACK_MIRRORED. raps_stats.utilization counts each shared place once. With
+#   groups, polygons and seam edges, and vertices congruent as above, turned by any angle)
+#   takes copies of that piece's charts instead of its own, each then stacked on its
+#   original. A copy drawn mirrored (a transform with det < 0) is a mirror: it stacks only
+#   with RAPS_STACK_MIRRORED. raps_stats.utilization counts each shared place once. With
 #   RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh stack. A lightmap needs every chart
 #   its own texels: leave this off for one. Default NONE.
 RAPS_PARAM_ATLAS_STACK = 48
@@ -518,6 +519,7 @@ FUNCTIONS = {
     'raps_mesh_set_indices_u32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_transform': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double)]),
     'raps_mesh_set_triangle_groups': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
+    'raps_mesh_set_triangle_polygons': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_seam_edges': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_uint32), ctypes.c_size_t]),
     'raps_mesh_set_corner_uvs_f32': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_float), ctypes.c_size_t, ctypes.c_size_t]),
     'raps_mesh_set_corner_uvs_f64': (raps_status, [ctypes.POINTER(raps_mesh), ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.c_size_t]),

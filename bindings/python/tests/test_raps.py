@@ -469,6 +469,25 @@ class Seams(unittest.TestCase):
             settings.atlas_keep_input_seams = 1
             self.assertEqual(settings.atlas_keep_input_seams, 1)
 
+    def test_polygons_reach_the_library(self):
+        # What they do is the C suite's (test_atlas_polygons); here: a numpy array or a list
+        # gets there, and a wrong count is refused when the mesh is used.
+        with raps.Mesh(*fan_disk()) as cap, raps.Settings(domain="atlas") as settings:
+            polygons = [0, 0, 1, 1, 2, 2]  # the cap's six triangles as three quads
+            if raps.numpy is not None:
+                polygons = raps.numpy.array(polygons, dtype=raps.numpy.int64)
+            cap.set_triangle_polygons(polygons)
+            self.assertEqual(len(raps.parameterize(cap, settings).chart_ids()), 6)
+            cap.set_triangle_polygons([0, 1])
+            with self.assertRaises(raps.Error) as caught:
+                raps.parameterize(cap, settings)
+            self.assertEqual(caught.exception.status, raps.Status.GROUP_COUNT)
+            self.assertIn("polygons number 2", str(caught.exception))
+            with self.assertRaises(ValueError):
+                cap.set_triangle_polygons([-1])
+            cap.set_triangle_polygons(None)
+            self.assertEqual(raps.parameterize(cap, settings).stats().chart_count, 1)
+
 
 class Repack(unittest.TestCase):
     """Existing uvs repacked (atlas_repack): the islands of a hexagonal cap's corner uvs come

@@ -70,8 +70,9 @@ pub const RAPS_ERROR_OPEN_MESH: i32 = 22;
 /// raps_mesh_set_transform: a coefficient is NaN or infinite, or the 3x3 part is singular
 /// (it would flatten the mesh: |det| below 1e-12 times the product of its rows' lengths).
 pub const RAPS_ERROR_INVALID_TRANSFORM: i32 = 23;
-/// Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) are not one per
-/// triangle (the indices changed since, or the count was wrong).
+/// Atlas domain: the mesh's triangle groups (raps_mesh_set_triangle_groups) or triangle
+/// polygons (raps_mesh_set_triangle_polygons) are not one per triangle (the indices changed
+/// since, or the count was wrong).
 pub const RAPS_ERROR_GROUP_COUNT: i32 = 24;
 /// Atlas domain: a seam edge (raps_mesh_set_seam_edges) names two vertices that no triangle
 /// joins by an edge (the message names the pair).
@@ -232,10 +233,10 @@ pub const RAPS_PARAM_ATLAS_REPACK: i32 = 47;
 /// texel rectangle it has. Charts are not cut alike on turned copies, nor mesh by mesh in a
 /// scene, so a connected piece of a mesh that repeats an earlier piece, in the same mesh or
 /// an earlier one (the same triangles over its vertices numbered by first use, the same
-/// groups and seam edges, and vertices congruent as above, turned by any angle) takes copies
-/// of that piece's charts instead of its own, each then stacked on its original. A copy
-/// drawn mirrored (a transform with det < 0) is a mirror: it stacks only with
-/// RAPS_STACK_MIRRORED. raps_stats.utilization counts each shared place once. With
+/// groups, polygons and seam edges, and vertices congruent as above, turned by any angle)
+/// takes copies of that piece's charts instead of its own, each then stacked on its
+/// original. A copy drawn mirrored (a transform with det < 0) is a mirror: it stacks only
+/// with RAPS_STACK_MIRRORED. raps_stats.utilization counts each shared place once. With
 /// RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh stack. A lightmap needs every chart
 /// its own texels: leave this off for one. Default NONE.
 pub const RAPS_PARAM_ATLAS_STACK: i32 = 48;
@@ -592,6 +593,23 @@ extern "C" {
     /// Errors: INVALID_ARGUMENT (mesh NULL, groups NULL with a nonzero count), TOO_LARGE (more than
     /// 2^28), OUT_OF_MEMORY; when used: GROUP_COUNT (not one per triangle).
     pub fn raps_mesh_set_triangle_groups(mesh: *mut raps_mesh, groups: *const u32, triangle_count: usize) -> raps_status;
+
+    /// Sets (replaces) a polygon id per triangle, for a mesh of quads or n-gons triangulated for raps:
+    /// polygons[t] is triangle t's polygon, in the order of the indices. Two triangles that share an
+    /// edge and an id are parts of one polygon: they always share a chart and no cut runs between
+    /// them (charts grow, split and are cut open along polygon edges only), so every corner of a
+    /// polygon gets one output vertex, whichever of its triangles it is read from. A chart that is
+    /// one polygon is kept whole even where its map breaks a stretch limit. The ids are only
+    /// compared across shared edges. NULL with triangle_count 0 removes them (every triangle a
+    /// polygon of its own, the default). The data is copied; the count is checked when the mesh is
+    /// used, as for groups. Triangles of one polygon in different groups or across a seam edge are
+    /// parts of different polygons there. A zero-area triangle (an n-gon with collinear corners)
+    /// takes the chart of a triangle of its polygon that shares an edge with it. An edge of more
+    /// than two triangles is cut, except between two triangles of one polygon that meet there the
+    /// opposite ways.
+    /// Errors: INVALID_ARGUMENT (mesh NULL, polygons NULL with a nonzero count), TOO_LARGE (more than
+    /// 2^28), OUT_OF_MEMORY; when used: GROUP_COUNT (not one per triangle).
+    pub fn raps_mesh_set_triangle_polygons(mesh: *mut raps_mesh, polygons: *const u32, triangle_count: usize) -> raps_status;
 
     /// Sets (replaces) the seam edges: edge_count pairs of input vertex indices, vertex_pairs[2i] and
     /// vertex_pairs[2i + 1], in either order. Charts do not grow or merge across them, and seams

@@ -546,6 +546,23 @@ impl Mesh {
         check(status, || self.last_error())
     }
 
+    /// Atlas domain: a polygon id per triangle, for quads and n-gons triangulated for raps;
+    /// triangles that share an edge and an id stay in one chart with no cut between them, so
+    /// each polygon corner gets one output vertex. An empty slice removes them. A count other
+    /// than the triangle count is refused with [`Status::GROUP_COUNT`] when the mesh is used.
+    pub fn set_triangle_polygons(&mut self, polygons: &[u32]) -> Result<()> {
+        let data = if polygons.is_empty() {
+            ptr::null()
+        } else {
+            polygons.as_ptr()
+        };
+        // SAFETY: NULL with 0, or polygons.len() integers, only read.
+        let status = unsafe {
+            sys::raps_mesh_set_triangle_polygons(self.raw.as_ptr(), data, polygons.len())
+        };
+        check(status, || self.last_error())
+    }
+
     /// Atlas domain: seam edges as pairs of vertex indices; no chart grows or merges across
     /// them. An empty slice removes them. When the mesh is used, a pair that is not an edge is
     /// refused with [`Status::SEAM_NOT_AN_EDGE`], one beyond the vertices with

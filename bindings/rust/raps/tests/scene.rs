@@ -122,6 +122,12 @@ fn groups_and_seam_edges_split_charts_and_bad_ones_are_refused() {
     mesh.set_triangle_groups(&[0, 1]).unwrap();
     assert_eq!(charts(&mesh).unwrap_err().status(), Status::GROUP_COUNT);
     mesh.set_triangle_groups(&[]).unwrap();
+    // Polygons reach the library (what they do is the C suite's test_atlas_polygons).
+    mesh.set_triangle_polygons(&[0, 0, 1, 1, 2, 2]).unwrap();
+    assert_eq!(charts(&mesh).unwrap().len(), 6);
+    mesh.set_triangle_polygons(&[0, 1]).unwrap();
+    assert_eq!(charts(&mesh).unwrap_err().status(), Status::GROUP_COUNT);
+    mesh.set_triangle_polygons(&[]).unwrap();
     mesh.set_seam_edges(&[[0, 1], [4, 0]]).unwrap(); // rim to rim through the apex
     let ids = charts(&mesh).unwrap();
     assert!(ids[..3].iter().all(|c| !ids[3..].contains(c)));
