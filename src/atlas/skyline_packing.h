@@ -72,6 +72,7 @@ class SkylineStrip {
     // With count_waste, the skyline's prefix sums: under a chart whose occupied columns are
     // one run (a connected chart's are), the skyline's sum is one difference.
     std::vector<int64_t> skyline_sum_;
+    int64_t hole_tests_left_;  // of the layout's hole searches (skyline_packing.cpp)
 };
 
 // Places the charts (in `order`) into a strip `strip` cells wide, one after another. x is
