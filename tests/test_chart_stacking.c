@@ -230,6 +230,56 @@ static void test_the_tolerance_and_one_page_per_mesh_keep_charts_apart(void** st
     test_mesh_free(&cone);
 }
 
+/* `m` turned by `degrees` about `axis` (through the origin). */
+static test_mesh turned_copy(const test_mesh* m, double degrees, const double axis[3]) {
+    const double n = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    const double x = axis[0] / n, y = axis[1] / n, z = axis[2] / n;
+    const double c = cos(degrees * 3.14159265358979323846 / 180.0);
+    const double s = sin(degrees * 3.14159265358979323846 / 180.0), t = 1 - c;
+    const double r[9] = {t * x * x + c,     t * x * y - s * z, t * x * z + s * y,
+                         t * x * y + s * z, t * y * y + c,     t * y * z - s * x,
+                         t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+    test_mesh out = join_meshes(m, &(test_mesh){NULL, 0, NULL, 0}, 0, 0, 0);
+    for (size_t v = 0; v < out.vertex_count; ++v) {
+        const double* p = &m->positions[3 * v];
+        for (int k = 0; k < 3; ++k)
+            out.positions[3 * v + k] = r[3 * k] * p[0] + r[3 * k + 1] * p[1] + r[3 * k + 2] * p[2];
+    }
+    return out;
+}
+
+/* One mesh holding a shared mesh and a copy of it, turned by a quarter turn or by 37 degrees
+ * about a skew axis and moved: the copy's charts are its original's (segmentation alone cuts
+ * a turned copy differently), each stacked on its original's place. A copy with one vertex
+ * moved by 2% of the mesh's size is no copy: that piece keeps its own places. */
+static void test_a_turned_copy_within_one_mesh_stacks_fully(void** state) {
+    (void)state;
+    test_mesh spot = load_shared_mesh("spot.obj");
+    const size_t triangles = spot.index_count / 3;
+    const double z_axis[3] = {0, 0, 1}, skew[3] = {1, 2, 3};
+    const double turns[2] = {90.0, 37.0};
+    raps_settings* settings = stack_settings(RAPS_STACK_RIGID, 1);
+    for (int k = 0; k < 3; ++k) {
+        test_mesh copy = turned_copy(&spot, turns[k % 2], k == 0 ? z_axis : skew);
+        if (k == 2) copy.positions[3 * 100 + 1] += 0.02;
+        test_mesh both = join_meshes(&spot, &copy, 2.5, -1.0, 0.5);
+        raps_mesh* mesh = to_raps_mesh(&both);
+        atlas a = run_scene(&mesh, 1, settings);
+        if (k < 2) {
+            assert_int_equal(2 * stacked_count(&a), a.chart_count);
+            check_copy_shares_texels(&a, triangles, triangles);
+        } else {
+            assert_true(2 * stacked_count(&a) < a.chart_count);
+        }
+        atlas_free(&a);
+        raps_mesh_destroy(mesh);
+        test_mesh_free(&both);
+        test_mesh_free(&copy);
+    }
+    raps_settings_destroy(settings);
+    test_mesh_free(&spot);
+}
+
 /* Repacking two copies of a grid in one mesh: the copy's island stacks when its uvs are laid
  * out as the original's (moved), not when they are mirrored, unless mirroring is allowed. */
 static void test_repacked_islands_stack_when_laid_out_alike(void** state) {
@@ -271,6 +321,7 @@ static void test_repacked_islands_stack_when_laid_out_alike(void** state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_an_instance_costs_no_texels),
+        cmocka_unit_test(test_a_turned_copy_within_one_mesh_stacks_fully),
         cmocka_unit_test(test_a_mirrored_copy_stacks_only_when_mirroring_is_allowed),
         cmocka_unit_test(test_the_tolerance_and_one_page_per_mesh_keep_charts_apart),
         cmocka_unit_test(test_repacked_islands_stack_when_laid_out_alike),

@@ -320,6 +320,75 @@ static void test_an_island_without_surface_becomes_a_point(void** state) {
     test_mesh_free(&grid);
 }
 
+/* The number of charts of a repacked grid whose uvs are its positions (one island), and that
+ * no chart holds triangles of both sides of x = 1 when `split` says the sides must part. */
+static size_t repacked_grid_charts(raps_mesh* mesh, const test_mesh* grid, const double* uv,
+                                   int split) {
+    raps_settings* settings = repack_settings(1, RAPS_ROTATION_ANY);
+    atlas a = repack(mesh, settings);
+    const size_t triangles = grid->index_count / 3;
+    int* side_of_chart = malloc(a.chart_count * sizeof(int));
+    for (size_t c = 0; c < a.chart_count; ++c) side_of_chart[c] = -1;
+    for (size_t t = 0; t < triangles; ++t) {
+        double cx = 0;
+        for (int k = 0; k < 3; ++k) cx += grid->positions[3 * grid->indices[3 * t + k]] / 3.0;
+        const int side = cx < 1.0;
+        if (side_of_chart[a.chart[t]] < 0) side_of_chart[a.chart[t]] = side;
+        if (split) assert_int_equal(side_of_chart[a.chart[t]], side);
+    }
+    for (uint32_t c = 0; c < a.chart_count; ++c) {
+        double turn, scale;
+        check_similarity(&a, uv, c, &turn, &scale); /* each part keeps its shape */
+    }
+    const size_t charts = a.chart_count;
+    free(side_of_chart);
+    atlas_free(&a);
+    raps_settings_destroy(settings);
+    return charts;
+}
+
+/* Triangle groups and seam edges split a uv island as they split mapped charts: no chart holds
+ * two groups, a seam path from boundary to boundary parts the island, a seam path that ends
+ * inside it leaves it one chart (its uvs are kept as given). */
+static void test_groups_and_seam_edges_split_islands(void** state) {
+    (void)state;
+    test_mesh grid = make_grid(12, 4, 3.0, 1.0); /* the line x = 1 is column 4 of 13 */
+    const size_t triangles = grid.index_count / 3;
+    double* uv = malloc(6 * triangles * sizeof(double));
+    uint32_t* groups = malloc(triangles * sizeof(uint32_t));
+    for (size_t t = 0; t < triangles; ++t) {
+        double cx = 0;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = grid.indices[3 * t + k];
+            uv[6 * t + 2 * k] = grid.positions[3 * v];
+            uv[6 * t + 2 * k + 1] = grid.positions[3 * v + 1];
+            cx += grid.positions[3 * v] / 3.0;
+        }
+        groups[t] = cx < 1.0 ? 7u : 3u;
+    }
+    raps_mesh* mesh = mesh_with_uvs(&grid, uv);
+    assert_int_equal(repacked_grid_charts(mesh, &grid, uv, 0), 1);
+
+    assert_status(raps_mesh_set_triangle_groups(mesh, groups, triangles), RAPS_OK);
+    assert_int_equal(repacked_grid_charts(mesh, &grid, uv, 1), 2);
+    assert_status(raps_mesh_set_triangle_groups(mesh, NULL, 0), RAPS_OK);
+
+    uint32_t seam[8];
+    for (uint32_t j = 0; j < 4; ++j) {
+        seam[2 * j] = j * 13 + 4;
+        seam[2 * j + 1] = (j + 1) * 13 + 4;
+    }
+    assert_status(raps_mesh_set_seam_edges(mesh, seam, 4), RAPS_OK);
+    assert_int_equal(repacked_grid_charts(mesh, &grid, uv, 1), 2);
+    assert_status(raps_mesh_set_seam_edges(mesh, seam, 2), RAPS_OK); /* ends at (1, 0.5) */
+    assert_int_equal(repacked_grid_charts(mesh, &grid, uv, 0), 1);
+
+    raps_mesh_destroy(mesh);
+    free(groups);
+    free(uv);
+    test_mesh_free(&grid);
+}
+
 /* The uvs of a first raps atlas of a shared mesh, repacked at a density with quarter turns:
  * the same charts come back (one per chart of the first run), each keeping its shape, at one
  * density, the same bits for 1 and 3 threads. */
@@ -497,6 +566,7 @@ int main(void) {
         cmocka_unit_test(test_charts_follow_uv_edges_only),
         cmocka_unit_test(test_overlapping_islands_are_packed_apart),
         cmocka_unit_test(test_an_island_without_surface_becomes_a_point),
+        cmocka_unit_test(test_groups_and_seam_edges_split_islands),
         cmocka_unit_test(test_a_raps_atlas_repacked_keeps_its_charts),
         cmocka_unit_test(test_a_scene_is_repacked_at_one_density),
         cmocka_unit_test(test_bad_uvs_are_refused_with_their_own_status),

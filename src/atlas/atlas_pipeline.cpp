@@ -458,8 +458,9 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     return set;
 }
 
-// The mapped charts' corner sources and parts; with stacking across meshes, an instance takes
-// copies of its source's charts, without which it could share none of their texels.
+// The mapped charts' corner sources and parts; with stacking, an instance (a mesh or a piece of
+// one repeated, instanced_parts.h) takes copies of its source's charts, without which it could
+// share none of their texels.
 void corner_sources_of(const TriangleMesh& mesh, const AtlasParts& parts, const Settings& settings,
                        ChartSet& set, const ProgressSpan& progress) {
     const AtlasSurface& surface = set.surface;
@@ -468,16 +469,12 @@ void corner_sources_of(const TriangleMesh& mesh, const AtlasParts& parts, const 
         const int32_t first = surface.input_triangle[chart.disk.surface_triangle[0]];
         set.part.push_back(parts.part_of_triangle(first));
     }
-    if (settings.atlas_stack != ChartStacking::kNone && !settings.atlas_mesh_per_page &&
-        parts.count() > 1) {
-        const std::vector<int32_t> source =
-            instance_sources(mesh, parts, set.sources, settings.atlas_stack_tolerance,
-                             settings.atlas_stack == ChartStacking::kMirrored);
-        bool any = false;
-        for (int32_t p = 0; p < parts.count(); ++p) any = any || source[p] != p;
-        if (any)
-            copy_instance_charts(mesh, parts, surface, source, set.charts, set.sources, set.part);
-    }
+    if (settings.atlas_stack == ChartStacking::kNone) return;
+    const Instances instances = find_instances(
+        mesh, parts, set.welded, set.sources, set.charts.size(), settings.atlas_stack_tolerance,
+        settings.atlas_stack == ChartStacking::kMirrored, !settings.atlas_mesh_per_page);
+    if (instances.any())
+        copy_instance_charts(mesh, parts, surface, instances, set.charts, set.sources, set.part);
 }
 
 // Repacking: the input's own uv islands are the charts, as they are (uv_repack.h).

@@ -3,8 +3,9 @@
 // bounding box (smallest_bounding_box, measured by the caller with the chart's map), rasterised
 // conservatively at the texel size and padded, so that no two charts come closer than `padding`
 // texels (bilinear filtering and mip levels then never mix them). Charts are placed largest first
-// into a strip of fixed width, each in whichever of its four quarter turns lands lowest on the
-// skyline (the top of what is already placed, per column of texels) or lower, in a hole under an
+// into a strip of fixed width, each in whichever of its four quarter turns (with any rotation
+// allowed, the largest charts also turned 15 to 75 degrees further) lands lowest on the skyline
+// (the top of what is already placed, per column of texels) or lower, in a hole under an
 // overhang; three orders of size, several strip widths and two scoring rules are tried and the one
 // giving the smallest rectangle wins (up to 16 charts, its order is then improved by pair swaps).
 // The texel density is then raised until the longer side is `resolution` texels. uvs are

@@ -33,10 +33,12 @@ class Occupancy {
         // The middle row first: a chart's widest rows are near its middle, and a position in
         // a full region is rejected there at once (rounded charts barely touch their first
         // and last rows).
-        const int32_t middle = p.height / 2;
+        const int32_t middle = p.height / 2, low = p.height / 4, high = 3 * p.height / 4;
         if (row_collides(middle)) return true;
+        if (low != middle && row_collides(low)) return true;
+        if (high != middle && high != low && row_collides(high)) return true;
         for (int32_t r = 0; r < p.height && y + r < rows(); ++r) {
-            if (r != middle && row_collides(r)) return true;
+            if (r != middle && r != low && r != high && row_collides(r)) return true;
         }
         return false;
     }
@@ -62,6 +64,32 @@ class Occupancy {
     }
 
     int32_t rows() const { return static_cast<int32_t>(cells_.size() / words_); }
+
+    // Calls fn(begin, end) for each run of free cells of a row at least `least` long, left to
+    // right, until fn returns true.
+    template <typename Fn>
+    void for_each_free_run(int32_t row, int32_t least, Fn fn) const {
+        if (row >= rows()) {
+            fn(0, strip_);
+            return;
+        }
+        const uint64_t* bits = row_ptr(row);
+        auto next = [&](int32_t from, bool occupied) {  // the first such cell at or after from
+            if (from >= strip_) return strip_;
+            int32_t w = from / 64;
+            uint64_t word = (occupied ? bits[w] : ~bits[w]) & (~uint64_t(0) << (from % 64));
+            while (word == 0) {
+                if (++w * 64 >= strip_) return strip_;
+                word = occupied ? bits[w] : ~bits[w];
+            }
+            return std::min(strip_, w * 64 + __builtin_ctzll(word));
+        };
+        for (int32_t begin = next(0, false); begin < strip_;) {
+            const int32_t end = next(begin, true);
+            if (end - begin >= least && fn(begin, end)) return;
+            begin = next(end, false);
+        }
+    }
 
     // The longest run of free cells in a row of the strip.
     int32_t longest_free(int32_t row) {
@@ -169,36 +197,66 @@ SkylineKernels skyline_kernels() {
     return {resting_row_baseline, skyline_under_baseline, probe_bounds_baseline};
 }
 
+// Where the longest run of padded cells in row `row` of a profile begins (the first, of
+// equal runs).
+int32_t longest_run_begin(const Profile& p, int32_t row) {
+    const uint64_t* bits = p.padded_bits.data() + static_cast<size_t>(row) * p.words;
+    int32_t best = 0, best_length = -1;
+    for (int32_t x = 0; x < p.width;) {
+        if (!(bits[x / 64] >> (x % 64) & 1)) {
+            ++x;
+            continue;
+        }
+        int32_t end = x;
+        while (end < p.width && (bits[end / 64] >> (end % 64) & 1)) ++end;
+        if (end - x > best_length) {
+            best = x;
+            best_length = end - x;
+        }
+        x = end;
+    }
+    return best;
+}
+
 }  // namespace
 
-SkylineStrip::SkylineStrip(int32_t strip_cells, bool waste, bool holes)
+// Positions one layout's hole searches test in all, at most. Without a bound the search costs
+// the layout's free area per chart: 5,000 separate quads (foliage cards, a triangle soup) tested
+// 269 million positions and 20,000 took minutes, where the ten-mesh scene of issue 23 tests
+// 431,000 over all its layouts. Charts placed after the budget is spent keep the skyline's place.
+constexpr int64_t kHoleTestsPerLayout = 2000000;
+
+SkylineStrip::SkylineStrip(int32_t strip_cells, bool waste, bool holes, int turns)
     : strip(strip_cells),
       count_waste(waste),
       fill_holes(holes),
+      turn_limit(turns),
       skyline_(static_cast<size_t>(strip_cells), 0),
       occupancy_(std::make_unique<Occupancy>(strip_cells)),
       kernels_(skyline_kernels()),
       bounds_(static_cast<size_t>(strip_cells)),
-      skyline_sum_(waste ? static_cast<size_t>(strip_cells) + 1 : 0, 0) {}
+      skyline_sum_(waste ? static_cast<size_t>(strip_cells) + 1 : 0, 0),
+      hole_tests_left_(kHoleTestsPerLayout) {}
 
 SkylineStrip::~SkylineStrip() = default;
 SkylineStrip::SkylineStrip(const SkylineStrip& other)
     : strip(other.strip),
       count_waste(other.count_waste),
       fill_holes(other.fill_holes),
+      turn_limit(other.turn_limit),
       width(other.width),
       height(other.height),
       skyline_(other.skyline_),
       occupancy_(std::make_unique<Occupancy>(*other.occupancy_)),
       kernels_(other.kernels_),
       bounds_(other.bounds_),
-      skyline_sum_(other.skyline_sum_) {}
+      skyline_sum_(other.skyline_sum_),
+      hole_tests_left_(other.hole_tests_left_) {}
 
 bool SkylineStrip::find(const PreparedChart& chart, Placement& place) {
     // The state under the names the search had when it was one function, so that its lines
     // (and the layouts they make) stayed as they were.
     const std::vector<int32_t>& skyline = skyline_;
-    Occupancy& occupancy = *occupancy_;
     const SkylineKernels& kernels = kernels_;
     std::vector<int32_t>& bounds = bounds_;
     const std::vector<int64_t>& skyline_sum = skyline_sum_;
@@ -247,7 +305,7 @@ bool SkylineStrip::find(const PreparedChart& chart, Placement& place) {
     int64_t best_score = std::numeric_limits<int64_t>::max();
     int32_t best_x = -1, best_y = 0;
     int best_q = 0;
-    for (int q = 0; q < chart.turns; ++q) {
+    for (int q = 0; q < std::min(chart.turns, turn_limit); ++q) {
         const Profile& p = chart.profiles[q];
         if (p.width > strip) continue;
         const int32_t last = strip - p.width;
@@ -308,47 +366,65 @@ bool SkylineStrip::find(const PreparedChart& chart, Placement& place) {
         consider(last);
     }
     if (best_x < 0) return false;
-    // Holes: a chart small against the layout may fit lower, under an overhang the
-    // skyline cannot see. Scan the free cells below its skyline position in steps of a
-    // quarter of its size, then let it settle down and left cell by cell.
-    for (int q = 0; q < chart.turns && fill_holes; ++q) {
-        const Profile& p = chart.profiles[q];
-        if (p.width > strip) continue;
-        if (static_cast<int64_t>(p.width) * p.height * 8 > static_cast<int64_t>(width) * height)
-            continue;
-        // At most about 40 x 40 candidate positions per turn, however small the chart.
-        const int32_t sx = std::max({1, p.width / 4, strip / 40});
-        const int32_t sy = std::max({1, p.height / 4, height / 40});
-        const int32_t best_top = best_y + chart.profiles[best_q].height;
-        bool found = false;
-        for (int32_t y = 0; !found && y + p.height < best_top; y += sy) {
-            // Every position of a row too full for the chart's middle row collides there.
-            if (occupancy.longest_free(y + p.height / 2) < p.middle_run) continue;
-            for (int32_t x = 0; x + p.width <= strip; x += sx) {
-                if (occupancy.collides(p, p.padded_bits, x, y)) continue;
-                int32_t fx = x, fy = y;
-                for (bool moved = true; moved;) {
-                    moved = false;
-                    if (fy > 0 && !occupancy.collides(p, p.padded_bits, fx, fy - 1)) {
-                        --fy;
-                        moved = true;
-                    } else if (fx > 0 && !occupancy.collides(p, p.padded_bits, fx - 1, fy)) {
-                        --fx;
-                        moved = true;
-                    }
-                }
-                best_x = fx;
-                best_y = fy;
-                best_q = q;
-                found = true;
-                break;
-            }
-        }
-    }
     place.x = best_x;
     place.y = best_y;
     place.quarter = best_q;
+    if (fill_holes) find_hole(chart, place);
     return true;
+}
+
+// Holes: a chart an eighth of the layout or smaller may fit lower, under an overhang the
+// skyline cannot see. The free cells below its skyline position are scanned row by row in
+// steps of a sixteenth of its size, each turn (steps of a quarter left the ten-mesh scene of
+// issue 23 at utilization 0.691, these gave 0.697 before the packer's further orientations),
+// and the first place found settles down and left cell by cell. Only positions where the longest
+// run of the chart's middle row lies in one free run of the layout's row are tested in full: any
+// other collides.
+void SkylineStrip::find_hole(const PreparedChart& chart, Placement& place) {
+    Occupancy& occupancy = *occupancy_;
+    int64_t& tests = hole_tests_left_;
+    for (int q = 0; q < std::min(chart.turns, turn_limit); ++q) {
+        const Profile& p = chart.profiles[q];
+        if (p.width > strip) continue;
+        if (static_cast<int64_t>(p.width) * p.height * 8 > static_cast<int64_t>(width) * height)
+            continue;  // larger charts rarely fit a hole (every chart: no better, 15% slower)
+        // At most about 200 x 200 candidate positions per turn, however small the chart.
+        const int32_t sx = std::max({1, p.width / 16, strip / 200});
+        const int32_t sy = std::max({1, p.height / 16, height / 200});
+        const int32_t best_top = place.y + chart.profiles[place.quarter].height;
+        const int32_t middle_begin = longest_run_begin(p, p.height / 2);
+        bool found = false;
+        for (int32_t y = 0; !found && tests > 0 && y + p.height < best_top; y += sy) {
+            const int32_t row = y + p.height / 2;
+            if (occupancy.longest_free(row) < p.middle_run) continue;
+            occupancy.for_each_free_run(row, p.middle_run, [&](int32_t begin, int32_t end) {
+                const int32_t first = std::max(0, begin - middle_begin);
+                const int32_t last = std::min(strip - p.width, end - p.middle_run - middle_begin);
+                for (int32_t x = (first + sx - 1) / sx * sx; x <= last; x += sx) {
+                    if (--tests < 0) return true;  // stops the runs; the rows stop too
+                    if (occupancy.collides(p, p.padded_bits, x, y)) continue;
+                    settle(p, x, y);
+                    place = {x, y, q};
+                    return found = true;
+                }
+                return false;
+            });
+        }
+    }
+}
+
+void SkylineStrip::settle(const Profile& p, int32_t& x, int32_t& y) const {
+    const Occupancy& occupancy = *occupancy_;
+    for (bool moved = true; moved;) {
+        moved = false;
+        if (y > 0 && !occupancy.collides(p, p.padded_bits, x, y - 1)) {
+            --y;
+            moved = true;
+        } else if (x > 0 && !occupancy.collides(p, p.padded_bits, x - 1, y)) {
+            --x;
+            moved = true;
+        }
+    }
 }
 
 void SkylineStrip::commit(const PreparedChart& chart, const Placement& place) {
@@ -369,8 +445,8 @@ void SkylineStrip::commit(const PreparedChart& chart, const Placement& place) {
 bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
                 int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
                 std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
-                int32_t& height) {
-    SkylineStrip layout(strip, count_waste, fill_holes);
+                int32_t& height, int turn_limit) {
+    SkylineStrip layout(strip, count_waste, fill_holes, turn_limit);
     width = height = 0;
     for (size_t c : order) {
         Placement place;

@@ -17,9 +17,13 @@ namespace raps {
 struct PreparedChart {
     Eigen::Vector2d rotation;  // cos, sin
     Eigen::Vector2d origin;    // lower corner of the rotated chart's box, in 3D units
-    Profile profiles[4];       // the four quarter turns
-    int turns = 4;             // how many of them may be used (1: the chart is never turned)
+    // The four quarter turns of each way the chart is turned before them (placement index q:
+    // the way q / 4, turned q % 4 quarters; page_packing uses one way, `rotation`).
+    std::vector<Profile> profiles = std::vector<Profile>(4);
+    int turns = 4;  // how many of them may be used (1: the chart is never turned)
 };
+
+constexpr int kAllTurns = 1 << 20;
 
 struct SkylineKernels {
     int32_t (*resting_row)(const int32_t* sky, const int32_t* rest, int32_t width, int32_t limit);
@@ -40,7 +44,8 @@ struct Placement {
 // takes it. A copy is an independent layout (for placing tentatively).
 class SkylineStrip {
   public:
-    SkylineStrip(int32_t strip, bool count_waste, bool fill_holes);
+    // turn_limit: placement indices from it on are not used (4: the chart's first way alone).
+    SkylineStrip(int32_t strip, bool count_waste, bool fill_holes, int turn_limit = kAllTurns);
     SkylineStrip(const SkylineStrip& other);
     SkylineStrip& operator=(const SkylineStrip&) = delete;
     ~SkylineStrip();
@@ -51,9 +56,15 @@ class SkylineStrip {
 
     const int32_t strip;
     const bool count_waste, fill_holes;
+    const int turn_limit;
     int32_t width = 0, height = 0;  // the layout so far, in cells
 
   private:
+    // Moves `place` lower, into a hole under an overhang, where the chart fits there.
+    void find_hole(const PreparedChart& chart, Placement& place);
+    // Lets a chart at (x, y) slide down and left while it collides with nothing.
+    void settle(const Profile& p, int32_t& x, int32_t& y) const;
+
     std::vector<int32_t> skyline_;
     std::unique_ptr<Occupancy> occupancy_;
     SkylineKernels kernels_;
@@ -61,6 +72,7 @@ class SkylineStrip {
     // With count_waste, the skyline's prefix sums: under a chart whose occupied columns are
     // one run (a connected chart's are), the skyline's sum is one difference.
     std::vector<int64_t> skyline_sum_;
+    int64_t hole_tests_left_;  // of the layout's hole searches (skyline_packing.cpp)
 };
 
 // Places the charts (in `order`) into a strip `strip` cells wide, one after another. x is
@@ -70,6 +82,6 @@ class SkylineStrip {
 bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
                 int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
                 std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
-                int32_t& height);
+                int32_t& height, int turn_limit = kAllTurns);
 
 }  // namespace raps

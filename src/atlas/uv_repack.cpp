@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "atlas/chart_packing.h"
+#include "atlas/user_seams.h"
 #include "core/error.h"
 #include "metrics/distortion.h"
 
@@ -24,6 +25,7 @@ struct EdgeSide {
     int32_t hi;
     double lo_u, lo_v, hi_u, hi_v;
     int32_t triangle;
+    int corner;    // the side runs from this corner of the triangle to the next
     int32_t next;  // the next side whose smaller vertex is the same, or -1
     bool same_edge(const EdgeSide& o) const {
         return hi == o.hi && lo_u == o.lo_u && lo_v == o.lo_v && hi_u == o.hi_u && hi_v == o.hi_v;
@@ -33,7 +35,11 @@ struct EdgeSide {
 // Islands by union-find over the triangles. Each side is looked up among the sides seen at its
 // smaller vertex (a short list: the vertex's edges), so the work is linear; unions keep the
 // smallest triangle as root, which makes the result independent of the order of the unions.
-std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<int32_t>& welded) {
+// An edge between two triangle groups or on a seam edge joins nothing (`seams`), as it
+// separates charts when mapping: groups and closed or boundary-to-boundary seam paths then
+// split an island whose uvs run across them.
+std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<int32_t>& welded,
+                                  const UserSeams& seams) {
     const int32_t triangle_count = mesh.triangle_count();
     std::vector<int32_t> parent(triangle_count);
     for (int32_t t = 0; t < triangle_count; ++t) parent[t] = t;
@@ -48,10 +54,14 @@ std::vector<int32_t> island_roots(const TriangleMesh& mesh, const std::vector<in
             const Eigen::Vector2d& ua = mesh.corner_uv[3 * static_cast<size_t>(t) + k];
             const Eigen::Vector2d& ub = mesh.corner_uv[3 * static_cast<size_t>(t) + l];
             const int32_t lo = std::min(a, b);
-            const EdgeSide side = a < b ? EdgeSide{b, ua.x(), ua.y(), ub.x(), ub.y(), t, head[lo]}
-                                        : EdgeSide{a, ub.x(), ub.y(), ua.x(), ua.y(), t, head[lo]};
+            const EdgeSide side = a < b
+                                      ? EdgeSide{b, ua.x(), ua.y(), ub.x(), ub.y(), t, k, head[lo]}
+                                      : EdgeSide{a, ub.x(), ub.y(), ua.x(), ua.y(), t, k, head[lo]};
             int32_t found = head[lo];
             while (found >= 0 && !sides[found].same_edge(side)) found = sides[found].next;
+            if (found >= 0 && seams.any() &&
+                seams.cuts(t, k, sides[found].triangle, sides[found].corner))
+                found = -1;
             if (found >= 0) {
                 const int32_t x = find_root(parent, t),
                               y = find_root(parent, sides[found].triangle);
@@ -162,7 +172,7 @@ void check_corner_uvs(const TriangleMesh& mesh, const std::string& name) {
 RepackedCharts repack_charts(const TriangleMesh& mesh, const AtlasParts& parts,
                              const std::vector<int32_t>& welded) {
     const int32_t triangle_count = mesh.triangle_count();
-    const std::vector<int32_t> root = island_roots(mesh, welded);
+    const std::vector<int32_t> root = island_roots(mesh, welded, UserSeams(mesh, false));
     // Islands numbered by first triangle; their areas and uv extents.
     std::vector<int32_t> island(triangle_count, -1), first_triangle;
     std::vector<double> surface, uv_area;

@@ -1,7 +1,8 @@
 // Repacking the input's own uvs (RAPS_PARAM_ATLAS_REPACK; what xatlas's AddUvMesh and Blender's
 // Pack Islands do): no new map. The charts are the input's uv islands: triangles that share an
 // edge (the same two vertices, welded by position within a part) whose corner uvs are equal at
-// both ends are in one chart. Each chart's uvs are scaled uniformly so that its uv area equals
+// both ends are in one chart, unless a triangle group boundary or a seam edge lies between
+// them (user_seams.h). Each chart's uvs are scaled uniformly so that its uv area equals
 // its 3D area (the packer's unit, chart_packing.h); the packer then only turns them (as the
 // rotation policy allows), scales them to the atlas's one density and moves them, so every chart
 // keeps its shape. Flipped or overlapping triangles inside a chart are kept as given.

@@ -209,11 +209,14 @@ RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS = 46
 #   scaled: its shape is kept. Charts are taken as given: flipped (clockwise) or overlapping
 #   triangles stay flipped and overlapping, a mirrored chart stays mirrored, and its
 #   raps_chart.stretch_l2 measures the input's own map. A uv chart whose triangles have no 3D
-#   area gets no texels (its uvs all become one point, as degenerate triangles do). Hard edges,
-#   stretch limits, triangle groups, seam edges and RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not
-#   used: the uvs alone make the charts. The output is one vertex per distinct (input vertex,
-#   chart, uv) and raps_stats.adaptive_solves is 0; the run enters no INITIAL_MAP phase (the
-#   islands are found in SEGMENT). Errors: UV_COUNT, DEGENERATE_UV_CHART. Default 0.
+#   area gets no texels (its uvs all become one point, as degenerate triangles do). Triangle
+#   groups and seam edges split islands as they split mapped charts: no chart holds two
+#   groups, and no two triangles join across a seam edge (a seam path that ends inside an
+#   island leaves it one chart, its uvs as given). Hard edges, stretch limits and
+#   RAPS_PARAM_ATLAS_KEEP_INPUT_SEAMS are not used. The output is one vertex per distinct
+#   (input vertex, chart, uv) and raps_stats.adaptive_solves is 0; the run enters no
+#   INITIAL_MAP phase (the islands are found in SEGMENT). Errors: UV_COUNT,
+#   DEGENERATE_UV_CHART. Default 0.
 RAPS_PARAM_ATLAS_REPACK = 47
 #   int. Whether congruent charts share one place in the atlas, see RAPS_STACK_*: duplicated
 #   or instanced geometry (one mesh handle given twice to raps_parameterize_scene, copies of
@@ -224,14 +227,15 @@ RAPS_PARAM_ATLAS_REPACK = 47
 #   own uvs must agree the same way (an island laid out mirrored is a mirror too). The later
 #   chart takes the earlier one's uvs, texel for texel: raps_chart.flags has
 #   RAPS_CHART_STACKED and raps_chart.stacked_on names the chart it shares, whose page and
-#   texel rectangle it has. A scene's charts are made for the whole atlas at once, so a mesh
-#   that repeats an earlier one (the same vertex and triangle counts, triangles, groups and
-#   seam edges, and vertices congruent as above) takes copies of that mesh's charts instead
-#   of its own, each then stacked on its original. A copy drawn mirrored (a transform with
-#   det < 0) is a mirror: it stacks only with RAPS_STACK_MIRRORED. raps_stats.utilization
-#   counts each shared place once. With RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh
-#   stack. A lightmap needs every chart its own texels: leave this off for one. Default
-#   NONE.
+#   texel rectangle it has. Charts are not cut alike on turned copies, nor mesh by mesh in a
+#   scene, so a connected piece of a mesh that repeats an earlier piece, in the same mesh or
+#   an earlier one (the same triangles over its vertices numbered by first use, the same
+#   groups, polygons and seam edges, and vertices congruent as above, turned by any angle)
+#   takes copies of that piece's charts instead of its own, each then stacked on its
+#   original. A copy drawn mirrored (a transform with det < 0) is a mirror: it stacks only
+#   with RAPS_STACK_MIRRORED. raps_stats.utilization counts each shared place once. With
+#   RAPS_PARAM_ATLAS_MESH_PER_PAGE only charts of one mesh stack. A lightmap needs every chart
+#   its own texels: leave this off for one. Default NONE.
 RAPS_PARAM_ATLAS_STACK = 48
 #   float in [0, 0.1]. How far, as a fraction of a chart's extent (its first vertex to its
 #   farthest), a stacked chart's vertices may lie from where the rigid motion (or mirror)
