@@ -107,6 +107,11 @@ atlas options:
                              as a fraction of the chart's extent, [0, 0.1] (default 1e-4)
   --obj-groups               no chart crosses from one OBJ group to another: faces under
                              different `g` or `usemtl` lines never share a chart
+  --split-polygons           let charts split quads and n-gons: by default each face of the
+                             input is one unit (its triangles share a chart, no seam crosses
+                             it, each corner gets one vt); with this flag its triangles are
+                             separate, as in a triangle mesh (--repack ignores polygons: its
+                             charts are the input's uv islands)
   --lightmap                 lightmap settings: --atlas --padding 2 --rotate quarter
                              --mesh-per-page --whole-texels (--padding and --rotate given
                              override theirs); refuses --stack, a lightmap needs every chart
@@ -221,9 +226,10 @@ std::vector<double> sphere_positions(const raps_samples::PolygonMesh& polygons,
 struct Options {
     std::vector<std::string> inputs;
     std::string output;
-    bool keep_uv_seams = false;  // the library sees a vertex per (v, vt) pair of the OBJ
-    bool obj_groups = false;     // OBJ `g` / `usemtl` as triangle groups
-    bool repack = false;         // the OBJ's own vt as the charts
+    bool keep_uv_seams = false;   // the library sees a vertex per (v, vt) pair of the OBJ
+    bool obj_groups = false;      // OBJ `g` / `usemtl` as triangle groups
+    bool repack = false;          // the OBJ's own vt as the charts
+    bool split_polygons = false;  // each fan triangle on its own, not its face's unit
 };
 
 // Reads the command line into the settings; returns the files. Exits early (returning false)
@@ -275,6 +281,8 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
             if (!error.empty()) throw UsageError(error);
         } else if (arg == "--obj-groups") {
             options.obj_groups = true;
+        } else if (arg == "--split-polygons") {
+            options.split_polygons = true;
         } else if (const raps_samples::ParameterFlag* flag =
                        raps_samples::find_parameter_flag(arg)) {
             const std::string error =
@@ -334,7 +342,28 @@ raps_samples::PolygonMesh library_view(const std::string& path,
     return polygons.split_at_texcoord_seams();
 }
 
-void load_input(const std::string& path, const Options& options, Input& input) {
+// Per triangle of PolygonMesh::triangles(), the index of the face it was fanned from. Empty for
+// a mesh of triangles only: every triangle its own polygon is the library's default, so such
+// meshes take the same path (and give the same bits) as before polygons were passed.
+std::vector<uint32_t> triangle_polygons(const raps_samples::PolygonMesh& mesh) {
+    std::vector<uint32_t> out;
+    if (mesh.corners.size() == 3 * mesh.polygon_count()) return out;
+    out.reserve(mesh.corners.size() - 2 * mesh.polygon_count());
+    for (size_t f = 0; f < mesh.polygon_count(); ++f)
+        out.insert(out.end(), mesh.polygon_offsets[f + 1] - mesh.polygon_offsets[f] - 2,
+                   static_cast<uint32_t>(f));
+    return out;
+}
+
+// The atlas keeps each face whole unless --split-polygons; --repack takes the input's uv
+// islands as they are and never reads polygons, and the disk and sphere domains cut nothing.
+bool pass_polygons(const Options& options, const raps_settings* settings) {
+    int64_t domain = 0;
+    raps_settings_get_int(settings, RAPS_PARAM_DOMAIN, &domain);
+    return domain == RAPS_DOMAIN_ATLAS && !options.split_polygons && !options.repack;
+}
+
+void load_input(const std::string& path, const Options& options, bool polygons, Input& input) {
     input.polygons = raps_samples::read_mesh(path);
     const raps_samples::PolygonMesh library = library_view(path, input.polygons, options);
     const std::vector<uint32_t> triangles = library.triangles();
@@ -355,6 +384,12 @@ void load_input(const std::string& path, const Options& options, Input& input) {
     if (options.obj_groups) {
         const std::vector<uint32_t> groups = library.triangle_groups();
         check(raps_mesh_set_triangle_groups(input.mesh, groups.data(), groups.size()),
+              [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
+    }
+    const std::vector<uint32_t> ids =
+        polygons ? triangle_polygons(library) : std::vector<uint32_t>();
+    if (!ids.empty()) {
+        check(raps_mesh_set_triangle_polygons(input.mesh, ids.data(), ids.size()),
               [&] { return path + ": " + raps_mesh_last_error(input.mesh); });
     }
 }
@@ -408,9 +443,10 @@ int run(int argc, char** argv) {
     std::vector<std::unique_ptr<Input>> inputs;
     std::vector<const raps_mesh*> meshes;
     size_t polygons = 0;
+    const bool whole_polygons = pass_polygons(options, h.settings);
     for (const std::string& path : options.inputs) {
         inputs.push_back(std::make_unique<Input>());
-        load_input(path, options, *inputs.back());
+        load_input(path, options, whole_polygons, *inputs.back());
         meshes.push_back(inputs.back()->mesh);
         polygons += inputs.back()->polygons.polygon_count();
     }
@@ -462,6 +498,7 @@ int run(int argc, char** argv) {
     json += ", \"vertices\": " + std::to_string(stats.vertex_count);
     json += ", \"triangles\": " + std::to_string(stats.triangle_count);
     json += ", \"polygons\": " + std::to_string(polygons);
+    json += std::string(", \"whole_polygons\": ") + (whole_polygons ? "true" : "false");
     json += ", \"settings\": " + param_report::settings_json(h.settings);
     json += ", \"stats\": " + param_report::stats_json(stats, atlas);
     if (atlas) {

@@ -617,6 +617,69 @@ class RapsParamTest(unittest.TestCase):
         self.assertEqual(self.faces_joined_across(self.out, label), 0)
 
     @staticmethod
+    def face_sizes(path):
+        """Corners per face of an OBJ or OFF file, in order."""
+        if path.endswith('.obj'):  # corners may be `v//vn`: only counted
+            with open(path) as fh:
+                return [len(line.split()) - 1 for line in fh if line.split()[:1] == ['f']]
+        with open(path) as fh:
+            words = [line.split() for line in fh if line.strip() and not line.startswith('#')]
+        vertices, faces = int(words[1][0]), int(words[1][1])
+        return [int(w[0]) for w in words[2 + vertices:2 + vertices + faces]]
+
+    @staticmethod
+    def split_polygons(sizes, faces):
+        """Input polygons (corners per face, in order) whose corners get more than one vt at a
+        vertex in the output: raps-param writes each polygon whole or as its fan triangles, in
+        order, so the triangles are gathered back into their polygon."""
+        split, at = 0, 0
+        for n in sizes:
+            parts = [faces[at]] if len(faces[at]) == n else faces[at:at + n - 2]
+            at += len(parts)
+            vt_of = {}
+            for face in parts:
+                for v, vt in ((c[0], c[1]) for c in face):
+                    vt_of.setdefault(v, set()).add(vt)
+            split += any(len(vts) > 1 for vts in vt_of.values())
+        assert at == len(faces), (at, len(faces))
+        return split
+
+    def test_atlas_keeps_each_polygon_whole_unless_asked_to_split(self):
+        # halftunnel.off is all quads, suzanne.obj mostly quads: by default a face's triangles
+        # are one unit to the atlas, so every corner of it gets one vt and it is written whole.
+        for name in ('halftunnel.off', 'suzanne.obj'):
+            sizes = self.face_sizes(self.mesh(name))
+            rc, out, err = run('--atlas', self.mesh(name), '-o', self.out)
+            self.assertEqual(rc, 0, err)
+            self.assertTrue(json.loads(out)['whole_polygons'])
+            _, _, faces = obj_records(self.out)
+            self.assertEqual([len(face) for face in faces], sizes, name)
+            self.assertEqual(self.split_polygons(sizes, faces), 0, name)
+            # --split-polygons: the triangles apart, as in a triangle mesh; charts cut quads.
+            rc, out, err = run('--atlas', self.mesh(name), '-o', self.out, '--split-polygons')
+            self.assertEqual(rc, 0, err)
+            self.assertFalse(json.loads(out)['whole_polygons'])
+            _, _, faces = obj_records(self.out)
+            self.assertGreater(self.split_polygons(sizes, faces), 0, name)
+        # Several inputs, stacked, keep theirs whole too; --repack reads its vt islands as they
+        # are (no polygons passed); the flag is in the help.
+        names = ('halftunnel.off', 'suzanne.obj', 'halftunnel.off')
+        rc, out, err = run('--atlas', *[self.mesh(n) for n in names], '-o', self.out, '--stack')
+        self.assertEqual(rc, 0, err)
+        self.assertTrue(json.loads(out)['whole_polygons'])
+        _, _, faces = obj_records(self.out)
+        sizes = sum((self.face_sizes(self.mesh(n)) for n in names), [])
+        self.assertEqual([len(face) for face in faces], sizes)
+        self.assertEqual(self.split_polygons(sizes, faces), 0)
+        first = os.path.join(self.dir.name, 'first.obj')
+        os.replace(self.out, first)
+        rc, out, err = run('--atlas', first, '-o', self.out, '--repack')
+        self.assertEqual(rc, 0, err)
+        self.assertFalse(json.loads(out)['whole_polygons'])
+        rc, out, _ = run('--help')
+        self.assertIn('--split-polygons', out)
+
+    @staticmethod
     def vt_islands(faces):
         """Faces joined by a shared corner (position, uv) pair, each corner given as such a
         pair: in a raps atlas no two charts share a uv (padding keeps them apart), and a chart's

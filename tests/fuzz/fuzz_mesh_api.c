@@ -282,9 +282,42 @@ static int same_output(const run_output* a, const run_output* b) {
            (!a->points || memcmp(a->points, b->points, 3 * n * sizeof(double)) == 0);
 }
 
-/* One run; checks the status is one raps_parameterize may return and what it promises. */
+/* With a nonzero polygons byte: a polygon id per triangle, made from the triangles as bits 0-1
+ * say, with k = bits 2-7. 0: one id too many (a count the atlas must refuse with GROUP_COUNT);
+ * 1: runs of k + 2 consecutive triangles (the fans of triangulated quads and n-gons); 2: the
+ * triangle's first index (fans around a corner); 3: t % (k + 1), ids scattered over the mesh
+ * (k = 0: one polygon of every triangle). The setter's own refusals are checked first: NULL with
+ * a count, and a count past 2^28 that must be refused before a byte is read. Returns whether
+ * the count disagrees with the triangles. */
+static int set_polygons(raps_mesh* mesh, const fuzz_mesh_input* in) {
+    const int mode = in->polygons & 3, k = in->polygons >> 2;
+    const size_t triangles = raps_mesh_triangle_count(mesh);
+    const size_t count = triangles + (mode == 0);
+    uint32_t* ids = malloc(count * sizeof(uint32_t) + 4);
+    CHECK(ids != NULL);
+    CHECK_STATUS(raps_mesh_set_triangle_polygons(NULL, ids, count), RAPS_ERROR_INVALID_ARGUMENT);
+    CHECK_STATUS(raps_mesh_set_triangle_polygons(mesh, NULL, 1), RAPS_ERROR_INVALID_ARGUMENT);
+    CHECK(raps_mesh_last_error(mesh)[0] != '\0');
+    CHECK_STATUS(raps_mesh_set_triangle_polygons(mesh, ids, ((size_t)1 << 28) + 1 + k),
+                 RAPS_ERROR_TOO_LARGE);
+    const int u16 = (in->flags & FUZZ_FLAG_U16) != 0;
+    for (size_t t = 0; t < count; ++t) {
+        uint32_t first = 0;
+        if (t < triangles) memcpy(&first, in->indices + 3 * t * (u16 ? 2 : 4), u16 ? 2 : 4);
+        ids[t] = mode == 1   ? (uint32_t)(t / (size_t)(k + 2))
+                 : mode == 2 ? first
+                 : mode == 3 ? (uint32_t)(t % (size_t)(k + 1))
+                             : (uint32_t)t;
+    }
+    CHECK_STATUS(raps_mesh_set_triangle_polygons(mesh, count ? ids : NULL, count), RAPS_OK);
+    free(ids);
+    return count != triangles;
+}
+
+/* One run; checks the status is one raps_parameterize may return and what it promises. A
+ * polygon count that disagrees with the triangles (wrong_polygons) fails an atlas run. */
 static raps_status run_once(const raps_mesh* mesh, raps_settings* settings, int domain,
-                            const fuzz_mesh_input* in, run_output* out) {
+                            const fuzz_mesh_input* in, int wrong_polygons, run_output* out) {
     progress_probe probe = {(in->flags & FUZZ_FLAG_CANCEL) != 0, in->cancel_at, 0, 0};
     CHECK_STATUS(raps_settings_set_progress(settings, probe_progress, &probe), RAPS_OK);
     raps_result* result = NULL;
@@ -297,8 +330,10 @@ static raps_status run_once(const raps_mesh* mesh, raps_settings* settings, int 
     }
     /* Repacking corner uvs (FUZZ_FLAG_CORNER_UVS, or the repack parameter set from the bytes)
      * adds its own refusals: no uvs for the triangles, an island without uv area. */
-    CHECK((status >= RAPS_OK && status <= RAPS_ERROR_OPEN_MESH) ||
-          status == RAPS_ERROR_UV_COUNT || status == RAPS_ERROR_DEGENERATE_UV_CHART);
+    CHECK((status >= RAPS_OK && status <= RAPS_ERROR_OPEN_MESH) || status == RAPS_ERROR_UV_COUNT ||
+          status == RAPS_ERROR_DEGENERATE_UV_CHART ||
+          (status == RAPS_ERROR_GROUP_COUNT && wrong_polygons && domain == RAPS_DOMAIN_ATLAS));
+    CHECK(!(status == RAPS_OK && wrong_polygons && domain == RAPS_DOMAIN_ATLAS));
     /* Neither a bug report nor an argument error: the handles given are all valid. */
     CHECK(status != RAPS_ERROR_INTERNAL && status != RAPS_ERROR_INVALID_ARGUMENT &&
           status != RAPS_ERROR_INVALID_OPERATION);
@@ -367,11 +402,12 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         set_indices(mesh, &in);
     }
     if (in.flags & FUZZ_FLAG_CORNER_UVS) set_corner_uvs(mesh, settings, &in);
+    const int wrong_polygons = in.polygons ? set_polygons(mesh, &in) : 0;
     run_output first, second;
-    const raps_status status = run_once(mesh, settings, in.domain, &in, &first);
+    const raps_status status = run_once(mesh, settings, in.domain, &in, wrong_polygons, &first);
     if (in.flags & FUZZ_FLAG_RUN_TWICE) {
         /* Same handles, same input: the same status and the same bits. */
-        CHECK_STATUS(run_once(mesh, settings, in.domain, &in, &second), status);
+        CHECK_STATUS(run_once(mesh, settings, in.domain, &in, wrong_polygons, &second), status);
         CHECK(same_output(&first, &second));
         free_output(&second);
     }

@@ -24,6 +24,7 @@ void fuzz_mesh_input_decode(const uint8_t* data, size_t size, fuzz_mesh_input* i
     input->setting_count = (size_t)(read_le(data, size, 3, 1) % FUZZ_MAX_SETTINGS);
     const size_t points_asked = (size_t)read_le(data, size, 4, 2);
     input->cancel_at = (uint8_t)read_le(data, size, 6, 1);
+    input->polygons = (uint8_t)read_le(data, size, 7, 1);
     size_t offset = FUZZ_HEADER_BYTES;
     for (size_t s = 0; s < input->setting_count; ++s) {
         input->settings[s].selector = (uint8_t)read_le(data, size, offset, 1);
@@ -74,6 +75,7 @@ uint8_t* fuzz_mesh_seed_encode(const fuzz_mesh_seed* seed, size_t* size) {
     out[3] = (uint8_t)seed->setting_count;
     write_le(out + 4, seed->vertex_count, 2);
     out[6] = seed->cancel_at;
+    out[7] = seed->polygons;
     uint8_t* at = out + FUZZ_HEADER_BYTES;
     for (size_t s = 0; s < seed->setting_count; ++s, at += FUZZ_SETTING_BYTES) {
         at[0] = seed->settings[s].selector;

@@ -10,7 +10,8 @@
  *   3       1     settings (value % 16), each 9 bytes after the header
  *   4       2     points (little endian)
  *   6       1     cancel at this progress call (with FUZZ_FLAG_CANCEL; 0 = the first call)
- *   7       1     unused
+ *   7       1     polygons (fuzz_mesh_api.c): 0 none; else bits 0-1 how the ids are made from
+ *                 the triangles and bits 2-7 a parameter k
  *   8       9n    settings: a selector byte (bits 0-5: parameter id 0..63; bit 6: for an unknown
  *                 id, set it as a float; bit 7: map the value into the parameter's bounds), then
  *                 8 bytes: an int64 or the bits of a double, little endian
@@ -58,6 +59,7 @@ typedef struct fuzz_mesh_input {
     uint8_t flags;
     uint8_t point_padding;
     uint8_t cancel_at;
+    uint8_t polygons;
     size_t setting_count;
     fuzz_setting settings[FUZZ_MAX_SETTINGS];
     size_t point_count;     /* points present in `points` */
@@ -76,6 +78,7 @@ typedef struct fuzz_mesh_seed {
     uint8_t flags; /* FUZZ_FLAG_F64 and FUZZ_FLAG_U16 choose how the mesh is stored */
     uint8_t point_padding;
     uint8_t cancel_at;
+    uint8_t polygons;
     size_t setting_count;
     fuzz_setting settings[FUZZ_MAX_SETTINGS];
     const double* positions; /* x, y, z per vertex */

@@ -130,6 +130,25 @@ void write_analytic_seeds(const std::string& dir) {
                          {fuzz_int_setting(RAPS_PARAM_THREADS, 3),
                           fuzz_float_setting(RAPS_PARAM_ATLAS_MAX_L2_STRETCH, 1.5)}),
                from_test_mesh(make_punctured_torus(12, 6)));
+    // Polygon ids (fuzz_mesh_api.c): the torus's quads (its triangles come in pairs) kept whole
+    // through the cuts, and one id too many, which the atlas refuses.
+    write_seed(
+        dir + "/atlas-torus-quads-twice.bin",
+        [] {
+            fuzz_mesh_seed seed = make_seed(RAPS_DOMAIN_ATLAS, FUZZ_FLAG_RUN_TWICE,
+                                            {fuzz_int_setting(RAPS_PARAM_ATLAS_RESOLUTION, 256)});
+            seed.polygons = 1;  // runs of 2 triangles
+            return seed;
+        }(),
+        from_test_mesh(make_closed_torus(16, 8)));
+    write_seed(
+        dir + "/atlas-polygon-count-wrong.bin",
+        [] {
+            fuzz_mesh_seed seed = make_seed(RAPS_DOMAIN_ATLAS, 0, {});
+            seed.polygons = 4;  // mode 0: one id more than the triangles
+            return seed;
+        }(),
+        flat);
 }
 
 // The triangles reached from triangle 0 across shared edges, breadth first, at most `limit`,
