@@ -33,6 +33,14 @@ void build_vertices(const AtlasSurface& surface, const std::vector<int32_t>& tri
     disk.mesh.positions.clear();
     disk.surface_vertex.clear();
     disk.mesh.triangles.assign(triangles.size(), Triangle{});
+    // Classes are numbered in order of first sight; reserved exactly, a kept chart holds no
+    // doubling's slack in its positions while merging maps the others.
+    const size_t vertex_count =
+        classes.empty()
+            ? 0
+            : static_cast<size_t>(*std::max_element(classes.begin(), classes.end())) + 1;
+    disk.mesh.positions.reserve(vertex_count);
+    disk.surface_vertex.reserve(vertex_count);
     for (size_t c = 0; c < classes.size(); ++c) {
         if (classes[c] == static_cast<int32_t>(disk.surface_vertex.size())) {  // a new vertex
             const int32_t v = surface.mesh.triangles[triangles[c / 3]][c % 3];
@@ -161,7 +169,8 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
     std::vector<std::vector<int32_t>> loops;
     if (!is_disk(disk, halfedges, loops)) {
         std::vector<char> crossed;
-        if (!spanning_tree_crossings(surface, triangles, halfedges.twin, crossed)) return false;  // not connected
+        if (!spanning_tree_crossings(surface, triangles, halfedges.twin, crossed))
+            return false;  // not connected
         cut_along_tree_complement(disk.mesh, crossed, halfedges.twin);
         build_vertices(surface, triangles, halfedges.twin, disk);
         if (!is_disk(disk, halfedges, loops)) return false;
