@@ -443,7 +443,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     // forced seams only when the caller's hard-edge angle says so.
     segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
     segmentation.max_normal_deviation_deg = 90.0;
-    const std::vector<int32_t> chart_of_surface =
+    std::vector<int32_t> chart_of_surface =
         segment_charts(surface, segmentation, segment_timer.span(0.0, 0.95));
     const std::vector<char> seam =
         hard_edge_seams(surface, settings.hard_edge_angle_deg, segment_timer.span(0.95, 1.0));
@@ -453,7 +453,8 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     ChartLimits limits;
     limits.target_stretch_l2 = settings.atlas_target_l2;
     limits.max_stretch_linf = settings.atlas_max_linf;
-    set.charts = build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
+    set.charts =
+        build_charts(surface, std::move(chart_of_surface), seam, settings, limits, progress, pool);
     chart_timer.finish();
     // The charts hold their own meshes now: what is left to do (corner sources, packing,
     // output) reads only the surface's maps back to the input, so its mesh and twins (about
