@@ -431,7 +431,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     PhaseTimer topology_timer(Phase::kTopology, progress, times);
     set.welded = weld_parts(mesh, parts, settings.weld_tolerance, topology_timer.span(0.0, 0.2));
     const UserSeams seams(mesh, settings.atlas_keep_input_seams);
-    set.surface = build_atlas_surface(mesh, set.welded, seams, topology_timer.span(0.2, 1.0));
+    set.surface = build_atlas_surface(mesh, set.welded, seams, pool, topology_timer.span(0.2, 1.0));
     topology_timer.finish();
     const AtlasSurface& surface = set.surface;
 
@@ -457,10 +457,11 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
         build_charts(surface, std::move(chart_of_surface), seam, settings, limits, progress, pool);
     chart_timer.finish();
     // The charts hold their own meshes now: what is left to do (corner sources, packing,
-    // output) reads only the surface's maps back to the input, so its mesh and twins (about
-    // 40 bytes per triangle) go before the output's arrays are made.
+    // output) reads only the surface's maps back to the input, so its mesh, twins and angles
+    // (over 60 bytes per triangle) go before the output's arrays are made.
     set.surface.mesh = TriangleMesh();
     std::vector<int32_t>().swap(set.surface.twin);
+    std::vector<double>().swap(set.surface.corner_angle);
     std::vector<char>().swap(set.surface.polygon_inner);
     return set;
 }

@@ -6,12 +6,14 @@
 #include <numeric>
 
 #include "core/hash_mix.h"
+#include "core/portable_math.h"
 #include "mesh/mesh_topology.h"
 
 namespace raps {
 
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 const UserSeams& seams, const ProgressSpan& progress) {
+                                 const UserSeams& seams, ThreadPool& pool,
+                                 const ProgressSpan& progress) {
     // Progress: each pass over the triangles, half-edges or corners reports every
     // kItemsPerReport items within its share.
     AtlasSurface surface;
@@ -172,7 +174,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             : static_cast<size_t>(*std::max_element(classes.begin(), classes.end())) + 1;
     surface.welded_vertex.reserve(vertex_count);
     surface.mesh.positions.reserve(vertex_count);
-    progress.part(0.8, 1.0).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
+    progress.part(0.8, 0.85).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
             if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
                 const int32_t w = welded_mesh.triangles[c / 3][c % 3];
@@ -180,6 +182,17 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
                 surface.mesh.positions.push_back(input.positions[w]);
             }
             surface.mesh.triangles[c / 3][c % 3] = classes[c];
+        }
+    });
+    surface.corner_angle.resize(3 * static_cast<size_t>(count));
+    parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
+        progress.at(begin, 3 * static_cast<int64_t>(count), 0.85, 1.0);
+        for (int64_t c = begin; c < end; ++c) {
+            const Triangle& t = surface.mesh.triangles[c / 3];
+            const Eigen::Vector3d& at = surface.mesh.positions[t[c % 3]];
+            const Eigen::Vector3d a = surface.mesh.positions[t[(c + 1) % 3]] - at;
+            const Eigen::Vector3d b = surface.mesh.positions[t[(c + 2) % 3]] - at;
+            surface.corner_angle[c] = portable::atan2(a.cross(b).norm(), a.dot(b));
         }
     });
     surface.input_triangle = std::move(kept);

@@ -15,6 +15,7 @@
 #include "atlas/user_seams.h"
 #include "core/progress.h"
 #include "core/triangle_mesh.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -23,6 +24,9 @@ struct AtlasSurface {
     std::vector<int32_t> twin;            // per half-edge 3t+k (as in mesh_topology.h); -1: cut
     std::vector<int32_t> input_triangle;  // per surface triangle
     std::vector<int32_t> welded_vertex;   // per surface vertex: its welded input vertex
+    // Per corner 3t+k: the triangle's angle there, in radians. Every chart and every union
+    // tried while merging sums them (each triangle is mapped several times): measured once.
+    std::vector<double> corner_angle;
     // Input triangles that are not surface triangles, each with the surface triangle whose uvs
     // it shares (duplicates) or -1 (degenerate: placed by the atlas on a neighbouring chart).
     std::vector<int32_t> aside_triangles;
@@ -39,7 +43,9 @@ inline bool joins_polygon(const AtlasSurface& surface, int32_t h) {
 }
 
 // `welded[v]`: the representative of input vertex v (vertex_welding.h); `seams` of `input`.
+// Corner angles are measured on `pool`.
 AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<int32_t>& welded,
-                                 const UserSeams& seams, const ProgressSpan& progress = {});
+                                 const UserSeams& seams, ThreadPool& pool,
+                                 const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -158,6 +158,11 @@ void cut_along_tree_complement(const TriangleMesh& mesh, const std::vector<char>
 bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                       const std::vector<char>& seam, ChartDisk& disk) {
     disk.surface_triangle = triangles;
+    disk.corner_angle.resize(3 * triangles.size());
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            disk.corner_angle[3 * i + k] = surface.corner_angle[3 * triangles[i] + k];
+    }
     Halfedges halfedges;
     halfedges.twin = local_twins(surface, triangles, seam);
     build_vertices(surface, triangles, halfedges.twin, disk);

@@ -17,7 +17,8 @@ struct ChartDisk {
     TriangleMesh mesh;                      // the chart's own vertices and triangles
     std::vector<int32_t> surface_triangle;  // per chart triangle
     std::vector<int32_t> surface_vertex;    // per chart vertex
-    // Serves the chart's maps only: map_chart empties it once it has mapped.
+    // The two below serve the chart's maps only: map_chart empties them once it has mapped.
+    std::vector<double> corner_angle;    // per corner 3t+k of `mesh`, in radians
     VertexAdjacency adjacency;           // of `mesh`, built once for every map of the chart
     std::vector<int32_t> boundary_loop;  // the disk's boundary, mesh on its left
     // A fill-reducing order of the vertices, shared by the chart's sparse systems (the

@@ -13,23 +13,15 @@ namespace raps {
 
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
+                                                         const std::vector<double>& corner_angle,
                                                          const std::vector<int32_t>& boundary_loop,
                                                          LaplaceSystem& system, double give_up_linf,
                                                          const ProgressSpan& progress) {
     const int32_t n = mesh.vertex_count();
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
-    // The angles are measured here, corner by corner in order, rather than kept per corner of
-    // the surface and of every chart (24 bytes per triangle each, alive through the atlas's
-    // peak): they are the same numbers, summed in the same order.
     std::vector<double> angle_sum(n, 0.0);
-    for (const Triangle& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d& at = mesh.positions[t[k]];
-            const Eigen::Vector3d a = mesh.positions[t[(k + 1) % 3]] - at;
-            const Eigen::Vector3d b = mesh.positions[t[(k + 2) % 3]] - at;
-            angle_sum[t[k]] += portable::atan2(a.cross(b).norm(), a.dot(b));
-        }
-    }
+    for (size_t c = 0; c < corner_angle.size(); ++c)
+        angle_sum[mesh.triangles[c / 3][c % 3]] += corner_angle[c];
     std::vector<char> on_boundary(n, 0);
     for (int32_t v : boundary_loop) on_boundary[v] = 1;
     // The cotangent Laplacian L (the Dirichlet energy's matrix, positive definite on the
