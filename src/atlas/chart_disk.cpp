@@ -158,11 +158,6 @@ void cut_along_tree_complement(const TriangleMesh& mesh, const std::vector<char>
 bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                       const std::vector<char>& seam, ChartDisk& disk) {
     disk.surface_triangle = triangles;
-    disk.corner_angle.resize(3 * triangles.size());
-    for (size_t i = 0; i < triangles.size(); ++i) {
-        for (int k = 0; k < 3; ++k)
-            disk.corner_angle[3 * i + k] = surface.corner_angle[3 * triangles[i] + k];
-    }
     Halfedges halfedges;
     halfedges.twin = local_twins(surface, triangles, seam);
     build_vertices(surface, triangles, halfedges.twin, disk);
@@ -176,6 +171,13 @@ bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& t
         if (!is_disk(disk, halfedges, loops)) return false;
     }
     disk.boundary_loop = std::move(loops[0]);
+    // Summed here, corner by corner in order, from the surface's angles: a per-vertex sum is a
+    // sixth of a per-corner copy, and charts being mapped are where the atlas peaks.
+    disk.angle_sum.assign(disk.mesh.positions.size(), 0.0);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            disk.angle_sum[disk.mesh.triangles[i][k]] += surface.corner_angle[3 * triangles[i] + k];
+    }
     // The chart's own twins are the chart mesh's half-edges: every pair joins the same two
     // chart vertices (they are classes of corners joined across exactly these pairs).
     disk.adjacency = build_vertex_adjacency(disk.mesh, halfedges);

@@ -18,7 +18,7 @@ struct ChartDisk {
     std::vector<int32_t> surface_triangle;  // per chart triangle
     std::vector<int32_t> surface_vertex;    // per chart vertex
     // The two below serve the chart's maps only: map_chart empties them once it has mapped.
-    std::vector<double> corner_angle;    // per corner 3t+k of `mesh`, in radians
+    std::vector<double> angle_sum;       // per vertex of `mesh`: its corners' angles, radians
     VertexAdjacency adjacency;           // of `mesh`, built once for every map of the chart
     std::vector<int32_t> boundary_loop;  // the disk's boundary, mesh on its left
     // A fill-reducing order of the vertices, shared by the chart's sparse systems (the

@@ -43,11 +43,11 @@ bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
                std::pair<const ChartDisk*, const ChartDisk*> parts) {
     if (!map_disk(surface, triangles, seam, settings, limits, chart, unadapted_l2, beat, parts))
         return false;
-    // Only the map reads the adjacency and the corner angles (about 60 bytes per triangle);
+    // Only the map reads the adjacency and the angle sums (about 45 bytes per triangle);
     // a mapped chart is kept through merging and packing without them, which lowers the
     // atlas's peak (reached while merging maps unions beside every kept chart).
     chart.disk.adjacency = VertexAdjacency();
-    std::vector<double>().swap(chart.disk.corner_angle);
+    std::vector<double>().swap(chart.disk.angle_sum);
     return true;
 }
 
