@@ -123,13 +123,16 @@ void map_in_rounds(ChartWork& work, std::vector<std::vector<int32_t>> round, Map
         parallel_largest_first(work.pool, cost, [&](size_t i) {
             good[i] = map_chart(work.surface, round[i], work.seam, work.settings, work.limits,
                                 built[i], built_l2[i], work.beat);
+            // The chart keeps its own copy of its triangles: the list goes while the other
+            // charts of the round are still being mapped (the first round holds them all).
+            if (good[i]) std::vector<int32_t>().swap(round[i]);
             work.progress.report(Phase::kInitialMap,
                                  kMapped * std::min(1.0, work.done_triangles / total_triangles));
         });
         std::vector<std::vector<int32_t>> next;
         for (size_t i = 0; i < round.size(); ++i) {
             if (good[i]) {
-                work.done_triangles += static_cast<double>(round[i].size());
+                work.done_triangles += static_cast<double>(built[i].disk.surface_triangle.size());
                 out.charts.push_back(std::move(built[i]));
                 out.unadapted_l2.push_back(built_l2[i]);
             } else {
@@ -186,16 +189,21 @@ std::vector<double> split_for_budget(ChartWork& work, MappedCharts& mapped, doub
 
 }  // namespace
 
-std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
-                                     const std::vector<int32_t>& chart_of,
+std::vector<AtlasChart> build_charts(const AtlasSurface& surface, std::vector<int32_t> chart_of,
                                      const std::vector<char>& seam, const Settings& settings,
                                      const ChartLimits& limits, const Progress& progress,
                                      ThreadPool& pool) {
     int32_t count = 0;
     for (int32_t c : chart_of) count = std::max(count, c + 1);
+    // Each chart's triangles, reserved to their count (no doubling's slack); chart_of goes as
+    // soon as they are listed, before the first maps (where large meshes peak).
+    std::vector<size_t> size(count, 0);
+    for (int32_t c : chart_of) ++size[c];
     std::vector<std::vector<int32_t>> pending(count);
+    for (int32_t c = 0; c < count; ++c) pending[c].reserve(size[c]);
     for (size_t t = 0; t < chart_of.size(); ++t)
         pending[chart_of[t]].push_back(static_cast<int32_t>(t));
+    std::vector<int32_t>().swap(chart_of);
     ChartWork work{surface, seam, settings, limits, progress, pool,
                    ProgressSpan(progress, Phase::kInitialMap, 0.0, 0.0)};
     MappedCharts mapped;

@@ -17,8 +17,7 @@
 namespace raps {
 
 // Charts in a deterministic order (by smallest surface triangle), whatever the pool's size.
-std::vector<AtlasChart> build_charts(const AtlasSurface& surface,
-                                     const std::vector<int32_t>& chart_of,
+std::vector<AtlasChart> build_charts(const AtlasSurface& surface, std::vector<int32_t> chart_of,
                                      const std::vector<char>& seam, const Settings& settings,
                                      const ChartLimits& limits, const Progress& progress,
                                      ThreadPool& pool);

@@ -180,7 +180,7 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
 // Output vertex numbers by key (chart vertex << 32 | input vertex): open addressing with
 // linear probing, doubled at half load, so it stays about as large as the output.
 class OutputVertexTable {
-public:
+  public:
     explicit OutputVertexTable(size_t expected)
         : keys_(hash_table_size(expected), kEmpty), values_(keys_.size()) {}
 
@@ -194,7 +194,7 @@ public:
         return {candidate, true};
     }
 
-private:
+  private:
     static constexpr uint64_t kEmpty = ~uint64_t{0};  // chart vertices stay below 2^31
 
     size_t slot_of(uint64_t key) const {
@@ -256,9 +256,9 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
                 const int32_t input_vertex = mesh.triangles[t][k];
                 const int32_t chart_vertex = point ? 0 : sources.vertex[t][k];
                 const uint64_t global = static_cast<uint64_t>(chart_offset[c] + chart_vertex);
-                const auto [output_vertex, added] = table.find_or_add(
-                    global << 32 | static_cast<uint32_t>(input_vertex),
-                    static_cast<uint32_t>(out.uv.size()));
+                const auto [output_vertex, added] =
+                    table.find_or_add(global << 32 | static_cast<uint32_t>(input_vertex),
+                                      static_cast<uint32_t>(out.uv.size()));
                 if (added) {
                     out.remap.push_back(static_cast<uint32_t>(input_vertex));
                     out.uv.push_back(point ? Eigen::Vector2d::Zero() : packed.uv[c][chart_vertex]);
@@ -420,7 +420,7 @@ struct ChartSet {
     std::vector<int32_t> part;  // per chart
     // Mapped charts: what their corner sources are found from (corner_sources_of).
     std::vector<int32_t> welded;
-    AtlasSurface surface;
+    AtlasSurface surface;  // only its maps to the input: mapped_charts empties the rest
 };
 
 // Steps 2-4: the surface, grown into charts, each cut to a disk and mapped (their corner
@@ -443,7 +443,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     // forced seams only when the caller's hard-edge angle says so.
     segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
     segmentation.max_normal_deviation_deg = 90.0;
-    const std::vector<int32_t> chart_of_surface =
+    std::vector<int32_t> chart_of_surface =
         segment_charts(surface, segmentation, segment_timer.span(0.0, 0.95));
     const std::vector<char> seam =
         hard_edge_seams(surface, settings.hard_edge_angle_deg, segment_timer.span(0.95, 1.0));
@@ -453,8 +453,16 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     ChartLimits limits;
     limits.target_stretch_l2 = settings.atlas_target_l2;
     limits.max_stretch_linf = settings.atlas_max_linf;
-    set.charts = build_charts(surface, chart_of_surface, seam, settings, limits, progress, pool);
+    set.charts =
+        build_charts(surface, std::move(chart_of_surface), seam, settings, limits, progress, pool);
     chart_timer.finish();
+    // The charts hold their own meshes now: what is left to do (corner sources, packing,
+    // output) reads only the surface's maps back to the input, so its mesh, twins and angles
+    // (over 60 bytes per triangle) go before the output's arrays are made.
+    set.surface.mesh = TriangleMesh();
+    std::vector<int32_t>().swap(set.surface.twin);
+    std::vector<double>().swap(set.surface.corner_angle);
+    std::vector<char>().swap(set.surface.polygon_inner);
     return set;
 }
 

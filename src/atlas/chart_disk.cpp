@@ -33,6 +33,14 @@ void build_vertices(const AtlasSurface& surface, const std::vector<int32_t>& tri
     disk.mesh.positions.clear();
     disk.surface_vertex.clear();
     disk.mesh.triangles.assign(triangles.size(), Triangle{});
+    // Classes are numbered in order of first sight; reserved exactly, a kept chart holds no
+    // doubling's slack in its positions while merging maps the others.
+    const size_t vertex_count =
+        classes.empty()
+            ? 0
+            : static_cast<size_t>(*std::max_element(classes.begin(), classes.end())) + 1;
+    disk.mesh.positions.reserve(vertex_count);
+    disk.surface_vertex.reserve(vertex_count);
     for (size_t c = 0; c < classes.size(); ++c) {
         if (classes[c] == static_cast<int32_t>(disk.surface_vertex.size())) {  // a new vertex
             const int32_t v = surface.mesh.triangles[triangles[c / 3]][c % 3];
@@ -150,23 +158,26 @@ void cut_along_tree_complement(const TriangleMesh& mesh, const std::vector<char>
 bool build_chart_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                       const std::vector<char>& seam, ChartDisk& disk) {
     disk.surface_triangle = triangles;
-    disk.corner_angle.resize(3 * triangles.size());
-    for (size_t i = 0; i < triangles.size(); ++i) {
-        for (int k = 0; k < 3; ++k)
-            disk.corner_angle[3 * i + k] = surface.corner_angle[3 * triangles[i] + k];
-    }
     Halfedges halfedges;
     halfedges.twin = local_twins(surface, triangles, seam);
     build_vertices(surface, triangles, halfedges.twin, disk);
     std::vector<std::vector<int32_t>> loops;
     if (!is_disk(disk, halfedges, loops)) {
         std::vector<char> crossed;
-        if (!spanning_tree_crossings(surface, triangles, halfedges.twin, crossed)) return false;  // not connected
+        if (!spanning_tree_crossings(surface, triangles, halfedges.twin, crossed))
+            return false;  // not connected
         cut_along_tree_complement(disk.mesh, crossed, halfedges.twin);
         build_vertices(surface, triangles, halfedges.twin, disk);
         if (!is_disk(disk, halfedges, loops)) return false;
     }
     disk.boundary_loop = std::move(loops[0]);
+    // Summed here, corner by corner in order, from the surface's angles: a per-vertex sum is a
+    // sixth of a per-corner copy, and charts being mapped are where the atlas peaks.
+    disk.angle_sum.assign(disk.mesh.positions.size(), 0.0);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            disk.angle_sum[disk.mesh.triangles[i][k]] += surface.corner_angle[3 * triangles[i] + k];
+    }
     // The chart's own twins are the chart mesh's half-edges: every pair joins the same two
     // chart vertices (they are classes of corners joined across exactly these pairs).
     disk.adjacency = build_vertex_adjacency(disk.mesh, halfedges);

@@ -17,9 +17,10 @@ struct ChartDisk {
     TriangleMesh mesh;                      // the chart's own vertices and triangles
     std::vector<int32_t> surface_triangle;  // per chart triangle
     std::vector<int32_t> surface_vertex;    // per chart vertex
-    std::vector<double> corner_angle;       // per corner 3t+k of `mesh`, in radians
-    std::vector<int32_t> boundary_loop;     // the disk's boundary, mesh on its left
-    VertexAdjacency adjacency;              // of `mesh`, built once for every map of the chart
+    // The two below serve the chart's maps only: map_chart empties them once it has mapped.
+    std::vector<double> angle_sum;       // per vertex of `mesh`: its corners' angles, radians
+    VertexAdjacency adjacency;           // of `mesh`, built once for every map of the chart
+    std::vector<int32_t> boundary_loop;  // the disk's boundary, mesh on its left
     // A fill-reducing order of the vertices, shared by the chart's sparse systems (the
     // free-boundary map's and the adaptive step's): ordered once instead of once per system.
     std::vector<int32_t> vertex_order;

@@ -6,10 +6,13 @@
 
 namespace raps {
 
-bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
-               const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
-               AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
-               std::pair<const ChartDisk*, const ChartDisk*> parts) {
+namespace {
+
+// map_chart's work; the chart's Laplace system lives only in here.
+bool map_disk(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+              const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
+              AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
+              std::pair<const ChartDisk*, const ChartDisk*> parts) {
     bool good = parts.first ? make_union_chart_disk(surface, triangles, seam, *parts.first,
                                                     *parts.second, chart.disk, beat)
                             : make_chart_disk(surface, triangles, seam, chart.disk, beat);
@@ -29,6 +32,22 @@ bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangle
     beat.report(0.0);
     chart.box =
         smallest_bounding_box(chart.map.uv, chart.disk.mesh.triangles, chart.disk.boundary_loop);
+    return true;
+}
+
+}  // namespace
+
+bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+               const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
+               AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
+               std::pair<const ChartDisk*, const ChartDisk*> parts) {
+    if (!map_disk(surface, triangles, seam, settings, limits, chart, unadapted_l2, beat, parts))
+        return false;
+    // Only the map reads the adjacency and the angle sums (about 45 bytes per triangle);
+    // a mapped chart is kept through merging and packing without them, which lowers the
+    // atlas's peak (reached while merging maps unions beside every kept chart).
+    chart.disk.adjacency = VertexAdjacency();
+    std::vector<double>().swap(chart.disk.angle_sum);
     return true;
 }
 

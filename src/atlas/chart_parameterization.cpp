@@ -95,7 +95,7 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, d
     map.method = ChartMethod::kFreeBoundary;
     try {
         // The prediction is given 5% of room, four times the largest shortfall measured.
-        map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.corner_angle,
+        map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.angle_sum,
                                              disk.boundary_loop, system, 1.05 * max_linf, progress);
         progress.report(0.0);
         map.injective = !map.uv.empty() && injective(disk, map.uv);

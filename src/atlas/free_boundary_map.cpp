@@ -13,15 +13,12 @@ namespace raps {
 
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
-                                                         const std::vector<double>& corner_angle,
+                                                         const std::vector<double>& angle_sum,
                                                          const std::vector<int32_t>& boundary_loop,
                                                          LaplaceSystem& system, double give_up_linf,
                                                          const ProgressSpan& progress) {
     const int32_t n = mesh.vertex_count();
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
-    std::vector<double> angle_sum(n, 0.0);
-    for (size_t c = 0; c < corner_angle.size(); ++c)
-        angle_sum[mesh.triangles[c / 3][c % 3]] += corner_angle[c];
     std::vector<char> on_boundary(n, 0);
     for (int32_t v : boundary_loop) on_boundary[v] = 1;
     // The cotangent Laplacian L (the Dirichlet energy's matrix, positive definite on the

@@ -18,10 +18,10 @@
 
 namespace raps {
 
-// uv per vertex of the disk `mesh` (with its vertex adjacency and the angle at each corner 3t+k,
-// in radians) whose boundary is `boundary_loop` (mesh on its left). `system` is the mesh's
-// Laplace system with that loop held: its pattern, ordering and symbolic analysis are used
-// here and stay shared with its later solves (the adaptive step). Throws Error(kSolverFailed)
+// uv per vertex of the disk `mesh` (with its vertex adjacency and, per vertex, the sum of the
+// angles at its corners, in radians) whose boundary is `boundary_loop` (mesh on its left). `system`
+// is the mesh's Laplace system with that loop held: its pattern, ordering and symbolic analysis are
+// used here and stay shared with its later solves (the adaptive step). Throws Error(kSolverFailed)
 // if the system is singular.
 // Returns no uvs, skipping the boundary and interior solves, when the log scale factor alone
 // predicts a Linf stretch above `give_up_linf`: per triangle, the inverse of its scale factor
@@ -29,7 +29,7 @@ namespace raps {
 // chart maps of the shared meshes' atlases the measured Linf was at least 0.988 times this.
 std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
                                                          const VertexAdjacency& adjacency,
-                                                         const std::vector<double>& corner_angle,
+                                                         const std::vector<double>& angle_sum,
                                                          const std::vector<int32_t>& boundary_loop,
                                                          LaplaceSystem& system, double give_up_linf,
                                                          const ProgressSpan& progress = {});
