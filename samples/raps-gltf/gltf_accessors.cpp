@@ -135,6 +135,39 @@ std::vector<uint32_t> read_sparse_indices(const Asset& asset, int index) {
     return out;
 }
 
+namespace {
+
+// Element i of a run of elements in a buffer: `first` plus i strides.
+struct Elements {
+    const uint8_t* first;
+    uint64_t stride;
+    const uint8_t* at(size_t i) const { return first + i * stride; }
+};
+
+// The accessor's own elements in its bufferView, checked to lie inside the buffer.
+Elements dense_elements(const Asset& asset, int index, const AccessorLayout& a, uint64_t element) {
+    const ViewBytes view = view_bytes(asset, static_cast<uint64_t>(a.view));
+    const uint64_t stride = view.stride ? view.stride : element;
+    const uint64_t begin = view.offset + a.offset;
+    if (begin + stride * (a.count - 1) + element > view.buffer->size())
+        throw GltfError("accessor", "accessor " + std::to_string(index) + " runs past its buffer");
+    return {view.buffer->data() + begin, stride};
+}
+
+// The sparse substitution's `count` values, checked to lie inside their buffer.
+Elements sparse_values(const Asset& asset, int index, size_t count, uint64_t element) {
+    const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
+    const ViewBytes vv = view_bytes(asset, s["values"]["bufferView"].get<uint64_t>());
+    const uint64_t vbegin = vv.offset + s["values"].value("byteOffset", uint64_t(0));
+    if (vbegin + count * element > vv.buffer->size()) {
+        throw GltfError("accessor", "accessor " + std::to_string(index) +
+                                        ": sparse values run past their buffer");
+    }
+    return {vv.buffer->data() + vbegin, element};
+}
+
+}  // namespace
+
 std::vector<uint8_t> read_accessor(const Asset& asset, int index) {
     // load_asset checked every range used here against the buffers' sizes.
     const AccessorLayout a = accessor_layout(asset.doc, index);
@@ -147,29 +180,15 @@ std::vector<uint8_t> read_accessor(const Asset& asset, int index) {
     }
     std::vector<uint8_t> out(a.count * element, 0);
     if (a.view >= 0) {
-        const ViewBytes view = view_bytes(asset, static_cast<uint64_t>(a.view));
-        const uint64_t stride = view.stride ? view.stride : element;
-        const uint64_t begin = view.offset + a.offset;
-        if (begin + stride * (a.count - 1) + element > view.buffer->size()) {
-            throw GltfError("accessor",
-                            "accessor " + std::to_string(index) + " runs past its buffer");
-        }
+        const Elements dense = dense_elements(asset, index, a, element);
         for (size_t i = 0; i < a.count; ++i)
-            std::memcpy(&out[i * element], &(*view.buffer)[begin + i * stride], element);
+            std::memcpy(&out[i * element], dense.at(i), element);
     }
     if (a.sparse) {
         const std::vector<uint32_t> targets = read_sparse_indices(asset, index);
-        const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
-        const ViewBytes vv = view_bytes(asset, s["values"]["bufferView"].get<uint64_t>());
-        const uint64_t vbegin = vv.offset + s["values"].value("byteOffset", uint64_t(0));
-        if (vbegin + targets.size() * element > vv.buffer->size()) {
-            throw GltfError("accessor", "accessor " + std::to_string(index) +
-                                            ": sparse values run past their buffer");
-        }
-        for (size_t k = 0; k < targets.size(); ++k) {
-            std::memcpy(&out[uint64_t(targets[k]) * element], &(*vv.buffer)[vbegin + k * element],
-                        element);
-        }
+        const Elements values = sparse_values(asset, index, targets.size(), element);
+        for (size_t k = 0; k < targets.size(); ++k)
+            std::memcpy(&out[uint64_t(targets[k]) * element], values.at(k), element);
     }
     return out;
 }
@@ -188,31 +207,19 @@ std::vector<uint8_t> read_accessor_at(const Asset& asset, int index,
     }
     std::vector<uint8_t> out(vertices.size() * element, 0);
     if (a.view >= 0) {
-        const ViewBytes view = view_bytes(asset, static_cast<uint64_t>(a.view));
-        const uint64_t stride = view.stride ? view.stride : element;
-        const uint64_t begin = view.offset + a.offset;
-        if (begin + stride * (a.count - 1) + element > view.buffer->size()) {
-            throw GltfError("accessor",
-                            "accessor " + std::to_string(index) + " runs past its buffer");
-        }
+        const Elements dense = dense_elements(asset, index, a, element);
         for (size_t i = 0; i < vertices.size(); ++i) {
             if (vertices[i] >= a.count) throw GltfError("internal", "vertex past the accessor");
-            std::memcpy(&out[i * element], &(*view.buffer)[begin + vertices[i] * stride], element);
+            std::memcpy(&out[i * element], dense.at(vertices[i]), element);
         }
     }
     if (a.sparse) {
         const std::vector<uint32_t> targets = read_sparse_indices(asset, index);
-        const Json& s = asset.doc["accessors"][static_cast<size_t>(index)]["sparse"];
-        const ViewBytes vv = view_bytes(asset, s["values"]["bufferView"].get<uint64_t>());
-        const uint64_t vbegin = vv.offset + s["values"].value("byteOffset", uint64_t(0));
-        if (vbegin + targets.size() * element > vv.buffer->size()) {
-            throw GltfError("accessor", "accessor " + std::to_string(index) +
-                                            ": sparse values run past their buffer");
-        }
+        const Elements values = sparse_values(asset, index, targets.size(), element);
         for (size_t i = 0; i < vertices.size(); ++i) {  // targets are increasing
             const auto it = std::lower_bound(targets.begin(), targets.end(), vertices[i]);
             if (it == targets.end() || *it != vertices[i]) continue;
-            std::memcpy(&out[i * element], &(*vv.buffer)[vbegin + (it - targets.begin()) * element],
+            std::memcpy(&out[i * element], values.at(static_cast<size_t>(it - targets.begin())),
                         element);
         }
     }

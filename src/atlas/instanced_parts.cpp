@@ -7,17 +7,10 @@
 
 #include "atlas/chart_stacking.h"
 #include "core/hash_mix.h"
+#include "core/union_find.h"
 
 namespace raps {
 namespace {
-
-int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];  // path halving
-        v = parent[v];
-    }
-    return v;
-}
 
 // The connected components of the triangles over welded vertices (welding stays within a
 // part, so no component spans two), in the order of their first triangles.

@@ -7,17 +7,10 @@
 #include "atlas/user_seams.h"
 #include "core/error.h"
 #include "metrics/distortion.h"
+#include "core/union_find.h"
 
 namespace raps {
 namespace {
-
-int32_t find_root(std::vector<int32_t>& parent, int32_t t) {
-    while (parent[t] != t) {
-        parent[t] = parent[parent[t]];  // path halving
-        t = parent[t];
-    }
-    return t;
-}
 
 // One side of an edge as a triangle sees it: the welded vertex pair (smaller first) and the
 // corner uvs at those two ends. Two sides with equal fields are one uv edge.

@@ -7,17 +7,10 @@
 #include <numeric>
 
 #include "core/hash_mix.h"
+#include "core/union_find.h"
 
 namespace raps {
 namespace {
-
-int32_t find_root(std::vector<int32_t>& parent, int32_t v) {
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];  // path halving
-        v = parent[v];
-    }
-    return v;
-}
 
 // Union by smallest index, so the representative is the smallest vertex of each group.
 void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
