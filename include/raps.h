@@ -799,7 +799,8 @@ typedef struct raps_stats {
     uint64_t atlas_width;         /* atlas domain: texels; 0 otherwise */
     uint64_t atlas_height;
     double utilization; /* uv area over the unit square ([0,1]^2 after normalising);
-                         * 0 for a sphere map without uvs */
+                         * texels shared by stacked charts or exact copies of a triangle
+                         * count once; 0 for a sphere map without uvs */
     /* Threads the run computed on, the calling thread included: the most that any of its steps
      * shared work among, counting a worker thread only once it has computed a share. 1 when no
      * step was large enough to share (see RAPS_PARAM_THREADS) or no worker could start; at most
@@ -835,8 +836,10 @@ typedef struct raps_chart {
     uint32_t height;
     double rotation_deg;     /* counter-clockwise turn the packing gave the chart, [0, 360) */
     uint64_t triangle_count; /* output triangles with this chart id */
-    double area_3d;          /* surface area, world units squared */
-    double area_texels;      /* uv area, texels squared */
+    /* Surface area, world units squared, and uv area, texels squared; an exact copy of a
+     * triangle (the same corners: it gets the same uvs) is counted once. */
+    double area_3d;
+    double area_texels;
     /* Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
      * that gathers degenerate triangles with no chart beside them. */
     double stretch_l2;

@@ -44,9 +44,11 @@ std::vector<Triangle> output_triangles(const std::vector<uint32_t>& indices,
     return triangles;
 }
 
-// Total uv area of `triangles`.
-double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles,
-                   const ProgressSpan& progress) {
+// The fraction of [0,1]^2 the map covers. A map that tiles the whole square (the octahedral
+// unfold) sums to 1 give or take rounding; the fraction covered cannot exceed 1, so neither does
+// the figure.
+double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles,
+               const ProgressSpan& progress) {
     double area = 0;
     const int64_t count = static_cast<int64_t>(triangles.size());
     progress.in_runs(count, [&](int64_t run_begin, int64_t run_end) {
@@ -56,15 +58,7 @@ double uv_area_sum(const std::vector<Eigen::Vector2d>& uv, const std::vector<Tri
             area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
         }
     });
-    return area;
-}
-
-// The fraction of [0,1]^2 the map covers (per page for an atlas of several). A map that tiles
-// the whole square (the octahedral unfold) sums to 1 give or take rounding; the fraction covered
-// cannot exceed 1, so neither does the figure.
-double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles,
-               const ProgressSpan& progress, int32_t pages = 1) {
-    return std::min(uv_area_sum(uv, triangles, progress) / pages, 1.0);
+    return std::min(area, 1.0);
 }
 
 // The statistics of a map measured alone (the disk and sphere domains, which keep no pool):
@@ -100,18 +94,16 @@ void check_limits(const TriangleMesh& mesh, const Settings& settings) {
     }
 }
 
-// The triangles of the charts that hold their own place in the atlas: a stacked chart's
-// texels are its place's, counted once.
-std::vector<Triangle> placed_triangles(const std::vector<Triangle>& triangles,
-                                       const AtlasOutput& atlas) {
-    std::vector<Triangle> placed;
-    placed.reserve(triangles.size());
-    for (size_t t = 0; t < triangles.size(); ++t) {
-        const uint32_t chart = atlas.chart_of[t];
-        if (atlas.charts[chart].stacked_on == static_cast<int64_t>(chart))
-            placed.push_back(triangles[t]);
+// The fraction of the pages the charts cover: each place counted once (a stacked chart's
+// texels are its place's, an exact copy's its original's: chart records count those once).
+double atlas_utilization(const AtlasOutput& atlas) {
+    double texels = 0;
+    for (size_t c = 0; c < atlas.charts.size(); ++c) {
+        if (atlas.charts[c].stacked_on == static_cast<int64_t>(c))
+            texels += atlas.charts[c].area_texels;
     }
-    return placed;
+    const double page_texels = static_cast<double>(atlas.width) * atlas.height;
+    return page_texels > 0 ? texels / (page_texels * atlas.page_count) : 0.0;
 }
 
 // The atlas of `mesh` made of `parts`; indices and remap global (into the whole mesh).
@@ -138,8 +130,7 @@ Parameterization atlas_map(const TriangleMesh& mesh, const AtlasParts& parts,
     const std::vector<Triangle> triangles = output_triangles(atlas.indices, timer.span(0.1, 0.2));
     out.distortion = measure_distortion(positions, PlanarMapGeometry(texels), triangles, pool,
                                         timer.span(0.2, 0.95));
-    out.utilization = uv_area(atlas.uv, placed_triangles(triangles, atlas), timer.span(0.95, 1.0),
-                              atlas.page_count);
+    out.utilization = atlas_utilization(atlas);
     out.uv = std::move(atlas.uv);
     out.indices = std::move(atlas.indices);
     out.vertex_remap = std::move(atlas.remap);

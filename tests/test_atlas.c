@@ -573,6 +573,50 @@ static void hard_edges_become_seams(void** state) {
     raps_mesh_destroy(m);
 }
 
+/* Exact copies of triangles (the same corners, the same winding: exporters leave doubled
+ * faces) share their originals' uvs, so they cover no texels of their own: the utilization and
+ * each chart's areas are those of the mesh without them. They were counted twice: a page's
+ * utilization could read 2. */
+static void exact_copies_add_no_texels(void** state) {
+    (void)state;
+    test_mesh disk = make_open_cone(6, 24, 0.8);
+    test_mesh doubled = join_meshes(&disk, &disk, 0.0, 0.0, 0.0);
+    for (size_t i = disk.index_count; i < doubled.index_count; ++i)
+        doubled.indices[i] -= (uint32_t)disk.vertex_count; /* the copies use the same vertices */
+    raps_result* results[2];
+    const test_mesh* meshes[2] = {&disk, &doubled};
+    for (int i = 0; i < 2; ++i) {
+        raps_mesh* m = to_raps_mesh(meshes[i]);
+        raps_settings* s = NULL;
+        assert_status(raps_settings_create(&s), RAPS_OK);
+        assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS), RAPS_OK);
+        results[i] = parameterize_ok(m, s);
+        raps_settings_destroy(s);
+        raps_mesh_destroy(m);
+    }
+    const raps_stats once = stats_of(results[0]), twice = stats_of(results[1]);
+    print_message("utilization %.6f alone, %.6f with every triangle twice\n", once.utilization,
+                  twice.utilization);
+    assert_true(once.utilization > 0.2 && once.utilization < 0.9);
+    assert_near(twice.utilization, once.utilization, 1e-9);
+    assert_int_equal(twice.chart_count, once.chart_count);
+    for (size_t c = 0; c < once.chart_count; ++c) {
+        raps_chart a, b;
+        memset(&a, 0, sizeof(a));
+        memset(&b, 0, sizeof(b));
+        a.struct_size = b.struct_size = sizeof(raps_chart);
+        assert_status(raps_result_get_chart(results[0], c, &a), RAPS_OK);
+        assert_status(raps_result_get_chart(results[1], c, &b), RAPS_OK);
+        assert_int_equal(b.triangle_count, 2 * a.triangle_count);
+        assert_near(b.area_texels, a.area_texels, 1e-9 * a.area_texels);
+        assert_near(b.area_3d, a.area_3d, 1e-9 * a.area_3d);
+    }
+    raps_result_destroy(results[0]);
+    raps_result_destroy(results[1]);
+    test_mesh_free(&doubled);
+    test_mesh_free(&disk);
+}
+
 static raps_stats atlas_stats(const test_mesh* mesh) {
     raps_mesh* m = to_raps_mesh(mesh);
     raps_settings* s = NULL;
@@ -627,6 +671,7 @@ int main(void) {
         cmocka_unit_test(hostile_meshes_get_valid_atlases),
         cmocka_unit_test(split_vertices_are_welded_back),
         cmocka_unit_test(collapsed_parts_keep_their_vertices),
+        cmocka_unit_test(exact_copies_add_no_texels),
         cmocka_unit_test(an_atlas_of_zero_area_is_refused),
         cmocka_unit_test(atlas_progress_and_cancellation),
         cmocka_unit_test(progress_calls_never_overlap),

@@ -141,6 +141,7 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
         aside_polygon_charts(mesh, welded, surface, sources.chart);
     std::vector<int32_t> point_chart_of_part(parts.count(), -1);
     const int64_t aside_count = static_cast<int64_t>(surface.aside_triangles.size());
+    if (aside_count > 0) sources.copy.assign(triangle_count, 0);
     progress.part(0.8, 1.0).in_runs(aside_count, [&](int64_t run_begin, int64_t run_end) {
         for (int64_t i = static_cast<int64_t>(run_begin); i < run_end; ++i) {
             const int32_t t = surface.aside_triangles[i];
@@ -148,6 +149,7 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
             int32_t chart = -1;
             if (surface.aside_primary[i] >= 0) {
                 chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
+                sources.copy[t] = 1;
             } else if (polygon_chart[i] >= 0) {
                 chart = polygon_chart[i];
             } else {
@@ -287,6 +289,7 @@ void record_charts(const TriangleMesh& mesh, const AtlasParts& parts,
             AtlasChartRecord& record = out.charts[out.chart_of[t]];
             record.part = parts.part_of_triangle(t);
             ++record.triangle_count;
+            if (!sources.copy.empty() && sources.copy[t]) continue;  // its original's area
             const Triangle& v = mesh.triangles[t];
             record.area_3d += 0.5 * (mesh.positions[v[1]] - mesh.positions[v[0]])
                                         .cross(mesh.positions[v[2]] - mesh.positions[v[0]])

@@ -15,6 +15,9 @@ struct CornerSources {
     std::vector<int32_t> chart;                  // per input triangle
     std::vector<std::array<int32_t, 3>> vertex;  // per input triangle, per corner
     std::vector<int32_t> point_chart_part;       // per point chart: its part
+    // Per input triangle: 1 for an exact copy of another (the same welded corners, so the same
+    // uvs); its texels are its original's and count once. Empty: no copies.
+    std::vector<char> copy;
 };
 
 }  // namespace raps
