@@ -277,6 +277,8 @@ static void append(test_mesh* dst, const test_mesh* src, double dx, double dy, d
     dst->index_count += src->index_count;
 }
 
+static raps_stats atlas_stats(const test_mesh* mesh);
+
 static void check_hostile(test_mesh* mesh, const char* what) {
     atlas a = run_atlas(mesh, 0, 1);
     print_message("%-34s %zu triangles -> %llu charts\n", what, mesh->index_count / 3,
@@ -617,6 +619,31 @@ static void exact_copies_add_no_texels(void** state) {
     test_mesh_free(&disk);
 }
 
+/* The back of a two-sided surface (every face repeated over the same vertices, wound the other
+ * way: leaves, cards and cloth are modelled so) makes every inner edge non-manifold, four
+ * half-edges on it. Pairing them front with front and back with back keeps each side one sheet:
+ * a two-sided grid comes out as two charts that do not overlap; cutting every such edge left one
+ * chart for nearly every triangle (364 for a 10 x 10 grid). The same holds for a curved sheet. */
+static void two_sided_surfaces_keep_one_chart_per_side(void** state) {
+    (void)state;
+    test_mesh sides[2] = {make_grid(10, 10, 1.0, 1.0), make_open_cone(6, 24, 0.8)};
+    const uint64_t most_charts[2] = {2, 2 * atlas_stats(&sides[1]).chart_count};
+    for (int i = 0; i < 2; ++i) {
+        test_mesh both = join_meshes(&sides[i], &sides[i], 0.0, 0.0, 0.0);
+        for (size_t t = sides[i].index_count; t < both.index_count; t += 3) {
+            const uint32_t v1 = both.indices[t + 1] - (uint32_t)sides[i].vertex_count;
+            both.indices[t] -= (uint32_t)sides[i].vertex_count;
+            both.indices[t + 1] = both.indices[t + 2] - (uint32_t)sides[i].vertex_count;
+            both.indices[t + 2] = v1;
+        }
+        check_hostile(&both, i == 0 ? "two-sided grid" : "two-sided cone");
+        const raps_stats stats = atlas_stats(&both);
+        assert_true(stats.chart_count <= most_charts[i]);
+        test_mesh_free(&both);
+        test_mesh_free(&sides[i]);
+    }
+}
+
 static raps_stats atlas_stats(const test_mesh* mesh) {
     raps_mesh* m = to_raps_mesh(mesh);
     raps_settings* s = NULL;
@@ -672,6 +699,7 @@ int main(void) {
         cmocka_unit_test(split_vertices_are_welded_back),
         cmocka_unit_test(collapsed_parts_keep_their_vertices),
         cmocka_unit_test(exact_copies_add_no_texels),
+        cmocka_unit_test(two_sided_surfaces_keep_one_chart_per_side),
         cmocka_unit_test(an_atlas_of_zero_area_is_refused),
         cmocka_unit_test(atlas_progress_and_cancellation),
         cmocka_unit_test(progress_calls_never_overlap),
