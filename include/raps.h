@@ -836,10 +836,9 @@ typedef struct raps_chart {
     uint32_t height;
     double rotation_deg;     /* counter-clockwise turn the packing gave the chart, [0, 360) */
     uint64_t triangle_count; /* output triangles with this chart id */
-    /* Surface area, world units squared, and uv area, texels squared; an exact copy of a
-     * triangle (the same corners: it gets the same uvs) is counted once. */
-    double area_3d;
-    double area_texels;
+    double area_3d;     /* surface area, world units squared; an exact copy of a triangle
+                         * (the same corners, so the same uvs) counts once */
+    double area_texels; /* uv area, texels squared; exact copies count once */
     /* Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
      * that gathers degenerate triangles with no chart beside them. */
     double stretch_l2;

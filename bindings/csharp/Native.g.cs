@@ -145,7 +145,8 @@ namespace Raps
         public ulong AtlasHeight;
         /// <summary>
         /// uv area over the unit square ([0,1]^2 after normalising);
-        /// 0 for a sphere map without uvs
+        /// texels shared by stacked charts or exact copies of a triangle
+        /// count once; 0 for a sphere map without uvs
         /// </summary>
         public double Utilization;
         /// <summary>
@@ -211,11 +212,12 @@ namespace Raps
         /// </summary>
         public ulong TriangleCount;
         /// <summary>
-        /// surface area, world units squared
+        /// surface area, world units squared; an exact copy of a triangle
+        /// (the same corners, so the same uvs) counts once
         /// </summary>
         public double Area3d;
         /// <summary>
-        /// uv area, texels squared
+        /// uv area, texels squared; exact copies count once
         /// </summary>
         public double AreaTexels;
         /// <summary>

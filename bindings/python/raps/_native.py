@@ -432,7 +432,8 @@ class raps_stats(ctypes.Structure):
         ('atlas_width', ctypes.c_uint64),
         ('atlas_height', ctypes.c_uint64),
         # uv area over the unit square ([0,1]^2 after normalising);
-        # 0 for a sphere map without uvs
+        # texels shared by stacked charts or exact copies of a triangle
+        # count once; 0 for a sphere map without uvs
         ('utilization', ctypes.c_double),
         # Threads the run computed on, the calling thread included: the most that any of its steps
         # shared work among, counting a worker thread only once it has computed a share. 1 when no
@@ -474,9 +475,10 @@ class raps_chart(ctypes.Structure):
         ('rotation_deg', ctypes.c_double),
         # output triangles with this chart id
         ('triangle_count', ctypes.c_uint64),
-        # surface area, world units squared
+        # surface area, world units squared; an exact copy of a triangle
+        # (the same corners, so the same uvs) counts once
         ('area_3d', ctypes.c_double),
-        # uv area, texels squared
+        # uv area, texels squared; exact copies count once
         ('area_texels', ctypes.c_double),
         # Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
         # that gathers degenerate triangles with no chart beside them.

@@ -441,7 +441,8 @@ pub struct raps_stats {
     pub atlas_width: u64,
     pub atlas_height: u64,
     /// uv area over the unit square ([0,1]^2 after normalising);
-    /// 0 for a sphere map without uvs
+    /// texels shared by stacked charts or exact copies of a triangle
+    /// count once; 0 for a sphere map without uvs
     pub utilization: f64,
     /// Threads the run computed on, the calling thread included: the most that any of its steps
     /// shared work among, counting a worker thread only once it has computed a share. 1 when no
@@ -483,9 +484,10 @@ pub struct raps_chart {
     pub rotation_deg: f64,
     /// output triangles with this chart id
     pub triangle_count: u64,
-    /// surface area, world units squared
+    /// surface area, world units squared; an exact copy of a triangle
+    /// (the same corners, so the same uvs) counts once
     pub area_3d: f64,
-    /// uv area, texels squared
+    /// uv area, texels squared; exact copies count once
     pub area_texels: f64,
     /// Sander's L2 stretch of the chart's map (scale-free: 1 for an isometry); 0 for the chart
     /// that gathers degenerate triangles with no chart beside them.
