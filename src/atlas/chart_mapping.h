@@ -29,13 +29,32 @@ struct ChartLimits {
     double max_stretch_linf = 2.5;    // for every chart
 };
 
-// The chart made of `triangles` (ascending surface triangle ids; those of two charts when
-// `parts` are given): its disk and map, or false when it must be split. unadapted_l2: the
-// map's L2 stretch before its adaptive step.
+// The chart made of `triangles` (ascending surface triangle ids): its disk and map, or false
+// when it must be split. unadapted_l2: the map's L2 stretch before its adaptive step.
 bool map_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
                const std::vector<char>& seam, const Settings& settings, const ChartLimits& limits,
-               AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat,
-               std::pair<const ChartDisk*, const ChartDisk*> parts = {});
+               AtlasChart& chart, double& unadapted_l2, const ProgressSpan& beat);
+
+// What merging would reject a union for, tested as soon as the union's map shows it, so that a
+// union bound to be rejected skips the rest of its map (the adaptive step above all).
+struct UnionLimits {
+    double give_up_l2 = 1e300;  // for the free-boundary map's predicted L2 stretch
+    double min_fill = 0;        // for the free-boundary map's bounding box fill
+};
+
+enum class UnionVerdict {
+    kMapped,
+    kFailed,     // not a valid chart (not a disk, overlapping, or over the Linf limit)
+    kOverL2,     // predicted L2 above give_up_l2 (chart.map.predicted_l2); chart unfinished
+    kUnderFill,  // box fill below min_fill; chart unfinished
+};
+
+// map_chart for the union of charts `a` and `b` (`triangles`: theirs together, ascending).
+UnionVerdict map_union_chart(const AtlasSurface& surface, const std::vector<int32_t>& triangles,
+                             const std::vector<char>& seam, const Settings& settings,
+                             const ChartLimits& limits, const ChartDisk& a, const ChartDisk& b,
+                             const UnionLimits& union_limits, AtlasChart& chart,
+                             const ProgressSpan& beat);
 
 // The chart's 3D area.
 double chart_area(const ChartDisk& disk);

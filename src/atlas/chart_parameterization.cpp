@@ -90,13 +90,18 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, Lapla
 }
 
 ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf,
-                                 const ProgressSpan& progress) {
+                                 double give_up_l2, const ProgressSpan& progress) {
     ChartMap map;
     map.method = ChartMethod::kFreeBoundary;
     try {
-        // The prediction is given 5% of room, four times the largest shortfall measured.
+        // The Linf prediction is given 5% of room, four times the largest shortfall measured.
+        const double give_up_linf = 1.05 * max_linf;
+        ConformalPrediction predicted;
         map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.angle_sum,
-                                             disk.boundary_loop, system, 1.05 * max_linf, progress);
+                                             disk.boundary_loop, system,
+                                             {give_up_linf, give_up_l2}, predicted, progress);
+        map.predicted_l2 = predicted.l2;
+        map.over_l2 = predicted.l2 > give_up_l2 && !(predicted.linf > give_up_linf);
         progress.report(0.0);
         map.injective = !map.uv.empty() && injective(disk, map.uv);
     } catch (const Error& error) {

@@ -26,6 +26,10 @@ struct ChartMap {
     ChartMethod method = ChartMethod::kFreeBoundary;
     bool injective = false;
     int64_t adaptive_solves = 0;  // behind this map (0 unless the adaptive step was kept)
+    // The free-boundary map's L2 stretch as its log scale factor predicted it
+    // (free_boundary_map.h), and whether the map was left unfinished for that alone.
+    double predicted_l2 = 0;
+    bool over_l2 = false;
 };
 
 // Each function reports its progress to `progress` (the atlas gives every chart the phase's
@@ -39,8 +43,9 @@ LaplaceSystem chart_laplace_system(const ChartDisk& disk, const ProgressSpan& pr
 // The free-boundary map, its uvs scaled to the chart's 3D area. map.injective is false when
 // the free boundary overlaps itself, or when its conformal scale factors already show a Linf
 // stretch well above max_linf (the map is then not finished): the caller should split the chart.
+// Nor is it finished when they show an L2 stretch above give_up_l2 (map.predicted_l2 says so).
 ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, double max_linf,
-                                 const ProgressSpan& progress = {});
+                                 double give_up_l2 = 1e300, const ProgressSpan& progress = {});
 
 // The paper's adaptive step on an injective map, boundary held; replaces the map when the
 // result is injective with a lower L2 stretch and a Linf stretch within max_linf (or the

@@ -15,7 +15,9 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                                                          const VertexAdjacency& adjacency,
                                                          const std::vector<double>& angle_sum,
                                                          const std::vector<int32_t>& boundary_loop,
-                                                         LaplaceSystem& system, double give_up_linf,
+                                                         LaplaceSystem& system,
+                                                         const ConformalGiveUp& give_up,
+                                                         ConformalPrediction& predicted,
                                                          const ProgressSpan& progress) {
     const int32_t n = mesh.vertex_count();
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
@@ -52,9 +54,11 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
         for (int32_t row = 0; row < unknowns; ++row) log_scale[vertex_of[row]] = rhs[row];
     }
     // A chart the caller would reject for its Linf stretch needs no map (merging tries unions
-    // that fail this way: fandisk's last two, of 5,544 and 7,402 triangles, Linf 7.6 and 5.8).
+    // that fail this way: fandisk's last two, of 5,544 and 7,402 triangles, Linf 7.6 and 5.8),
+    // nor one whose L2 stretch the caller can already tell is too high (merging's budget).
     {
-        double area = 0, scaled_area = 0, smallest_scale = std::numeric_limits<double>::max();
+        double area = 0, scaled_area = 0, shrunk_area = 0;
+        double smallest_scale = std::numeric_limits<double>::max();
         for (const Triangle& t : mesh.triangles) {
             const double a = 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]])
                                        .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
@@ -63,9 +67,14 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
                 portable::exp((log_scale[t[0]] + log_scale[t[1]] + log_scale[t[2]]) / 3.0);
             area += a;
             scaled_area += a * scale * scale;
+            shrunk_area += a / (scale * scale);
             smallest_scale = std::min(smallest_scale, scale);
         }
-        if (std::sqrt(scaled_area / area) / smallest_scale > give_up_linf) return {};
+        // Scaled to the chart's area, a triangle of scale s has both stretches (1 / s) times
+        // sqrt(scaled_area / area): L2 squared is the area-weighted mean of that squared.
+        predicted.l2 = std::sqrt(scaled_area * shrunk_area) / area;
+        predicted.linf = std::sqrt(scaled_area / area) / smallest_scale;
+        if (predicted.linf > give_up.linf || predicted.l2 > give_up.l2) return {};
     }
 
     // The boundary curve: each vertex turns by its own turning angle plus (L u) there, and
