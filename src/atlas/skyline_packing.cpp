@@ -442,23 +442,26 @@ void SkylineStrip::commit(const PreparedChart& chart, const Placement& place) {
     height = std::max(height, place.y + p.height);
 }
 
-bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
-                std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
-                int32_t& height, int turn_limit) {
+StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                       int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
+                       std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
+                       int32_t& height, int turn_limit, const std::atomic<int64_t>* beaten_above) {
     SkylineStrip layout(strip, count_waste, fill_holes, turn_limit);
     width = height = 0;
     for (size_t c : order) {
         Placement place;
-        if (!layout.find(prepared[c], place)) return false;
+        if (!layout.find(prepared[c], place)) return StripResult::kTooLarge;
         layout.commit(prepared[c], place);
         at[c] = Eigen::Vector2i(place.x, place.y);
         quarter[c] = place.quarter;
         width = layout.width;
         height = layout.height;
-        if (std::max(width, height) > max_side) return false;
+        if (std::max(width, height) > max_side) return StripResult::kTooLarge;
+        if (beaten_above &&
+            static_cast<int64_t>(width) * height > beaten_above->load(std::memory_order_relaxed))
+            return StripResult::kBeaten;
     }
-    return true;
+    return StripResult::kFits;
 }
 
 }  // namespace raps
