@@ -63,6 +63,9 @@ class SkylineStrip {
   private:
     // Moves `place` lower, into a hole under an overhang, where the chart fits there.
     void find_hole(const PreparedChart& chart, Placement& place);
+    // Whether each of the chart's sample rows (Profile::sample_runs) has a free run as long in
+    // the layout's row it lands on with the chart at row y: else no position of the row fits.
+    bool room_in_samples(const Profile& p, int32_t y);
     // Lets a chart at (x, y) slide down and left while it collides with nothing.
     void settle(const Profile& p, int32_t& x, int32_t& y) const;
 
