@@ -1,6 +1,7 @@
 #include "atlas/chart_packing.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -155,7 +156,7 @@ struct Layout {
     std::vector<Eigen::Vector2i> at;
     std::vector<int> quarter;
     int32_t width = 0, height = 0;
-    double area() const { return static_cast<double>(width) * height; }
+    int64_t area() const { return static_cast<int64_t>(width) * height; }
 };
 
 // One trial of the layout search: an order, a strip width and a scoring rule.
@@ -310,8 +311,8 @@ class ChartPacker {
         for (int attempt = 0; attempt < 24; ++attempt) {
             rasterise_first(scale);
             Layout layout = empty_layout();
-            const bool fits =
-                pack(orders_[0], {0, density_strip(), false, kAllTurns}, false, layout);
+            const bool fits = pack(orders_[0], {0, density_strip(), false, kAllTurns}, false,
+                                   layout) == StripResult::kFits;
             if (!fits) {
                 if (fitted > 0) break;
                 scale *= 0.85;  // nothing fitted yet: lower the density
@@ -362,11 +363,12 @@ class ChartPacker {
         return layout;
     }
 
-    bool pack(const std::vector<size_t>& order, const Trial& trial, bool holes,
-              Layout& layout) const {
+    StripResult pack(const std::vector<size_t>& order, const Trial& trial, bool holes,
+                     Layout& layout, const std::atomic<int64_t>* beaten_above = nullptr) const {
         layout = empty_layout();
         return pack_strip(prepared_, order, trial.width, trial.count_waste, holes, limit_,
-                          layout.at, layout.quarter, layout.width, layout.height, trial.turn_limit);
+                          layout.at, layout.quarter, layout.width, layout.height, trial.turn_limit,
+                          beaten_above);
     }
 
     // Every order (up to kFewCharts charts; the first beyond), strip width and scoring rule.
@@ -408,11 +410,28 @@ class ChartPacker {
         const bool few = count_ <= kFewCharts;
         std::vector<Layout> packed(list.size());
         std::vector<char> fits(list.size(), 0);
-        parallel_for_each(pool_, list.size(), [&](size_t k) {
+        // Up to kFewCharts charts, a trial is given up once its area exceeds the smallest
+        // finished so far: it cannot be the smallest. (With more, the skyline layouts are
+        // ranked, and several of the smallest kept.)
+        std::atomic<int64_t> smallest{std::numeric_limits<int64_t>::max()};
+        const std::atomic<int64_t>* bound = few ? &smallest : nullptr;
+        // The widest strips first: the smallest layout was in the widest strip on 8 of the 18
+        // shared meshes with more than one chart (within 4% of it on 4 more), and an early
+        // small layout gives up more of the rest. The layout chosen does not depend on it.
+        std::vector<size_t> schedule(list.size());
+        std::iota(schedule.begin(), schedule.end(), 0);
+        std::stable_sort(schedule.begin(), schedule.end(),
+                         [&](size_t a, size_t b) { return list[a].width > list[b].width; });
+        parallel_for_each(pool_, list.size(), [&](size_t i) {
             beat_.report(0.0);
+            const size_t k = schedule[i];
             const Trial& t = list[k];
-            fits[k] = (few && pack(orders_[t.order], t, true, packed[k])) ||
-                      pack(orders_[t.order], t, false, packed[k]);
+            StripResult result =
+                few ? pack(orders_[t.order], t, true, packed[k], bound) : StripResult::kTooLarge;
+            if (result == StripResult::kTooLarge)
+                result = pack(orders_[t.order], t, false, packed[k], bound);
+            fits[k] = result == StripResult::kFits;
+            if (fits[k]) lower_to(smallest, packed[k].area());
         });
         if (!few) fill_holes_of_best(list, fits, packed);
         size_t best = list.size();
@@ -424,6 +443,12 @@ class ChartPacker {
             throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
         if (count_ < 2 || count_ > kSwappedCharts) return std::move(packed[best]);
         return improved_by_swaps(std::move(packed[best]), list[best]);
+    }
+
+    static void lower_to(std::atomic<int64_t>& bound, int64_t value) {
+        int64_t now = bound.load();
+        while (value < now && !bound.compare_exchange_weak(now, value)) {
+        }
     }
 
     void fill_holes_of_best(const std::vector<Trial>& list, const std::vector<char>& fits,
@@ -440,7 +465,7 @@ class ChartPacker {
         parallel_for_each(pool_, ranked.size(), [&](size_t k) {
             beat_.report(0.0);
             const Trial& t = list[ranked[k]];
-            holes_fit[k] = pack(orders_[t.order], t, true, with_holes[k]);
+            holes_fit[k] = pack(orders_[t.order], t, true, with_holes[k]) == StripResult::kFits;
         });
         for (size_t k = 0; k < ranked.size(); ++k) {
             if (holes_fit[k]) packed[ranked[k]] = std::move(with_holes[k]);
@@ -460,9 +485,14 @@ class ChartPacker {
             }
             std::vector<Layout> tried(variants.size());
             std::vector<char> tried_fits(variants.size(), 0);
+            // Only a smaller layout is kept: a variant is given up once it is as large as the
+            // kept one or larger than a smaller one found.
+            std::atomic<int64_t> bound{layout.area() - 1};
             parallel_for_each(pool_, variants.size(), [&](size_t k) {
                 beat_.report(0.0);
-                tried_fits[k] = pack(variants[k], trial, true, tried[k]);
+                tried_fits[k] =
+                    pack(variants[k], trial, true, tried[k], &bound) == StripResult::kFits;
+                if (tried_fits[k]) lower_to(bound, tried[k].area());
             });
             bool improved = false;
             for (size_t k = 0; k < variants.size(); ++k) {

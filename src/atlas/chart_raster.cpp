@@ -18,6 +18,27 @@ void transpose_block(uint64_t block[64]) {
     }
 }
 
+// Where the longest run of padded cells in row `row` of a profile begins (the first, of
+// equal runs).
+int32_t longest_run_begin(const Profile& p, int32_t row) {
+    const uint64_t* bits = p.padded_bits.data() + static_cast<size_t>(row) * p.words;
+    int32_t best = 0, best_length = -1;
+    for (int32_t x = 0; x < p.width;) {
+        if (!(bits[x / 64] >> (x % 64) & 1)) {
+            ++x;
+            continue;
+        }
+        int32_t end = x;
+        while (end < p.width && (bits[end / 64] >> (end % 64) & 1)) ++end;
+        if (end - x > best_length) {
+            best = x;
+            best_length = end - x;
+        }
+        x = end;
+    }
+    return best;
+}
+
 }  // namespace
 
 void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Triangle>& triangles,
@@ -176,6 +197,23 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
     profile.middle_run = longest_run(
         profile.padded_bits.data() + static_cast<size_t>(chart.height / 2) * chart.words,
         chart.width, true);
+    profile.middle_begin = longest_run_begin(profile, chart.height / 2);
+    for (int32_t eighths : {2, 6, 3, 5}) {
+        const int32_t r = eighths * chart.height / 8;
+        if (r == chart.height / 2) continue;
+        profile.sample_runs.push_back(r);
+        profile.sample_runs.push_back(longest_run(
+            profile.padded_bits.data() + static_cast<size_t>(r) * chart.words, chart.width, true));
+    }
+    profile.word_span.resize(2 * static_cast<size_t>(chart.height));
+    for (int32_t y = 0; y < chart.height; ++y) {
+        const uint64_t* row = profile.padded_bits.data() + static_cast<size_t>(y) * chart.words;
+        int32_t first = 0, end = chart.words;
+        while (first < end && row[first] == 0) ++first;
+        while (end > first && row[end - 1] == 0) --end;
+        profile.word_span[2 * y] = first;
+        profile.word_span[2 * y + 1] = end;
+    }
     return profile;
 }
 

@@ -11,23 +11,22 @@ class Occupancy {
   public:
     explicit Occupancy(int32_t strip) : strip_(strip), words_((strip + 63) / 64 + 1) {}
 
-    // Whether `bits` (rows of `p.words` words) placed with its lower left cell at (x, y) meets
-    // an occupied cell.
-    bool collides(const Profile& p, const std::vector<uint64_t>& bits, int32_t x, int32_t y) const {
+    // Whether the padded chart placed with its lower left cell at (x, y) meets an occupied
+    // cell.
+    bool collides(const Profile& p, int32_t x, int32_t y) const {
         const int32_t shift = x % 64, offset = x / 64;
         auto row_collides = [&](int32_t r) {
             const int32_t row = y + r;
             if (row >= rows()) return false;  // above everything placed
             const uint64_t* target = row_ptr(row) + offset;
-            const uint64_t* source = bits.data() + static_cast<size_t>(r) * p.words;
-            uint64_t carry = 0;
-            for (int32_t w = 0; w < p.words; ++w) {
-                const uint64_t word = source[w];
-                const uint64_t low = (word << shift) | carry;
-                carry = shift ? word >> (64 - shift) : 0;
-                if (low & target[w]) return true;
+            const uint64_t* source = p.padded_bits.data() + static_cast<size_t>(r) * p.words;
+            // Only the row's words with cells: each lands on two words of the layout's row.
+            for (int32_t w = p.word_span[2 * r], end = p.word_span[2 * r + 1]; w < end; ++w) {
+                const uint64_t low = source[w] << shift;
+                const uint64_t high = shift ? source[w] >> (64 - shift) : 0;
+                if ((low & target[w]) | (high & target[w + 1])) return true;
             }
-            return carry && (carry & target[p.words]);
+            return false;
         };
 
         // The middle row first: a chart's widest rows are near its middle, and a position in
@@ -195,27 +194,6 @@ SkylineKernels skyline_kernels() {
     if (avx2) return {resting_row_avx2, skyline_under_avx2, probe_bounds_avx2};
 #endif
     return {resting_row_baseline, skyline_under_baseline, probe_bounds_baseline};
-}
-
-// Where the longest run of padded cells in row `row` of a profile begins (the first, of
-// equal runs).
-int32_t longest_run_begin(const Profile& p, int32_t row) {
-    const uint64_t* bits = p.padded_bits.data() + static_cast<size_t>(row) * p.words;
-    int32_t best = 0, best_length = -1;
-    for (int32_t x = 0; x < p.width;) {
-        if (!(bits[x / 64] >> (x % 64) & 1)) {
-            ++x;
-            continue;
-        }
-        int32_t end = x;
-        while (end < p.width && (bits[end / 64] >> (end % 64) & 1)) ++end;
-        if (end - x > best_length) {
-            best = x;
-            best_length = end - x;
-        }
-        x = end;
-    }
-    return best;
 }
 
 }  // namespace
@@ -392,17 +370,31 @@ void SkylineStrip::find_hole(const PreparedChart& chart, Placement& place) {
         const int32_t sx = std::max({1, p.width / 16, strip / 200});
         const int32_t sy = std::max({1, p.height / 16, height / 200});
         const int32_t best_top = place.y + chart.profiles[place.quarter].height;
-        const int32_t middle_begin = longest_run_begin(p, p.height / 2);
+        const int32_t middle_begin = p.middle_begin;
         bool found = false;
         for (int32_t y = 0; !found && tests > 0 && y + p.height < best_top; y += sy) {
             const int32_t row = y + p.height / 2;
             if (occupancy.longest_free(row) < p.middle_run) continue;
+            if (!room_in_samples(p, y)) {
+                // No position of the row fits; the budget is spent as if each were tested.
+                int64_t count = 0;
+                occupancy.for_each_free_run(row, p.middle_run, [&](int32_t begin, int32_t end) {
+                    const int32_t first = std::max(0, begin - middle_begin);
+                    const int32_t last =
+                        std::min(strip - p.width, end - p.middle_run - middle_begin);
+                    const int32_t from = (first + sx - 1) / sx * sx;
+                    if (from <= last) count += (last - from) / sx + 1;
+                    return false;
+                });
+                tests = count <= tests ? tests - count : -1;
+                continue;
+            }
             occupancy.for_each_free_run(row, p.middle_run, [&](int32_t begin, int32_t end) {
                 const int32_t first = std::max(0, begin - middle_begin);
                 const int32_t last = std::min(strip - p.width, end - p.middle_run - middle_begin);
                 for (int32_t x = (first + sx - 1) / sx * sx; x <= last; x += sx) {
                     if (--tests < 0) return true;  // stops the runs; the rows stop too
-                    if (occupancy.collides(p, p.padded_bits, x, y)) continue;
+                    if (occupancy.collides(p, x, y)) continue;
                     settle(p, x, y);
                     place = {x, y, q};
                     return found = true;
@@ -413,14 +405,21 @@ void SkylineStrip::find_hole(const PreparedChart& chart, Placement& place) {
     }
 }
 
+bool SkylineStrip::room_in_samples(const Profile& p, int32_t y) {
+    for (size_t k = 0; k < p.sample_runs.size(); k += 2) {
+        if (occupancy_->longest_free(y + p.sample_runs[k]) < p.sample_runs[k + 1]) return false;
+    }
+    return true;
+}
+
 void SkylineStrip::settle(const Profile& p, int32_t& x, int32_t& y) const {
     const Occupancy& occupancy = *occupancy_;
     for (bool moved = true; moved;) {
         moved = false;
-        if (y > 0 && !occupancy.collides(p, p.padded_bits, x, y - 1)) {
+        if (y > 0 && !occupancy.collides(p, x, y - 1)) {
             --y;
             moved = true;
-        } else if (x > 0 && !occupancy.collides(p, p.padded_bits, x - 1, y)) {
+        } else if (x > 0 && !occupancy.collides(p, x - 1, y)) {
             --x;
             moved = true;
         }
@@ -442,23 +441,26 @@ void SkylineStrip::commit(const PreparedChart& chart, const Placement& place) {
     height = std::max(height, place.y + p.height);
 }
 
-bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
-                std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
-                int32_t& height, int turn_limit) {
+StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                       int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
+                       std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
+                       int32_t& height, int turn_limit, const std::atomic<int64_t>* beaten_above) {
     SkylineStrip layout(strip, count_waste, fill_holes, turn_limit);
     width = height = 0;
     for (size_t c : order) {
         Placement place;
-        if (!layout.find(prepared[c], place)) return false;
+        if (!layout.find(prepared[c], place)) return StripResult::kTooLarge;
         layout.commit(prepared[c], place);
         at[c] = Eigen::Vector2i(place.x, place.y);
         quarter[c] = place.quarter;
         width = layout.width;
         height = layout.height;
-        if (std::max(width, height) > max_side) return false;
+        if (std::max(width, height) > max_side) return StripResult::kTooLarge;
+        if (beaten_above &&
+            static_cast<int64_t>(width) * height > beaten_above->load(std::memory_order_relaxed))
+            return StripResult::kBeaten;
     }
-    return true;
+    return StripResult::kFits;
 }
 
 }  // namespace raps

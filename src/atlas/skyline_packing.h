@@ -4,6 +4,7 @@
 // loops are integer arithmetic, the same on every processor.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -62,6 +63,9 @@ class SkylineStrip {
   private:
     // Moves `place` lower, into a hole under an overhang, where the chart fits there.
     void find_hole(const PreparedChart& chart, Placement& place);
+    // Whether each of the chart's sample rows (Profile::sample_runs) has a free run as long in
+    // the layout's row it lands on with the chart at row y: else no position of the row fits.
+    bool room_in_samples(const Profile& p, int32_t y);
     // Lets a chart at (x, y) slide down and left while it collides with nothing.
     void settle(const Profile& p, int32_t& x, int32_t& y) const;
 
@@ -75,13 +79,24 @@ class SkylineStrip {
     int64_t hole_tests_left_;  // of the layout's hole searches (skyline_packing.cpp)
 };
 
+enum class StripResult {
+    kFits,
+    kTooLarge,  // a chart is wider than the strip in every turn, or a side grew past max_side
+    kBeaten,    // the layout's area grew past `beaten_above`
+};
+
 // Places the charts (in `order`) into a strip `strip` cells wide, one after another. x is
 // searched with a step of an eighth of the chart's width and refined around the best step,
-// which keeps the search linear in the strip width. Returns false if a chart is wider than the
-// strip in every turn, or as soon as the layout grows past `max_side` cells on either side.
-bool pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
-                std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
-                int32_t& height, int turn_limit = kAllTurns);
+// which keeps the search linear in the strip width. Stops as soon as a chart is wider than the
+// strip in every turn, or the layout grows past `max_side` cells on either side, or (with
+// `beaten_above`) its area, width x height, exceeds that bound: both only grow as charts are
+// added, so a layout of a search that already has a smaller one is given up early. The bound
+// may fall while the layout is packed (other trials finishing); which layouts are given up then
+// depends on the schedule, never which layout is smallest.
+StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                       int32_t strip, bool count_waste, bool fill_holes, int32_t max_side,
+                       std::vector<Eigen::Vector2i>& at, std::vector<int>& quarter, int32_t& width,
+                       int32_t& height, int turn_limit = kAllTurns,
+                       const std::atomic<int64_t>* beaten_above = nullptr);
 
 }  // namespace raps
