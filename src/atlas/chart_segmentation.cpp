@@ -220,6 +220,12 @@ class Grower {
                     chart_[o / 3] = c;
                     polygon_.push_back(o / 3);
                 } else {
+                    // Its normal is read when it is taken, its area, twins and steps when it
+                    // is assigned: loaded now, they are in cache by then.
+                    __builtin_prefetch(&g_.normal[o / 3]);
+                    __builtin_prefetch(&g_.area[o / 3]);
+                    __builtin_prefetch(&surface_.twin[o - o % 3]);
+                    __builtin_prefetch(&g_.step[o - o % 3]);
                     queue_.push({distance + g_.step[3 * t + k], o / 3, c});
                 }
             }
