@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 
 #include "core/hash_mix.h"
@@ -92,15 +93,17 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     // Half-edges over welded vertices; an edge is an interior edge of the surface only when it
     // has exactly one half-edge in each direction.
     const int32_t count = static_cast<int32_t>(kept.size());
-    TriangleMesh welded_mesh;
-    welded_mesh.positions = input.positions;
-    welded_mesh.triangles.resize(count);
+    // The kept triangles over welded vertices (no copy of the positions: only the indices are
+    // read, and a copy was a fresh 24 bytes per vertex).
+    std::vector<Triangle> welded_triangles(count);
     progress.part(0.25, 0.3).in_runs(count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t s = static_cast<int32_t>(run_begin); s < run_end; ++s) {
             const Triangle& v = input.triangles[kept[s]];
-            welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
+            welded_triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
         }
     });
+    auto origin = [&](int32_t h) { return welded_triangles[h / 3][h % 3]; };
+    auto target = [&](int32_t h) { return welded_triangles[h / 3][(h % 3 + 1) % 3]; };
     // Half-edges bucketed by their smaller vertex (a counting sort), each bucket sorted by the
     // larger vertex: the groups of one undirected edge in linear time, where one comparison sort
     // of all half-edges by their vertex pair was most of the atlas's topology phase.
@@ -108,7 +111,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     std::vector<int32_t> bucket_offset(input.positions.size() + 1, 0);
     progress.part(0.3, 0.35).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
-            const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
+            const int32_t a = origin(h), b = target(h);
             ++bucket_offset[std::min(a, b) + 1];
         }
     });
@@ -118,8 +121,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         std::vector<int32_t> cursor(bucket_offset.begin(), bucket_offset.end() - 1);
         progress.part(0.35, 0.45).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
             for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
-                const int32_t a = halfedge_origin(welded_mesh, h),
-                              b = halfedge_target(welded_mesh, h);
+                const int32_t a = origin(h), b = target(h);
                 by_edge[cursor[std::min(a, b)]++] = {std::max(a, b), h};
             }
         });
@@ -128,7 +130,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     // Half-edges h and g of one edge become twins when they run opposite ways and no seam cuts
     // them.
     auto join = [&](int32_t h, int32_t g) {
-        if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
+        if (origin(h) == target(g) &&
             !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
             surface.twin[h] = g;
             surface.twin[g] = h;
@@ -162,28 +164,26 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         }
     });
 
-    // Surface vertices: corners joined across interior edges, one class per fan.
+    // Surface vertices: corners joined across interior edges, one class per fan, numbered in
+    // the order of their first corners.
+    std::vector<int32_t> first_corner;
     const std::vector<int32_t> classes =
-        corner_vertex_classes(surface.twin, progress.part(0.65, 0.8));
-    surface.mesh.triangles.resize(count);
-    // Classes are numbered in order of first sight: the largest is the vertex count less one.
-    // Reserved exactly, these arrays keep no doubling's slack through the whole atlas.
-    const size_t vertex_count =
-        classes.empty()
-            ? 0
-            : static_cast<size_t>(*std::max_element(classes.begin(), classes.end())) + 1;
-    surface.welded_vertex.reserve(vertex_count);
-    surface.mesh.positions.reserve(vertex_count);
-    progress.part(0.8, 0.85).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
-        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
-            if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
-                const int32_t w = welded_mesh.triangles[c / 3][c % 3];
-                surface.welded_vertex.push_back(w);
-                surface.mesh.positions.push_back(input.positions[w]);
+        corner_vertex_classes(surface.twin, progress.part(0.65, 0.8), &first_corner);
+    const size_t vertex_count = first_corner.size();
+    surface.welded_vertex.resize(vertex_count);  // exact: no doubling's slack kept to the end
+    surface.mesh.positions.resize(vertex_count);
+    progress.part(0.8, 0.85).in_runs(
+        static_cast<int64_t>(vertex_count), [&](int64_t run_begin, int64_t run_end) {
+            for (int64_t v = run_begin; v < run_end; ++v) {
+                const int32_t w = origin(first_corner[v]);
+                surface.welded_vertex[v] = w;
+                surface.mesh.positions[v] = input.positions[w];
             }
-            surface.mesh.triangles[c / 3][c % 3] = classes[c];
-        }
-    });
+        });
+    static_assert(sizeof(Triangle) == 3 * sizeof(int32_t), "a triangle is its three corners");
+    surface.mesh.triangles.resize(count);
+    if (count > 0)
+        std::memcpy(surface.mesh.triangles.data(), classes.data(), classes.size() * sizeof(int32_t));
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
     parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
         progress.at(begin, 3 * static_cast<int64_t>(count), 0.85, 1.0);

@@ -35,9 +35,11 @@ Halfedges build_halfedges(const TriangleMesh& mesh, const ProgressSpan& progress
 // The vertices that twins imply: corners (3 t + k, the corner where half-edge 3 t + k starts)
 // joined across every paired edge (twin[h] < 0 on a boundary or a cut), so that the corners of
 // one fan of triangles around a vertex form one class. Returns each corner's class, classes
-// numbered in the order of their first corner.
+// numbered in the order of their first corner; `first_corner` (when given) gets each class's
+// first corner appended.
 std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
-                                           const ProgressSpan& progress = {});
+                                           const ProgressSpan& progress = {},
+                                           std::vector<int32_t>* first_corner = nullptr);
 
 // Throws NON_MANIFOLD_VERTEX when the triangles around a vertex form more than one fan.
 void check_manifold_vertices(const TriangleMesh& mesh, const Halfedges& halfedges,
