@@ -384,38 +384,10 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
 }
 
 std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
-                                           const ProgressSpan& progress,
-                                           std::vector<int32_t>* first_corner) {
-    // Corner h is joined to next(twin[h]) (the same vertex's corner in the triangle across h)
-    // and to twin[prev(h)] (across the edge that ends at h's vertex): each corner has at most
-    // one of each, so a class is a path or a cycle of corners around its vertex, walked both
-    // ways from its first corner. Corners visited in index order number the classes in the
-    // order of their first corners, as a union-find over all pairs did, without its parent and
-    // root arrays (24 bytes per triangle) or its scattered root searches.
-    const int32_t corners = static_cast<int32_t>(twin.size());
-    std::vector<int32_t> classes(corners, -1);
-    int32_t count = 0;
-    progress.in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
-        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
-            if (classes[c] >= 0) continue;
-            const int32_t cls = count++;
-            if (first_corner) first_corner->push_back(c);
-            classes[c] = cls;
-            // Each step names a new corner or stops (on a boundary, or back at c round a
-            // closed fan), so even twins that are not an involution end the walk.
-            for (int32_t h = c, g = twin[h]; g >= 0; g = twin[h]) {
-                h = Halfedges::next(g);
-                if (classes[h] >= 0) break;
-                classes[h] = cls;
-            }
-            for (int32_t h = c, g = twin[Halfedges::prev(h)]; g >= 0;
-                 g = twin[Halfedges::prev(h)]) {
-                h = g;
-                if (classes[h] >= 0) break;
-                classes[h] = cls;
-            }
-        }
-    });
+                                           const ProgressSpan& progress) {
+    std::vector<int32_t> classes(twin.size(), -1);
+    label_corner_classes(
+        twin, [&](int32_t c) -> int32_t& { return classes[c]; }, progress);
     return classes;
 }
 
