@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "atlas/huge_pages.h"
 #include "core/hash_mix.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_topology.h"
@@ -48,7 +49,9 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     };
     // Per input triangle: kKept, kDegenerate, or the first copy it duplicates.
     constexpr int32_t kKept = -1, kDegenerate = -2;
-    std::vector<int32_t> primary_of(input_count, kKept);
+    std::vector<int32_t> primary_of;
+    reserve_huge_pages(primary_of, input_count);
+    primary_of.assign(input_count, kKept);
     const size_t capacity = hash_table_size(static_cast<size_t>(input_count));
     std::vector<int32_t> slot(capacity, -1);
     progress.part(0.05, 0.2).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
@@ -78,7 +81,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     });
     std::vector<int32_t>().swap(slot);
     std::vector<int32_t> kept;  // input triangles that become surface triangles
-    kept.reserve(input_count);  // nearly all of them: no doubling's slack kept to the end
+    reserve_huge_pages(kept, input_count);  // nearly all of them: no doubling's slack kept
     progress.part(0.2, 0.25).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             if (primary_of[t] == kKept) kept.push_back(t);
@@ -98,6 +101,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     const int32_t count = static_cast<int32_t>(kept.size());
     // The kept triangles over welded vertices, held (as ~vertex, below 0) in the surface's own
     // triangles, which their corners' classes overwrite below: no array of their own.
+    reserve_huge_pages(surface.mesh.triangles, count);
     surface.mesh.triangles.resize(count);
     progress.part(0.25, 0.3).in_runs(count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t s = static_cast<int32_t>(run_begin); s < run_end; ++s) {
@@ -119,7 +123,9 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         }
     });
     std::partial_sum(bucket_offset.begin(), bucket_offset.end(), bucket_offset.begin());
-    std::vector<std::pair<int32_t, int32_t>> by_edge(halfedge_count);  // (larger vertex, h)
+    std::vector<std::pair<int32_t, int32_t>> by_edge;  // (larger vertex, h)
+    reserve_huge_pages(by_edge, halfedge_count);
+    by_edge.resize(halfedge_count);
     {
         std::vector<int32_t> cursor(bucket_offset.begin(), bucket_offset.end() - 1);
         progress.part(0.35, 0.45).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
@@ -129,6 +135,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             }
         });
     }
+    reserve_huge_pages(surface.twin, halfedge_count);
     surface.twin.assign(halfedge_count, -1);
     // Half-edges h and g of one edge become twins when they run opposite ways and no seam cuts
     // them.
@@ -173,7 +180,9 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         surface.twin, [&](int32_t c) -> int32_t& { return surface.mesh.triangles[c / 3][c % 3]; },
         progress.part(0.65, 0.8));
     const size_t vertex_count = first_value.size();
-    surface.welded_vertex.resize(vertex_count);  // exact: no doubling's slack kept to the end
+    reserve_huge_pages(surface.welded_vertex, vertex_count);  // exact: no doubling's slack
+    surface.welded_vertex.resize(vertex_count);
+    reserve_huge_pages(surface.mesh.positions, vertex_count);
     surface.mesh.positions.resize(vertex_count);
     progress.part(0.8, 0.85).in_runs(
         static_cast<int64_t>(vertex_count), [&](int64_t run_begin, int64_t run_end) {
@@ -183,6 +192,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
                 surface.mesh.positions[v] = input.positions[w];
             }
         });
+    reserve_huge_pages(surface.corner_angle, 3 * static_cast<size_t>(count));
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
     parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
         progress.at(begin, 3 * static_cast<int64_t>(count), 0.85, 1.0);

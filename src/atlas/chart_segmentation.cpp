@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "atlas/huge_pages.h"
 #include "core/portable_math.h"
 
 namespace raps {
@@ -26,7 +27,9 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
     const TriangleMesh& mesh = surface.mesh;
     const int32_t count = mesh.triangle_count();
     Geometry g;
+    reserve_huge_pages(g.normal, count);
     g.normal.resize(count);
+    reserve_huge_pages(g.area, count);
     g.area.resize(count);
     parallel_for(pool, count, [&](int64_t run_begin, int64_t run_end) {
         progress.at(run_begin, count, 0.0, 0.5);
@@ -43,7 +46,9 @@ Geometry measure(const AtlasSurface& surface, const SegmentationSettings& settin
         return (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
     };
     const double hard_cosine = portable::cos(settings.hard_edge_angle_deg * M_PI / 180.0);
+    reserve_huge_pages(g.barrier, 3 * static_cast<size_t>(count));
     g.barrier.resize(3 * static_cast<size_t>(count));
+    reserve_huge_pages(g.step, 3 * static_cast<size_t>(count));
     g.step.resize(3 * static_cast<size_t>(count));  // every grow takes every step
     parallel_for(pool, count, [&](int64_t run_begin, int64_t run_end) {
         progress.at(run_begin, count, 0.5, 1.0);
