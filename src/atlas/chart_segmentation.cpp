@@ -169,19 +169,18 @@ class Grower {
     }
 
     // The triangle of each chart farthest (in hops) from the chart's boundary: its centre.
-    std::vector<int32_t> centres(const std::vector<int32_t>& chart, const ProgressSpan& progress) {
+    std::vector<int32_t> centres(const std::vector<int32_t>& chart,
+                                 const ProgressSpan& progress) const {
         const int32_t count = surface_.mesh.triangle_count();
         const int32_t chart_count = *std::max_element(chart.begin(), chart.end()) + 1;
-        // Kept from one iteration to the next, reserved whole once: fresh pages (and a
-        // frontier doubled through ever larger copies) were a third of this search's time.
-        std::vector<int32_t>& depth = depth_;
-        std::vector<int32_t>& frontier = frontier_;
-        if (frontier.capacity() < static_cast<size_t>(count)) {
-            reserve_huge_pages(depth, count);
-            reserve_huge_pages(frontier, count);
-        }
+        // Reserved whole (with huge pages): a frontier doubled through ever larger copies was
+        // a third of this search's time in fresh pages. Not kept from one iteration to the
+        // next: held through the growths, they pushed the heap's top up by their size, which
+        // stayed resident through the chart maps (the peak).
+        std::vector<int32_t> depth, frontier;
+        reserve_huge_pages(depth, count);
+        reserve_huge_pages(frontier, count);
         depth.assign(count, -1);
-        frontier.clear();
         for (int32_t t = 0; t < count; ++t) {
             progress.at(t, count, 0.0, 0.4);
             for (int k = 0; k < 3; ++k) {
@@ -275,7 +274,6 @@ class Grower {
     std::vector<Chart> charts_;
     CandidateQueue queue_;
     std::vector<int32_t> polygon_;  // triangles of the polygon being assigned
-    std::vector<int32_t> depth_, frontier_;  // centres' search
     ProgressSpan progress_;
     int64_t assigned_ = 0;
 };
