@@ -447,7 +447,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     segmentation.hard_edge_angle_deg = std::min(settings.hard_edge_angle_deg, 60.0);
     segmentation.max_normal_deviation_deg = 90.0;
     std::vector<int32_t> chart_of_surface =
-        segment_charts(surface, segmentation, segment_timer.span(0.0, 0.95));
+        segment_charts(surface, segmentation, pool, segment_timer.span(0.0, 0.95));
     const std::vector<char> seam =
         hard_edge_seams(surface, settings.hard_edge_angle_deg, segment_timer.span(0.95, 1.0));
     segment_timer.finish();

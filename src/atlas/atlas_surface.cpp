@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "atlas/huge_pages.h"
 #include "core/hash_mix.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_topology.h"
@@ -35,17 +36,18 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     AtlasSurface surface;
     const int32_t input_count = input.triangle_count();
 
-    // Areas, for the zero-area test (same threshold as the metrics: 1e-12 of the mean).
-    std::vector<double> area(input_count);
+    // Areas, for the zero-area test (same threshold as the metrics: 1e-12 of the mean), summed
+    // in input order and measured again where tested: an array of them was a fresh 8 bytes per
+    // triangle, and a page touched for the first time costs more than the arithmetic.
+    auto area_of = [&](int32_t t) {
+        const Triangle& v = input.triangles[t];
+        return 0.5 * (input.positions[v[1]] - input.positions[v[0]])
+                         .cross(input.positions[v[2]] - input.positions[v[0]])
+                         .norm();
+    };
     double total = 0;
     progress.part(0.0, 0.05).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
-        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
-            const Triangle& v = input.triangles[t];
-            area[t] = 0.5 * (input.positions[v[1]] - input.positions[v[0]])
-                                .cross(input.positions[v[2]] - input.positions[v[0]])
-                                .norm();
-            total += area[t];
-        }
+        for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) total += area_of(t);
     });
     const double zero_area = 1e-12 * total / std::max(input_count, 1);
 
@@ -53,28 +55,38 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     // A copy wound the other way is the back of a two-sided surface and keeps its own chart, and
     // so does a copy in another group (it belongs to another material or region).
     // Found with a hash table of the rotated vertex triples, triangles in input order (linear,
-    // where sorting the triples was a quarter of fandisk's topology phase).
-    std::vector<std::array<int32_t, 3>> rotated(input_count);
-    std::vector<int32_t> primary_of(input_count, -1);
+    // where sorting the triples was a quarter of fandisk's topology phase); a triple is rotated
+    // again when a probe compares it, rarer than a stored copy of every triple was costly.
+    auto rotated = [&](int32_t t) {
+        const Triangle& v = input.triangles[t];
+        std::array<int32_t, 3> w = {welded[v[0]], welded[v[1]], welded[v[2]]};
+        std::rotate(w.begin(), std::min_element(w.begin(), w.end()), w.end());
+        return w;
+    };
+    // Per input triangle: kKept, kDegenerate, or the first copy it duplicates.
+    constexpr int32_t kKept = -1, kDegenerate = -2;
+    std::vector<int32_t> primary_of;
+    reserve_huge_pages(primary_of, input_count);
+    primary_of.assign(input_count, kKept);
     const size_t capacity = hash_table_size(static_cast<size_t>(input_count));
     std::vector<int32_t> slot(capacity, -1);
     progress.part(0.05, 0.2).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             const Triangle& v = input.triangles[t];
-            std::array<int32_t, 3>& w = rotated[t];
-            w = {welded[v[0]], welded[v[1]], welded[v[2]]};
-            if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0] || !(area[t] > zero_area)) {
+            const int32_t a = welded[v[0]], b = welded[v[1]], c = welded[v[2]];
+            if (a == b || b == c || c == a || !(area_of(t) > zero_area)) {
                 surface.aside_triangles.push_back(t);
                 surface.aside_primary.push_back(-1);
+                primary_of[t] = kDegenerate;
                 continue;
             }
-            std::rotate(w.begin(), std::min_element(w.begin(), w.end()), w.end());
+            const std::array<int32_t, 3> w = rotated(t);
             const uint64_t hash =
                 mix_bits(mix_bits(static_cast<uint64_t>(w[0]) << 32 | static_cast<uint32_t>(w[1])) ^
                          static_cast<uint32_t>(w[2]));
             size_t i = hash & (capacity - 1);
             while (slot[i] >= 0 &&
-                   (rotated[slot[i]] != w || seams.group(slot[i]) != seams.group(t)))
+                   (seams.group(slot[i]) != seams.group(t) || rotated(slot[i]) != w))
                 i = (i + 1) & (capacity - 1);
             if (slot[i] < 0) {
                 slot[i] = t;
@@ -83,40 +95,38 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
             }
         }
     });
+    std::vector<int32_t>().swap(slot);
     std::vector<int32_t> kept;  // input triangles that become surface triangles
-    kept.reserve(input_count);  // nearly all of them: no doubling's slack kept to the end
-    std::vector<int32_t> surface_of_input(input_count, -1);
+    reserve_huge_pages(kept, input_count);  // nearly all of them: no doubling's slack kept
     progress.part(0.2, 0.25).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
-            const Triangle& v = input.triangles[t];
-            if (welded[v[0]] == welded[v[1]] || welded[v[1]] == welded[v[2]] ||
-                welded[v[2]] == welded[v[0]] || !(area[t] > zero_area)) {
-                continue;
-            }
-            if (primary_of[t] >= 0) continue;
-            surface_of_input[t] = static_cast<int32_t>(kept.size());
-            kept.push_back(t);
+            if (primary_of[t] == kKept) kept.push_back(t);
         }
     });
     for (int32_t t = 0; t < input_count; ++t) {
-        if (primary_of[t] >= 0) {
+        if (primary_of[t] >= 0) {  // a first copy is kept: its surface triangle by its rank
             surface.aside_triangles.push_back(t);
-            surface.aside_primary.push_back(surface_of_input[primary_of[t]]);
+            surface.aside_primary.push_back(static_cast<int32_t>(
+                std::lower_bound(kept.begin(), kept.end(), primary_of[t]) - kept.begin()));
         }
     }
+    std::vector<int32_t>().swap(primary_of);
 
     // Half-edges over welded vertices; an edge is an interior edge of the surface only when it
     // has exactly one half-edge in each direction.
     const int32_t count = static_cast<int32_t>(kept.size());
-    TriangleMesh welded_mesh;
-    welded_mesh.positions = input.positions;
-    welded_mesh.triangles.resize(count);
+    // The kept triangles over welded vertices, held (as ~vertex, below 0) in the surface's own
+    // triangles, which their corners' classes overwrite below: no array of their own.
+    reserve_huge_pages(surface.mesh.triangles, count);
+    surface.mesh.triangles.resize(count);
     progress.part(0.25, 0.3).in_runs(count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t s = static_cast<int32_t>(run_begin); s < run_end; ++s) {
             const Triangle& v = input.triangles[kept[s]];
-            welded_mesh.triangles[s] = {welded[v[0]], welded[v[1]], welded[v[2]]};
+            surface.mesh.triangles[s] = {~welded[v[0]], ~welded[v[1]], ~welded[v[2]]};
         }
     });
+    auto origin = [&](int32_t h) { return ~surface.mesh.triangles[h / 3][h % 3]; };
+    auto target = [&](int32_t h) { return ~surface.mesh.triangles[h / 3][(h % 3 + 1) % 3]; };
     // Half-edges bucketed by their smaller vertex (a counting sort), each bucket sorted by the
     // larger vertex: the groups of one undirected edge in linear time, where one comparison sort
     // of all half-edges by their vertex pair was most of the atlas's topology phase.
@@ -124,27 +134,29 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     std::vector<int32_t> bucket_offset(input.positions.size() + 1, 0);
     progress.part(0.3, 0.35).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
-            const int32_t a = halfedge_origin(welded_mesh, h), b = halfedge_target(welded_mesh, h);
+            const int32_t a = origin(h), b = target(h);
             ++bucket_offset[std::min(a, b) + 1];
         }
     });
     std::partial_sum(bucket_offset.begin(), bucket_offset.end(), bucket_offset.begin());
-    std::vector<std::pair<int32_t, int32_t>> by_edge(halfedge_count);  // (larger vertex, h)
+    std::vector<std::pair<int32_t, int32_t>> by_edge;  // (larger vertex, h)
+    reserve_huge_pages(by_edge, halfedge_count);
+    by_edge.resize(halfedge_count);
     {
         std::vector<int32_t> cursor(bucket_offset.begin(), bucket_offset.end() - 1);
         progress.part(0.35, 0.45).in_runs(halfedge_count, [&](int64_t run_begin, int64_t run_end) {
             for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
-                const int32_t a = halfedge_origin(welded_mesh, h),
-                              b = halfedge_target(welded_mesh, h);
+                const int32_t a = origin(h), b = target(h);
                 by_edge[cursor[std::min(a, b)]++] = {std::max(a, b), h};
             }
         });
     }
+    reserve_huge_pages(surface.twin, halfedge_count);
     surface.twin.assign(halfedge_count, -1);
     // Half-edges h and g of one edge become twins when they run opposite ways and no seam cuts
     // them.
     auto join = [&](int32_t h, int32_t g) {
-        if (halfedge_origin(welded_mesh, h) == halfedge_target(welded_mesh, g) &&
+        if (origin(h) == target(g) &&
             !(seams.any() && seams.cuts(kept[h / 3], h % 3, kept[g / 3], g % 3))) {
             surface.twin[h] = g;
             surface.twin[g] = h;
@@ -204,28 +216,25 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         }
     });
 
-    // Surface vertices: corners joined across interior edges, one class per fan.
-    const std::vector<int32_t> classes =
-        corner_vertex_classes(surface.twin, progress.part(0.65, 0.8));
-    surface.mesh.triangles.resize(count);
-    // Classes are numbered in order of first sight: the largest is the vertex count less one.
-    // Reserved exactly, these arrays keep no doubling's slack through the whole atlas.
-    const size_t vertex_count =
-        classes.empty()
-            ? 0
-            : static_cast<size_t>(*std::max_element(classes.begin(), classes.end())) + 1;
-    surface.welded_vertex.reserve(vertex_count);
-    surface.mesh.positions.reserve(vertex_count);
-    progress.part(0.8, 0.85).in_runs(3 * count, [&](int64_t run_begin, int64_t run_end) {
-        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
-            if (classes[c] == static_cast<int32_t>(surface.welded_vertex.size())) {  // a new vertex
-                const int32_t w = welded_mesh.triangles[c / 3][c % 3];
-                surface.welded_vertex.push_back(w);
-                surface.mesh.positions.push_back(input.positions[w]);
+    // Surface vertices: corners joined across interior edges, one class per fan, numbered in
+    // the order of their first corners, each corner's class written over its welded vertex.
+    const std::vector<int32_t> first_value = label_corner_classes(
+        surface.twin, [&](int32_t c) -> int32_t& { return surface.mesh.triangles[c / 3][c % 3]; },
+        progress.part(0.65, 0.8));
+    const size_t vertex_count = first_value.size();
+    reserve_huge_pages(surface.welded_vertex, vertex_count);  // exact: no doubling's slack
+    surface.welded_vertex.resize(vertex_count);
+    reserve_huge_pages(surface.mesh.positions, vertex_count);
+    surface.mesh.positions.resize(vertex_count);
+    progress.part(0.8, 0.85).in_runs(
+        static_cast<int64_t>(vertex_count), [&](int64_t run_begin, int64_t run_end) {
+            for (int64_t v = run_begin; v < run_end; ++v) {
+                const int32_t w = ~first_value[v];
+                surface.welded_vertex[v] = w;
+                surface.mesh.positions[v] = input.positions[w];
             }
-            surface.mesh.triangles[c / 3][c % 3] = classes[c];
-        }
-    });
+        });
+    reserve_huge_pages(surface.corner_angle, 3 * static_cast<size_t>(count));
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
     parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
         progress.at(begin, 3 * static_cast<int64_t>(count), 0.85, 1.0);

@@ -12,6 +12,7 @@
 
 #include "atlas/atlas_surface.h"
 #include "core/progress.h"
+#include "parallel/thread_pool.h"
 
 namespace raps {
 
@@ -36,8 +37,9 @@ void smooth_chart_boundaries(const std::vector<int32_t>& neighbour, std::vector<
                              const std::vector<char>& pinned = {});
 
 // Chart id per surface triangle, ids 0 .. chart count - 1, numbered by their first triangle.
+// The triangles' geometry is measured on `pool` (the same charts for any thread count).
 std::vector<int32_t> segment_charts(const AtlasSurface& surface,
-                                    const SegmentationSettings& settings,
+                                    const SegmentationSettings& settings, ThreadPool& pool,
                                     const ProgressSpan& progress = {});
 
 }  // namespace raps

@@ -385,40 +385,9 @@ VertexAdjacency build_vertex_adjacency(const TriangleMesh& mesh, const Halfedges
 
 std::vector<int32_t> corner_vertex_classes(const std::vector<int32_t>& twin,
                                            const ProgressSpan& progress) {
-    const int32_t corners = static_cast<int32_t>(twin.size());
-    std::vector<int32_t> parent(corners);
-    std::iota(parent.begin(), parent.end(), 0);
-    auto root_of = [&](int32_t v) {
-        while (parent[v] != v) {
-            parent[v] = parent[parent[v]];
-            v = parent[v];
-        }
-        return v;
-    };
-    auto unite = [&](int32_t a, int32_t b) {
-        a = root_of(a);
-        b = root_of(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    };
-    progress.part(0.0, 0.6).in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
-        for (int32_t h = static_cast<int32_t>(run_begin); h < run_end; ++h) {
-            const int32_t g = twin[h];
-            if (g < h) continue;
-            // h runs a -> b in its triangle, g runs b -> a: the corners at a are h's own corner and
-            // the corner after g; the corners at b are the corner after h and g's own corner.
-            unite(h, Halfedges::next(g));
-            unite(Halfedges::next(h), g);
-        }
-    });
-    std::vector<int32_t> class_of_root(corners, -1), classes(corners);
-    int32_t count = 0;
-    progress.part(0.6, 1.0).in_runs(corners, [&](int64_t run_begin, int64_t run_end) {
-        for (int32_t c = static_cast<int32_t>(run_begin); c < run_end; ++c) {
-            int32_t& cls = class_of_root[root_of(c)];
-            if (cls < 0) cls = count++;
-            classes[c] = cls;
-        }
-    });
+    std::vector<int32_t> classes(twin.size(), -1);
+    label_corner_classes(
+        twin, [&](int32_t c) -> int32_t& { return classes[c]; }, progress);
     return classes;
 }
 
