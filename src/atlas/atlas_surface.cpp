@@ -18,10 +18,9 @@ namespace {
 // mesh can stack any number of triangles on one edge).
 constexpr std::ptrdiff_t kMostSheetsPaired = 64;
 
-Eigen::Vector3d unit_normal(const TriangleMesh& mesh, int32_t t) {
-    const Triangle& v = mesh.triangles[t];
-    const Eigen::Vector3d n = (mesh.positions[v[1]] - mesh.positions[v[0]])
-                                  .cross(mesh.positions[v[2]] - mesh.positions[v[0]]);
+Eigen::Vector3d unit_normal(const std::vector<Eigen::Vector3d>& positions, const Triangle& v) {
+    const Eigen::Vector3d n =
+        (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]);
     const double length = n.norm();
     return length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
@@ -96,7 +95,7 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         }
     });
     std::vector<int32_t>().swap(slot);
-    std::vector<int32_t> kept;  // input triangles that become surface triangles
+    std::vector<int32_t> kept;              // input triangles that become surface triangles
     reserve_huge_pages(kept, input_count);  // nearly all of them: no doubling's slack kept
     progress.part(0.2, 0.25).in_runs(input_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
@@ -168,6 +167,10 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     // along the edge each continue across it: the back of a two-sided surface (every face
     // repeated, wound the other way) is one sheet beside the front instead of one chart per
     // triangle (a two-sided 10 x 10 grid: 364 charts). What no pair takes stays cut.
+    auto welded_corners = [&](int32_t s) {
+        const Triangle& v = surface.mesh.triangles[s];
+        return Triangle{~v[0], ~v[1], ~v[2]};
+    };
     auto join_sheets = [&](auto begin, auto end) {
         if (!input.triangle_polygon.empty()) {
             for (auto p = begin; p != end; ++p) {
@@ -183,11 +186,11 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
         for (auto p = begin; p != end; ++p) {
             for (auto q = p + 1; q != end; ++q) {
                 const int32_t h = p->second, g = q->second;
-                if (surface.twin[h] >= 0 || surface.twin[g] >= 0 ||
-                    halfedge_origin(welded_mesh, h) != halfedge_target(welded_mesh, g))
+                if (surface.twin[h] >= 0 || surface.twin[g] >= 0 || origin(h) != target(g))
                     continue;
-                const double alignment = unit_normal(welded_mesh, h / 3)
-                                             .dot(unit_normal(welded_mesh, g / 3));
+                const double alignment =
+                    unit_normal(input.positions, welded_corners(h / 3))
+                        .dot(unit_normal(input.positions, welded_corners(g / 3)));
                 pairs.push_back({-alignment, {std::min(h, g), std::max(h, g)}});
             }
         }
@@ -226,14 +229,14 @@ AtlasSurface build_atlas_surface(const TriangleMesh& input, const std::vector<in
     surface.welded_vertex.resize(vertex_count);
     reserve_huge_pages(surface.mesh.positions, vertex_count);
     surface.mesh.positions.resize(vertex_count);
-    progress.part(0.8, 0.85).in_runs(
-        static_cast<int64_t>(vertex_count), [&](int64_t run_begin, int64_t run_end) {
-            for (int64_t v = run_begin; v < run_end; ++v) {
-                const int32_t w = ~first_value[v];
-                surface.welded_vertex[v] = w;
-                surface.mesh.positions[v] = input.positions[w];
-            }
-        });
+    progress.part(0.8, 0.85).in_runs(static_cast<int64_t>(vertex_count),
+                                     [&](int64_t run_begin, int64_t run_end) {
+                                         for (int64_t v = run_begin; v < run_end; ++v) {
+                                             const int32_t w = ~first_value[v];
+                                             surface.welded_vertex[v] = w;
+                                             surface.mesh.positions[v] = input.positions[w];
+                                         }
+                                     });
     reserve_huge_pages(surface.corner_angle, 3 * static_cast<size_t>(count));
     surface.corner_angle.resize(3 * static_cast<size_t>(count));
     parallel_for(pool, 3 * static_cast<int64_t>(count), [&](int64_t begin, int64_t end) {
