@@ -101,17 +101,19 @@ BitImage rotate_quarter(const BitImage& in) {
     return out;
 }
 
+int32_t next_cell(const uint64_t* bits, int32_t count, int32_t from, bool value) {
+    if (from >= count) return count;
+    int32_t w = from / 64;
+    uint64_t word = (value ? bits[w] : ~bits[w]) & (~uint64_t(0) << (from % 64));
+    while (word == 0) {
+        if (++w * 64 >= count) return count;
+        word = value ? bits[w] : ~bits[w];
+    }
+    return std::min(count, w * 64 + __builtin_ctzll(word));
+}
+
 int32_t longest_run(const uint64_t* bits, int32_t count, bool value) {
-    // The first cell at or after `from` that equals `want`, or count.
-    auto next = [&](int32_t from, bool want) {
-        int32_t w = from / 64;
-        uint64_t word = (want ? bits[w] : ~bits[w]) & (~uint64_t(0) << (from % 64));
-        while (word == 0) {
-            if (++w * 64 >= count) return count;
-            word = want ? bits[w] : ~bits[w];
-        }
-        return std::min(count, w * 64 + __builtin_ctzll(word));
-    };
+    auto next = [&](int32_t from, bool want) { return next_cell(bits, count, from, want); };
     int32_t longest = 0;
     for (int32_t x = next(0, value); x < count;) {
         const int32_t end = next(x, !value);

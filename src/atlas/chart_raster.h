@@ -60,6 +60,10 @@ void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Tri
 // transposed 64 x 64 cells at a time: linear in words, not in cells.
 BitImage rotate_quarter(const BitImage& in);
 
+// The first of cells from .. count - 1 of a bit row that equals `value`, or count: a word at a
+// time (count trailing zeros).
+int32_t next_cell(const uint64_t* bits, int32_t count, int32_t from, bool value);
+
 // The longest run of cells equal to `value` among cells 0 .. count - 1 of a bit row, a run at a
 // time (count trailing zeros), not a cell at a time.
 int32_t longest_run(const uint64_t* bits, int32_t count, bool value);

@@ -73,15 +73,8 @@ class Occupancy {
             return;
         }
         const uint64_t* bits = row_ptr(row);
-        auto next = [&](int32_t from, bool occupied) {  // the first such cell at or after from
-            if (from >= strip_) return strip_;
-            int32_t w = from / 64;
-            uint64_t word = (occupied ? bits[w] : ~bits[w]) & (~uint64_t(0) << (from % 64));
-            while (word == 0) {
-                if (++w * 64 >= strip_) return strip_;
-                word = occupied ? bits[w] : ~bits[w];
-            }
-            return std::min(strip_, w * 64 + __builtin_ctzll(word));
+        auto next = [&](int32_t from, bool occupied) {
+            return next_cell(bits, strip_, from, occupied);
         };
         for (int32_t begin = next(0, false); begin < strip_;) {
             const int32_t end = next(begin, true);
