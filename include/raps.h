@@ -376,7 +376,7 @@ enum {
     RAPS_PARAM_MAX_MEMORY_MB = 16,
 
     /* Atlas domain (RAPS_DOMAIN_ATLAS); ignored by the others. */
-    /* int. Texels on the atlas's longer side, 16..16384. Default 1024. */
+    /* int. Texels on each side of the square atlas, 16..16384. Default 1024. */
     RAPS_PARAM_ATLAS_RESOLUTION = 32,
     /* int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
      * charts, more keeps mip levels apart too. Default 1. */
@@ -394,8 +394,9 @@ enum {
      * larger ones are split. Default 2.9. */
     RAPS_PARAM_ATLAS_MAX_LINF_STRETCH = 37,
     /* float, texels per world unit (positions' units, after raps_mesh_set_transform), >= 0.
-     * 0: the density that fills RAPS_PARAM_ATLAS_RESOLUTION with one page (the atlas's longer
-     * side is exactly that many texels; raps_stats.texels_per_unit reports the density found).
+     * 0: the density that fills the square of RAPS_PARAM_ATLAS_RESOLUTION texels with one page
+     * (the charts reach two opposite sides of it; raps_stats.texels_per_unit reports the
+     * density found).
      * Above 0: every chart gets this density (a chart's area in texels is its surface area
      * times the square of it) and is placed on whole texels, on pages of at most
      * RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
@@ -517,8 +518,10 @@ enum {
      * conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
      * are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
      * output triangles are the input triangles, in input order, with a chart id each. uvs are
-     * normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
-     * as a texture of that size maps them. */
+     * texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
+     * as a texture of that size maps them: at a resolution the atlas is a square of
+     * RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density
+     * (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT) and whole-texel atlases are cropped to their charts. */
     RAPS_DOMAIN_ATLAS = 2
 };
 

@@ -394,8 +394,8 @@ static void scene_output_is_identical_for_any_thread_count(void** state) {
     free_three_meshes(&t);
 }
 
-/* raps_parameterize's atlas also has its mesh range and chart records, and fits inside the
- * resolution asked for: its longer side is exactly that many texels. */
+/* raps_parameterize's atlas also has its mesh range and chart records, and is the square of
+ * the resolution asked for, which its charts reach on two opposite sides. */
 static void a_one_mesh_atlas_has_records_and_fits_its_resolution(void** state) {
     (void)state;
     test_mesh meshes[3] = {make_open_cone(8, 24, 1.0), make_grid(30, 7, 3.0, 0.7),
@@ -408,9 +408,17 @@ static void a_one_mesh_atlas_has_records_and_fits_its_resolution(void** state) {
                          RAPS_OK);
         raps_result* r = parameterize_ok(mesh, s);
         const raps_stats stats = stats_of(r);
-        const uint64_t longer =
-            stats.atlas_width > stats.atlas_height ? stats.atlas_width : stats.atlas_height;
-        assert_int_equal(longer, resolutions[m]);
+        assert_int_equal(stats.atlas_width, resolutions[m]);
+        assert_int_equal(stats.atlas_height, resolutions[m]);
+        double* uv = malloc(2 * raps_result_vertex_count(r) * sizeof(double));
+        assert_non_null(uv);
+        assert_int_equal(raps_result_copy_uvs_f64(r, uv, raps_result_vertex_count(r), 0), RAPS_OK);
+        double high[2] = {0, 0};
+        for (uint64_t k = 0; k < 2 * raps_result_vertex_count(r); ++k) {
+            if (uv[k] > high[k % 2]) high[k % 2] = uv[k];
+        }
+        assert_true((high[0] > 1 - 1e-9) || (high[1] > 1 - 1e-9));
+        free(uv);
         assert_int_equal(raps_result_mesh_count(r), 1);
         uint64_t range[4];
         assert_int_equal(raps_result_mesh_range(r, 0, &range[0], &range[1], &range[2], &range[3]),

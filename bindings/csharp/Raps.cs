@@ -690,7 +690,7 @@ namespace Raps
             set { SetInt(Param.MaxMemoryMb, value); }
         }
 
-        /// <summary>Atlas: texels on the atlas's longer side.</summary>
+        /// <summary>Atlas: texels on each side of the square atlas.</summary>
         public int AtlasResolution
         {
             get { return (int)GetInt(Param.AtlasResolution); }

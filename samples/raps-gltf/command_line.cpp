@@ -72,7 +72,7 @@ atlas (the library's settings; see include/raps.h):
   --iterations K             adaptive solves, 1..100 (default 1)
   --iteration-mode accumulate|reapply
   --weights mvc|cotan|uniform
-  --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
+  --resolution N             texels on each side of the square atlas, 16..16384 (default 1024)
   --padding N                texels between charts, 0..64 (default 1)
   --texels-per-unit T        pack at T texels per unit of the positions (--group scene: per
                              world unit) instead of filling --resolution: charts on whole

@@ -71,7 +71,7 @@ options:
   --max-memory-mb N          refuse runs estimated to need more memory (default 0: no cap)
   --threads N                threads, 0 = all cores (default 0); output is identical for any N
 atlas options:
-  --resolution N             texels on the atlas's longer side, 16..16384 (default 1024)
+  --resolution N             texels on each side of the square atlas, 16..16384 (default 1024)
   --padding N                texels between charts, 0..64 (default 1)
   --weld-tolerance D         weld vertices closer than D (default 0: identical positions)
   --hard-edge-angle DEG      edges whose normals differ more become seams (default 180: none)

@@ -84,6 +84,10 @@ constexpr size_t kHoledLayouts = 4;
 constexpr size_t kSwappedCharts = 16;
 constexpr int kSwapRounds = 2;
 
+// A layout whose square is smaller than this fraction of the resolution is packed again at the
+// density that fills it (ChartPacker::refit).
+constexpr double kRefitBelow = 0.97;
+
 }  // namespace
 
 double turn_degrees(const Eigen::Vector2d& rotation, int quarters) {
@@ -156,7 +160,7 @@ struct Layout {
     std::vector<Eigen::Vector2i> at;
     std::vector<int> quarter;
     int32_t width = 0, height = 0;
-    int64_t area() const { return static_cast<int64_t>(width) * height; }
+    int64_t cost() const { return layout_cost(width, height); }
 };
 
 // One trial of the layout search: an order, a strip width and a scoring rule.
@@ -166,6 +170,15 @@ struct Trial {
     bool count_waste;
     int turn_limit;  // kAllTurns, or 4: each chart turned its first way only
 };
+
+// The layout search's answer: the cheapest layout, its trial and the order it packed.
+struct Found {
+    Layout layout;
+    Trial trial;
+    std::vector<size_t> order;
+};
+
+constexpr int64_t kUnbeaten = std::numeric_limits<int64_t>::max();
 
 // pack_charts, step by step: turn the charts, fit the density to the resolution, search the
 // layouts at that density, and place the uvs.
@@ -188,7 +201,51 @@ class ChartPacker {
         make_orders();
         fit_density();
         add_orientations();
-        return to_uvs(best_layout());
+        Found found;
+        if (!best_layout(found))
+            throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
+        refit(found);
+        return to_uvs(found.layout);
+    }
+
+    // The density was fitted to one trial, and the cheapest layout may leave part of the square
+    // empty: stretched to fill it, the padding would widen with the charts. The best trial's
+    // order and rule are packed again at the density that fills the square, in strips as much
+    // wider and near them (kept only when one of them fits at that density).
+    void refit(Found& found) {
+        const int32_t side = std::max(found.layout.width, found.layout.height);
+        if (count_ < 2 || side >= kRefitBelow * limit_) return;
+        const double fitted = scale_, denser = 0.995 * limit_ / side;
+        scale_ *= denser;
+        rasterise_all();
+        Trial trial = found.trial;
+        trial.order = 0;
+        trial.width = std::clamp(static_cast<int32_t>(trial.width * denser), widest_, limit_);
+        std::vector<Trial> list = {trial};
+        for (double toward : {-1.0, 1.0}) {
+            for (const Trial& t : near_square(trial, toward, 4)) list.push_back(t);
+        }
+        std::vector<Layout> packed;
+        const size_t best = cheapest(list, {found.order}, packed, kUnbeaten, 1);
+        if (best < list.size()) {
+            found.layout = std::move(packed[best]);
+            return;
+        }
+        scale_ = fitted;
+        rasterise_all();
+    }
+
+    // Every chart's every orientation at scale_.
+    void rasterise_all() {
+        std::vector<std::pair<size_t, size_t>> ways;
+        for (size_t c = 0; c < count_; ++c) {
+            for (size_t o = 0; o < orientations_[c].size(); ++o) ways.emplace_back(c, o);
+        }
+        parallel_for_each(pool_, ways.size(), [&](size_t k) {
+            beat_.report(0.0);
+            profile(ways[k].first, ways[k].second, scale_);
+        });
+        find_widest();
     }
 
   private:
@@ -274,6 +331,10 @@ class ChartPacker {
             beat_.report(0.0);
             profile(c, 0, scale);
         });
+        find_widest();
+    }
+
+    void find_widest() {
         widest_ = 1;
         for (const PreparedChart& chart : prepared_) {
             const Profile& p = chart.profiles[0];
@@ -374,13 +435,13 @@ class ChartPacker {
     // Every order (up to kFewCharts charts; the first beyond), strip width and scoring rule.
     // `density_strip` is among the widths: its skyline packing is the one the density was
     // fitted to, so some trial always fits. Strip widths are geometrically spaced from 0.83 to
-    // 1.8 times the square's side (k = 2 .. 11 of a series from 0.7). The density is fitted to
-    // the square strip, so narrower strips grow too tall: 0.7 and 0.76 fitted none of the 16
-    // shared meshes.
+    // 1.39 times the square's side (k = 2 .. 8 of a series from 0.7 to 1.8). The density is
+    // fitted to the square strip, so narrower strips grow too tall: 0.7 and 0.76 fitted none of
+    // the 16 shared meshes; a wider strip's layout is wider than the square the best ones need.
     std::vector<Trial> trials() const {
         std::vector<int32_t> widths = {density_strip()};
         const int32_t square = square_side();
-        for (int k = 2; k < 12 && count_ > 1; ++k) {
+        for (int k = 2; k <= 8 && count_ > 1; ++k) {
             const double f = 0.7 * portable::pow(1.8 / 0.7, k / 11.0);
             widths.push_back(std::clamp(static_cast<int32_t>(square * f), widest_, limit_));
         }
@@ -400,49 +461,84 @@ class ChartPacker {
         return list;
     }
 
-    // The trials' smallest layout (ties: the earlier trial), each packed with holes filled, or
-    // on the skyline alone where filling holes overflows the atlas. Up to kFewCharts charts,
-    // where each chart's place matters and a packing is cheap, every trial fills holes. With
-    // more, the skyline alone, and holes filled in the two best layouts: for 2,000 separate
-    // triangles the rest took three times as long and found no better layout.
-    Layout best_layout() const {
+    // The trials' cheapest layout (layout_cost: the smallest square, ties: the earlier trial),
+    // then the best trial's strip width refined (near_square), then, up to kSwappedCharts
+    // charts, its order improved by swaps. False when no trial fits the atlas.
+    bool best_layout(Found& found) const {
         const std::vector<Trial> list = trials();
+        std::vector<Layout> packed;
+        const size_t best = cheapest(list, orders_, packed, kUnbeaten, kHoledLayouts);
+        if (best == list.size()) return false;
+        found = {std::move(packed[best]), list[best], orders_[list[best].order]};
+        // A layout wider than tall is tried in narrower strips, a taller one in wider strips.
+        const double toward = found.layout.width >= found.layout.height ? -1.0 : 1.0;
+        const std::vector<Trial> near = near_square(found.trial, toward, 6);
+        const size_t closer = cheapest(near, orders_, packed, found.layout.cost(), 1);
+        if (closer < near.size() && packed[closer].cost() < found.layout.cost()) {
+            found.layout = std::move(packed[closer]);
+            found.trial = near[closer];
+        }
+        if (count_ >= 2 && count_ <= kSwappedCharts) improve_by_swaps(found);
+        return true;
+    }
+
+    // `steps` strip widths from `trial`'s toward the square's side, 1.5% apart: the trials'
+    // widths are about 9% apart, which alone left up to a tenth of the square empty.
+    std::vector<Trial> near_square(const Trial& trial, double toward, int steps) const {
+        std::vector<Trial> list;
+        if (count_ < 2) return list;
+        for (int k = 1; k <= steps; ++k) {
+            Trial t = trial;
+            t.width = std::clamp(static_cast<int32_t>(trial.width * (1.0 + toward * 0.015 * k)),
+                                 widest_, limit_);
+            if (t.width != trial.width) list.push_back(t);
+        }
+        return list;
+    }
+
+    // Packs every trial and returns the index of the cheapest that fits (list.size(): none).
+    // Up to kFewCharts charts, where each chart's place matters and a packing is cheap, every
+    // trial fills holes. With more, the skyline alone, and holes filled in the `holed` cheapest
+    // (kHoledLayouts of the first search): for 2,000 separate triangles the rest took three
+    // times as long and found no better layout. Trial t packs `orders[t.order]`; `beaten`: a
+    // cost already found elsewhere.
+    size_t cheapest(const std::vector<Trial>& list, const std::vector<std::vector<size_t>>& orders,
+                    std::vector<Layout>& packed, int64_t beaten, size_t holed) const {
         const bool few = count_ <= kFewCharts;
-        std::vector<Layout> packed(list.size());
+        packed.assign(list.size(), Layout());
         std::vector<char> fits(list.size(), 0);
-        // Up to kFewCharts charts, a trial is given up once its area exceeds the smallest
-        // finished so far: it cannot be the smallest. (With more, the skyline layouts are
-        // ranked, and several of the smallest kept.)
-        std::atomic<int64_t> smallest{std::numeric_limits<int64_t>::max()};
-        const std::atomic<int64_t>* bound = few ? &smallest : nullptr;
-        // The widest strips first: the smallest layout was in the widest strip on 8 of the 18
-        // shared meshes with more than one chart (within 4% of it on 4 more), and an early
-        // small layout gives up more of the rest. The layout chosen does not depend on it.
+        // Up to kFewCharts charts, a trial is given up once its cost exceeds the cheapest
+        // finished so far: it cannot be the cheapest. (With more, the skyline layouts are
+        // ranked, and several of the cheapest kept.)
+        std::atomic<int64_t> cheapest_yet{beaten};
+        const std::atomic<int64_t>* bound = few ? &cheapest_yet : nullptr;
+        // The strips nearest the square's side first: the cheapest layouts are nearly square,
+        // and an early cheap layout gives up more of the rest. The layout chosen does not
+        // depend on it.
+        const int32_t square = square_side();
         std::vector<size_t> schedule(list.size());
         std::iota(schedule.begin(), schedule.end(), 0);
-        std::stable_sort(schedule.begin(), schedule.end(),
-                         [&](size_t a, size_t b) { return list[a].width > list[b].width; });
+        std::stable_sort(schedule.begin(), schedule.end(), [&](size_t a, size_t b) {
+            return std::abs(list[a].width - square) < std::abs(list[b].width - square);
+        });
         parallel_for_each(pool_, list.size(), [&](size_t i) {
             beat_.report(0.0);
             const size_t k = schedule[i];
             const Trial& t = list[k];
             StripResult result =
-                few ? pack(orders_[t.order], t, true, packed[k], bound) : StripResult::kTooLarge;
+                few ? pack(orders[t.order], t, true, packed[k], bound) : StripResult::kTooLarge;
             if (result == StripResult::kTooLarge)
-                result = pack(orders_[t.order], t, false, packed[k], bound);
+                result = pack(orders[t.order], t, false, packed[k], bound);
             fits[k] = result == StripResult::kFits;
-            if (fits[k]) lower_to(smallest, packed[k].area());
+            if (fits[k]) lower_to(cheapest_yet, packed[k].cost());
         });
-        if (!few) fill_holes_of_best(list, fits, packed);
+        if (!few) fill_holes_of_best(list, orders, fits, packed, holed);
         size_t best = list.size();
         for (size_t k = 0; k < list.size(); ++k) {
-            if (fits[k] && (best == list.size() || packed[k].area() < packed[best].area()))
+            if (fits[k] && (best == list.size() || packed[k].cost() < packed[best].cost()))
                 best = k;
         }
-        if (best == list.size())
-            throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
-        if (count_ < 2 || count_ > kSwappedCharts) return std::move(packed[best]);
-        return improved_by_swaps(std::move(packed[best]), list[best]);
+        return best;
     }
 
     static void lower_to(std::atomic<int64_t>& bound, int64_t value) {
@@ -451,21 +547,23 @@ class ChartPacker {
         }
     }
 
-    void fill_holes_of_best(const std::vector<Trial>& list, const std::vector<char>& fits,
-                            std::vector<Layout>& packed) const {
+    void fill_holes_of_best(const std::vector<Trial>& list,
+                            const std::vector<std::vector<size_t>>& orders,
+                            const std::vector<char>& fits, std::vector<Layout>& packed,
+                            size_t holed) const {
         std::vector<size_t> ranked;
         for (size_t k = 0; k < list.size(); ++k) {
             if (fits[k]) ranked.push_back(k);
         }
         std::stable_sort(ranked.begin(), ranked.end(),
-                         [&](size_t a, size_t b) { return packed[a].area() < packed[b].area(); });
-        ranked.resize(std::min(ranked.size(), kHoledLayouts));
+                         [&](size_t a, size_t b) { return packed[a].cost() < packed[b].cost(); });
+        ranked.resize(std::min(ranked.size(), holed));
         std::vector<Layout> with_holes(ranked.size());
         std::vector<char> holes_fit(ranked.size(), 0);
         parallel_for_each(pool_, ranked.size(), [&](size_t k) {
             beat_.report(0.0);
             const Trial& t = list[ranked[k]];
-            holes_fit[k] = pack(orders_[t.order], t, true, with_holes[k]) == StripResult::kFits;
+            holes_fit[k] = pack(orders[t.order], t, true, with_holes[k]) == StripResult::kFits;
         });
         for (size_t k = 0; k < ranked.size(); ++k) {
             if (holes_fit[k]) packed[ranked[k]] = std::move(with_holes[k]);
@@ -473,8 +571,10 @@ class ChartPacker {
     }
 
     // Up to kSwappedCharts charts, the best layout's chart order is then improved by swaps.
-    Layout improved_by_swaps(Layout layout, const Trial& trial) const {
-        std::vector<size_t> kept_order = orders_[trial.order];
+    void improve_by_swaps(Found& found) const {
+        Layout& layout = found.layout;
+        const Trial& trial = found.trial;
+        std::vector<size_t>& kept_order = found.order;
         for (int round = 0; round < kSwapRounds; ++round) {
             std::vector<std::vector<size_t>> variants;
             for (size_t i = 0; i < count_; ++i) {
@@ -487,16 +587,16 @@ class ChartPacker {
             std::vector<char> tried_fits(variants.size(), 0);
             // Only a smaller layout is kept: a variant is given up once it is as large as the
             // kept one or larger than a smaller one found.
-            std::atomic<int64_t> bound{layout.area() - 1};
+            std::atomic<int64_t> bound{layout.cost() - 1};
             parallel_for_each(pool_, variants.size(), [&](size_t k) {
                 beat_.report(0.0);
                 tried_fits[k] =
                     pack(variants[k], trial, true, tried[k], &bound) == StripResult::kFits;
-                if (tried_fits[k]) lower_to(bound, tried[k].area());
+                if (tried_fits[k]) lower_to(bound, tried[k].cost());
             });
             bool improved = false;
             for (size_t k = 0; k < variants.size(); ++k) {
-                if (tried_fits[k] && tried[k].area() < layout.area()) {
+                if (tried_fits[k] && tried[k].cost() < layout.cost()) {
                     layout = std::move(tried[k]);
                     kept_order = variants[k];
                     improved = true;
@@ -504,7 +604,6 @@ class ChartPacker {
             }
             if (!improved) break;
         }
-        return layout;
     }
 
     // The charts' uvs in the layout, in cells (continuous): each chart turned its way, then
@@ -530,11 +629,12 @@ class ChartPacker {
         return uv;
     }
 
-    // The padding matters between charts, not at the atlas's border: the layout is cropped to
-    // the charts themselves. It is stretched uniformly until its longer side is the resolution
-    // (a factor >= 1, which only widens the gaps between charts), then normalised per axis to
-    // the atlas's texels: texel space stays isotropic, and the charts span [0, 1] on one axis
-    // and all but a fraction of a texel on the other.
+    // The padding matters between charts, not at the atlas's border: the layout is placed at
+    // the page's corner and stretched uniformly until its longer side is the resolution (a
+    // factor >= 1, which only widens the gaps between charts). The page is the square texture
+    // of resolution x resolution texels, and uvs are texels over the resolution on both axes:
+    // uv space is as isotropic as texel space, so a square texture (or any uv editor) shows
+    // the charts undistorted.
     PackResult to_uvs(const Layout& layout) const {
         PackResult result = empty_result();
         Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
@@ -547,32 +647,15 @@ class ChartPacker {
             result.rotation_deg[c] = turn_degrees(orientations_[c][layout.quarter[c] / 4].rotation,
                                                   layout.quarter[c] % 4);
         }
-        const double span_x = std::max(high.x() - low.x(), 0.0);
-        const double span_y = std::max(high.y() - low.y(), 0.0);
-        const double span = std::max(span_x, span_y);
-        auto texels = [](double length) {
-            return std::max(1, static_cast<int32_t>(std::ceil(length - 1e-9)));
-        };
-        double grow = span > 0 ? resolution_ / span : 1.0;
-        // The shorter side loses up to a texel to rounding up (0.5% of alligator's 180):
-        // shrinking the layout until that side is a whole number of texels loses less of the
-        // longer one.
-        const double shorter = std::min(span_x, span_y);
-        if (shorter > 0) {
-            const double exact = std::floor(shorter * grow) / shorter;
-            auto fill = [&](double g) {
-                return span_x * g / texels(span_x * g) * (span_y * g / texels(span_y * g));
-            };
-            if (exact >= 1.0 && fill(exact) > fill(grow)) grow = exact;
-        }
-        result.width = texels(span_x * grow);
-        result.height = texels(span_y * grow);
+        const double span = (high - low).cwiseMax(Eigen::Vector2d::Zero()).maxCoeff();
+        const double grow = span > 0 ? resolution_ / span : 1.0;
+        result.width = result.height = static_cast<int32_t>(resolution_);
         result.texels_per_unit = scale_ * grow;
-        const double to_u = grow / result.width, to_v = grow / result.height;
+        const double to_uv = grow / resolution_;
         for (std::vector<Eigen::Vector2d>& chart_uv : result.uv) {
             for (Eigen::Vector2d& at : chart_uv) {
-                at = Eigen::Vector2d(std::min(1.0, (at.x() - low.x()) * to_u),
-                                     std::min(1.0, (at.y() - low.y()) * to_v));
+                at = Eigen::Vector2d(std::min(1.0, (at.x() - low.x()) * to_uv),
+                                     std::min(1.0, (at.y() - low.y()) * to_uv));
             }
         }
         return result;

@@ -1,16 +1,16 @@
-// Step 5 of the atlas pipeline: place the charts at one texel density in a rectangle of at most
-// resolution x resolution texels, as small as possible. Every chart is turned to its smallest
-// bounding box (smallest_bounding_box, measured by the caller with the chart's map), rasterised
-// conservatively at the texel size and padded, so that no two charts come closer than `padding`
-// texels (bilinear filtering and mip levels then never mix them). Charts are placed largest first
-// into a strip of fixed width, each in whichever of its four quarter turns (with any rotation
-// allowed, the largest charts also turned 15 to 75 degrees further) lands lowest on the skyline
-// (the top of what is already placed, per column of texels) or lower, in a hole under an
-// overhang; three orders of size, several strip widths and two scoring rules are tried and the one
-// giving the smallest rectangle wins (up to 16 charts, its order is then improved by pair swaps).
-// The texel density is then raised until the longer side is `resolution` texels. uvs are
-// normalised per axis: u = x / width, v = y / height, so a texture of width x height texels maps
-// them at equal density.
+// Step 5 of the atlas pipeline: place the charts at one texel density in a square page of
+// resolution x resolution texels, as large as it lets them be. Every chart is turned to its
+// smallest bounding box (smallest_bounding_box, measured by the caller with the chart's map),
+// rasterised conservatively at the texel size and padded, so that no two charts come closer than
+// `padding` texels (bilinear filtering and mip levels then never mix them). Charts are placed
+// largest first into a strip of fixed width, each in whichever of its four quarter turns (with
+// any rotation allowed, the largest charts also turned 15 to 75 degrees further) lands lowest on
+// the skyline (the top of what is already placed, per column of texels) or lower, in a hole
+// under an overhang; three orders of size, several strip widths and two scoring rules are tried
+// and the one held by the smallest square wins (its strip width is then refined, and up to 16
+// charts its order improved by pair swaps). The texel density is then raised until the layout's
+// longer side is `resolution` texels. uvs are texels over the resolution on both axes, so a
+// square texture maps them at equal density in u and v.
 #pragma once
 
 #include <cstdint>

@@ -450,7 +450,7 @@ StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::ve
         height = layout.height;
         if (std::max(width, height) > max_side) return StripResult::kTooLarge;
         if (beaten_above &&
-            static_cast<int64_t>(width) * height > beaten_above->load(std::memory_order_relaxed))
+            layout_cost(width, height) > beaten_above->load(std::memory_order_relaxed))
             return StripResult::kBeaten;
     }
     return StripResult::kFits;

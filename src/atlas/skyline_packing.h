@@ -4,6 +4,7 @@
 // loops are integer arithmetic, the same on every processor.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -82,15 +83,23 @@ class SkylineStrip {
 enum class StripResult {
     kFits,
     kTooLarge,  // a chart is wider than the strip in every turn, or a side grew past max_side
-    kBeaten,    // the layout's area grew past `beaten_above`
+    kBeaten,    // the layout's cost grew past `beaten_above`
 };
+
+// How layouts are ranked: by the side of the square that holds them (the square texture their
+// uvs are normalised to), then by their area. Both only grow as charts are added. Sides are at
+// most 2^14 cells (the largest resolution), so the area fits below the side's bits.
+inline int64_t layout_cost(int32_t width, int32_t height) {
+    return (static_cast<int64_t>(std::max(width, height)) << 32) +
+           static_cast<int64_t>(width) * height;
+}
 
 // Places the charts (in `order`) into a strip `strip` cells wide, one after another. x is
 // searched with a step of an eighth of the chart's width and refined around the best step,
 // which keeps the search linear in the strip width. Stops as soon as a chart is wider than the
 // strip in every turn, or the layout grows past `max_side` cells on either side, or (with
-// `beaten_above`) its area, width x height, exceeds that bound: both only grow as charts are
-// added, so a layout of a search that already has a smaller one is given up early. The bound
+// `beaten_above`) its layout_cost exceeds that bound: the cost only grows as charts are added,
+// so a layout of a search that already has a cheaper one is given up early. The bound
 // may fall while the layout is packed (other trials finishing); which layouts are given up then
 // depends on the schedule, never which layout is smallest.
 StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,

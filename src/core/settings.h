@@ -41,7 +41,7 @@ struct Settings {
     int sphere_alpha_steps = 2;
 
     // Atlas domain.
-    int32_t atlas_resolution = 1024;   // texels on the atlas's longer side
+    int32_t atlas_resolution = 1024;   // texels on each side of the square atlas
     int32_t atlas_padding = 1;         // texels between charts
     double weld_tolerance = 0.0;       // distance under which vertices are one
     double hard_edge_angle_deg = 180;  // dihedral angle above which an edge is a seam (180: off)

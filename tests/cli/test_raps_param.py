@@ -155,23 +155,34 @@ class RapsParamTest(unittest.TestCase):
             self.assert_reference_metrics(json.loads(out)['stats'], self.out, 1e-6, mesh)
 
     def test_atlas_statistics_are_the_reference_metrics_in_texel_space(self):
-        # Atlas uvs are normalised per axis to a width x height texture; the statistics are
-        # those of the texel-space layout (isotropic), which is what uvmetrics measures once the
-        # vt lines are scaled back by width and height. alligator's atlas is 1022 x 179 texels,
-        # fandisk's about 3:2.
+        # At a resolution the atlas is square and uvs are texels over the resolution on both
+        # axes: uvmetrics measures the vt lines as written, and finds the library's statistics
+        # (alligator's one chart is 5.7 times as long as wide, so an atlas normalised per axis
+        # would show it stretched 5.7 times). Pages at a density are cropped to their charts
+        # and normalised per axis: uvmetrics agrees once the vt lines are scaled back by width
+        # and height.
         texel_obj = os.path.join(self.dir.name, 'texels.obj')
         for mesh in ('alligator.obj', 'fandisk.obj'):
             rc, out, err = run('--atlas', self.mesh(mesh), '-o', self.out)
             self.assertEqual(rc, 0, err)
             ours = json.loads(out)['stats']
+            self.assertEqual((ours['atlas_width'], ours['atlas_height']), (1024, 1024))
+            # Measured: equal to 1e-10 relative (the JSON prints 10 significant digits).
+            ref = self.assert_reference_metrics(ours, self.out, 1e-8, mesh)
+            self.assertEqual(ours['charts'], ref['n_charts'])
+            density = 0.7 * ours['texels_per_unit']
+            rc, out, err = run('--atlas', self.mesh(mesh), '-o', self.out,
+                               '--texels-per-unit', repr(density), '--max-size', '1024')
+            self.assertEqual(rc, 0, err)
+            ours = json.loads(out)['stats']
             width, height = ours['atlas_width'], ours['atlas_height']
+            self.assertNotEqual(width, height)
             with open(self.out) as src, open(texel_obj, 'w') as dst:
                 for line in src:
                     if line.startswith('vt '):
                         u, w = map(float, line.split()[1:3])
                         line = f'vt {u * width!r} {w * height!r}\n'
                     dst.write(line)
-            # Measured: equal to 1e-10 relative (the JSON prints 10 significant digits).
             ref = self.assert_reference_metrics(ours, texel_obj, 1e-8, mesh)
             self.assertEqual(ours['charts'], ref['n_charts'])
 

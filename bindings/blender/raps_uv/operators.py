@@ -77,7 +77,7 @@ class UnwrapProperties:
                             description="Adaptive solves per chart")
     size_mode: EnumProperty(name="Size", items=_SIZE_MODES, default="RESOLUTION")
     resolution: IntProperty(name="Resolution", default=1024, min=16, max=16384,
-                            description="Texels on the atlas's longer side (with a density: "
+                            description="Texels on each side of the square atlas (with a density: "
                             "the largest page)")
     texels_per_unit: FloatProperty(name="Texels per Unit", default=256.0, min=0.001,
                                    max=1e6, description="Texel density per Blender unit")

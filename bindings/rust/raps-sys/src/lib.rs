@@ -139,7 +139,7 @@ pub const RAPS_PARAM_SPHERE_ALPHA_STEPS: i32 = 15;
 /// docs/bench-memory.md) is larger gets RAPS_ERROR_TOO_LARGE before any work is done.
 /// Default 0.
 pub const RAPS_PARAM_MAX_MEMORY_MB: i32 = 16;
-/// int. Texels on the atlas's longer side, 16..16384. Default 1024.
+/// int. Texels on each side of the square atlas, 16..16384. Default 1024.
 pub const RAPS_PARAM_ATLAS_RESOLUTION: i32 = 32;
 /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
 /// charts, more keeps mip levels apart too. Default 1.
@@ -157,8 +157,9 @@ pub const RAPS_PARAM_ATLAS_MAX_L2_STRETCH: i32 = 36;
 /// larger ones are split. Default 2.9.
 pub const RAPS_PARAM_ATLAS_MAX_LINF_STRETCH: i32 = 37;
 /// float, texels per world unit (positions' units, after raps_mesh_set_transform), >= 0.
-/// 0: the density that fills RAPS_PARAM_ATLAS_RESOLUTION with one page (the atlas's longer
-/// side is exactly that many texels; raps_stats.texels_per_unit reports the density found).
+/// 0: the density that fills the square of RAPS_PARAM_ATLAS_RESOLUTION texels with one page
+/// (the charts reach two opposite sides of it; raps_stats.texels_per_unit reports the
+/// density found).
 /// Above 0: every chart gets this density (a chart's area in texels is its surface area
 /// times the square of it) and is placed on whole texels, on pages of at most
 /// RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
@@ -277,8 +278,10 @@ pub const RAPS_DOMAIN_SPHERE: i32 = 1;
 /// conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
 /// are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
 /// output triangles are the input triangles, in input order, with a chart id each. uvs are
-/// normalised per axis to the atlas's width x height texels (raps_stats.atlas_width/height),
-/// as a texture of that size maps them.
+/// texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
+/// as a texture of that size maps them: at a resolution the atlas is a square of
+/// RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density
+/// (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT) and whole-texel atlases are cropped to their charts.
 pub const RAPS_DOMAIN_ATLAS: i32 = 2;
 
 // RAPS_PARAM_SPHERE_METHOD values

@@ -857,7 +857,7 @@ impl Settings {
     pub fn set_sphere_alpha_steps(&mut self, steps: u32) -> Result<&mut Self> {
         self.set_int(Param::SPHERE_ALPHA_STEPS, steps.into())
     }
-    /// Atlas: texels on the atlas's longer side.
+    /// Atlas: texels on each side of the square atlas.
     pub fn set_atlas_resolution(&mut self, texels: u32) -> Result<&mut Self> {
         self.set_int(Param::ATLAS_RESOLUTION, texels.into())
     }
