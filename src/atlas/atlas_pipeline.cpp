@@ -339,14 +339,40 @@ PageSettings page_settings(const Settings& settings) {
     return pages;
 }
 
+// Above this many charts, the square of the resolution is filled by the whole-texel packer,
+// which searches the density at the charts' final texels: pack_charts ranks its layouts on the
+// skyline alone there. Measured (docs/square-atlas.md): the ten-mesh scene (157 charts) 3.30 ->
+// 3.39 texels per unit; noisy scans of 110 to 139 charts +0.05 to +0.08 of the square. Up to
+// 100 charts pack_charts was the denser on every shared mesh but one.
+constexpr size_t kSquareOnWholeTexelsAbove = 100;
+
+// The whole-texel page at a resolution as the square atlas: its uvs, normalised per axis to the
+// page's cropped width x height, become texels over the resolution on both axes.
+PackResult as_square(PackResult page, int32_t resolution) {
+    const double to_u = static_cast<double>(page.width) / resolution;
+    const double to_v = static_cast<double>(page.height) / resolution;
+    for (std::vector<Eigen::Vector2d>& chart_uv : page.uv) {
+        for (Eigen::Vector2d& at : chart_uv) at = Eigen::Vector2d(at.x() * to_u, at.y() * to_v);
+    }
+    page.width = page.height = resolution;
+    return page;
+}
+
 // At a density, onto pages; on whole texels at a resolution, onto one page at the largest
-// density that fits; otherwise into one atlas filling the resolution.
+// density that fits; otherwise into the square atlas of the resolution.
 PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, ThreadPool& pool,
                 const ProgressSpan& progress) {
     if (settings.atlas_texels_per_unit > 0)
         return pack_pages(inputs, page_settings(settings), pool, progress);
     if (settings.atlas_whole_texels)
         return pack_one_page(inputs, page_settings(settings), pool, progress);
+    if (inputs.size() > kSquareOnWholeTexelsAbove) {
+        PageSettings square = page_settings(settings);
+        square.margin = 0;  // the lightmap settings are the whole-texel atlas's, not this one's
+        square.block_align = false;
+        return as_square(pack_one_page(inputs, square, pool, progress),
+                         settings.atlas_resolution);
+    }
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
     pack_settings.padding = settings.atlas_padding;

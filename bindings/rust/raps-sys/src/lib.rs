@@ -158,8 +158,9 @@ pub const RAPS_PARAM_ATLAS_MAX_L2_STRETCH: i32 = 36;
 pub const RAPS_PARAM_ATLAS_MAX_LINF_STRETCH: i32 = 37;
 /// float, texels per world unit (positions' units, after raps_mesh_set_transform), >= 0.
 /// 0: the density that fills the square of RAPS_PARAM_ATLAS_RESOLUTION texels with one page
-/// (the charts reach two opposite sides of it; raps_stats.texels_per_unit reports the
-/// density found).
+/// (the charts reach two opposite sides of it; above 100 charts they are placed on whole
+/// texels at the largest density within 1% that fits; raps_stats.texels_per_unit reports
+/// the density found).
 /// Above 0: every chart gets this density (a chart's area in texels is its surface area
 /// times the square of it) and is placed on whole texels, on pages of at most
 /// RAPS_PARAM_ATLAS_MAX_WIDTH x RAPS_PARAM_ATLAS_MAX_HEIGHT texels, never more; charts that
