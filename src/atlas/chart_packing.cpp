@@ -211,11 +211,15 @@ class ChartPacker {
     // The density was fitted to one trial, and the cheapest layout may leave part of the square
     // empty: stretched to fill it, the padding would widen with the charts. The best trial's
     // order and rule are packed again at the density that fills the square, in strips as much
-    // wider and near them (kept only when one of them fits at that density).
+    // wider and near them. Layouts at either density are chaotic in it (a percent more density
+    // can pack a tenth worse): the one whose charts are denser once stretched to the square is
+    // kept.
     void refit(Found& found) {
         const int32_t side = std::max(found.layout.width, found.layout.height);
         if (count_ < 2 || side >= kRefitBelow * limit_) return;
         const double fitted = scale_, denser = 0.995 * limit_ / side;
+        std::vector<PreparedChart> kept = prepared_;
+        const int32_t kept_widest = widest_;
         scale_ *= denser;
         rasterise_all();
         Trial trial = found.trial;
@@ -227,12 +231,19 @@ class ChartPacker {
         }
         std::vector<Layout> packed;
         const size_t best = cheapest(list, {found.order}, packed, kUnbeaten, 1);
-        if (best < list.size()) {
+        if (best < list.size() &&
+            final_density(packed[best], scale_) > final_density(found.layout, fitted)) {
             found.layout = std::move(packed[best]);
             return;
         }
         scale_ = fitted;
-        rasterise_all();
+        prepared_ = std::move(kept);
+        widest_ = kept_widest;
+    }
+
+    // Texels per uv unit once `layout`, packed at `scale`, is stretched to fill the square.
+    double final_density(const Layout& layout, double scale) const {
+        return scale * limit_ / std::max(std::max(layout.width, layout.height), 1);
     }
 
     // Every chart's every orientation at scale_.
