@@ -340,8 +340,9 @@ PageSettings page_settings(const Settings& settings) {
 }
 
 // Above this many charts, the square of the resolution is filled by the whole-texel packer,
-// which searches the density at the charts' final texels: pack_charts ranks its layouts on the
-// skyline alone there. Measured (docs/square-atlas.md): the ten-mesh scene (157 charts) 3.30 ->
+// which searches the density at the charts' final texels; pack_charts's search (every trial
+// with holes filled, pair swaps) is for fewer, and ranked layouts on the skyline alone to bound
+// its time beyond 100. Measured (docs/square-atlas.md): the ten-mesh scene (157 charts) 3.30 ->
 // 3.39 texels per unit; noisy scans of 110 to 139 charts +0.05 to +0.08 of the square. Up to
 // 100 charts pack_charts was the denser on every shared mesh but one.
 constexpr size_t kSquareOnWholeTexelsAbove = 100;

@@ -13,66 +13,6 @@
 namespace raps {
 namespace {
 
-double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-// Andrew's monotone chain.
-std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
-    std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-    });
-    if (points.size() < 3) return points;
-    std::vector<Eigen::Vector2d> hull(2 * points.size());
-    size_t k = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-        hull[k++] = points[i];
-    }
-    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-        hull[k++] = points[i];
-    }
-    hull.resize(k - 1);
-    return hull;
-}
-
-// The rotation (as cos, sin) that aligns the smallest-area bounding box with the axes: one of
-// the hull's edge directions.
-Eigen::Vector2d best_rotation(const std::vector<Eigen::Vector2d>& uv) {
-    const std::vector<Eigen::Vector2d> hull = convex_hull(uv);
-    Eigen::Vector2d best(1, 0);
-    double best_score = std::numeric_limits<double>::max();
-    for (size_t i = 0; i < hull.size(); ++i) {
-        Eigen::Vector2d edge = hull[(i + 1) % hull.size()] - hull[i];
-        if (edge.norm() == 0) continue;
-        edge.normalize();
-        double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
-        for (const Eigen::Vector2d& p : hull) {
-            const double x = edge.x() * p.x() + edge.y() * p.y();
-            const double y = -edge.y() * p.x() + edge.x() * p.y();
-            lo_x = std::min(lo_x, x);
-            hi_x = std::max(hi_x, x);
-            lo_y = std::min(lo_y, y);
-            hi_y = std::max(hi_y, y);
-        }
-        const double score = (hi_x - lo_x) * (hi_y - lo_y);
-        if (score < best_score - 1e-12 * std::abs(best_score)) {
-            best_score = score;
-            best = edge;
-        }
-    }
-    return best;
-}
-
-// Atlases of up to this many charts get the thorough search of layouts (pack_charts).
-constexpr size_t kFewCharts = 100;
-
-// With more, the layouts are ranked on the skyline alone and this many of the smallest packed
-// again with holes filled. Holes change the ranking: on the ten-mesh scene of issue 23 the
-// best layout with holes was the 4th smallest without (2: utilization 0.684 against 0.718).
-constexpr size_t kHoledLayouts = 4;
-
 // Up to this many charts, the best layout's chart order is then improved by swaps: each round
 // packs the order with every pair of charts swapped (same strip width and rule) and keeps the
 // smallest layout, until a round finds none smaller or after kSwapRounds. A few large charts
@@ -87,43 +27,6 @@ constexpr int kSwapRounds = 2;
 // A layout whose square is smaller than this fraction of the resolution is packed again at the
 // density that fills it (ChartPacker::refit).
 constexpr double kRefitBelow = 0.97;
-
-}  // namespace
-
-double turn_degrees(const Eigen::Vector2d& rotation, int quarters) {
-    double degrees = 90.0 * quarters - portable::atan2(rotation.y(), rotation.x()) * (180.0 / M_PI);
-    // A box along the axes turns by a multiple of 90 degrees, which rounding leaves a hair off.
-    const double quarter = std::round(degrees / 90.0) * 90.0;
-    if (std::abs(degrees - quarter) < 1e-9) degrees = quarter;
-    degrees = std::fmod(degrees, 360.0);
-    return degrees < 0 ? degrees + 360.0 : degrees + 0.0;  // + 0.0: never -0
-}
-
-ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
-                               const std::vector<Triangle>& triangles,
-                               const std::vector<int32_t>& boundary) {
-    std::vector<Eigen::Vector2d> outline(boundary.size());
-    for (size_t i = 0; i < boundary.size(); ++i) outline[i] = uv[boundary[i]];
-    ChartBox box;
-    box.rotation = best_rotation(outline);
-    const Eigen::Vector2d r = box.rotation;
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const Eigen::Vector2d& p : uv) {
-        const Eigen::Vector2d q(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
-        lo = lo.cwiseMin(q);
-        hi = hi.cwiseMax(q);
-    }
-    double area = 0;
-    for (const Triangle& t : triangles) {
-        const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
-        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
-    const double box_area = (hi.x() - lo.x()) * (hi.y() - lo.y());
-    box.fill = box_area > 0 ? std::min(1.0, area / box_area) : 1.0;
-    return box;
-}
-
-namespace {
 
 // A way to turn a chart before its quarter turns: the rotation (cos, sin) and the turned
 // chart's box, its lower corner and size in uv units.
@@ -230,7 +133,7 @@ class ChartPacker {
             for (const Trial& t : near_square(trial, toward, 4)) list.push_back(t);
         }
         std::vector<Layout> packed;
-        const size_t best = cheapest(list, {found.order}, packed, kUnbeaten, 1);
+        const size_t best = cheapest(list, {found.order}, packed, kUnbeaten);
         if (best < list.size() &&
             final_density(packed[best], scale_) > final_density(found.layout, fitted)) {
             found.layout = std::move(packed[best]);
@@ -443,7 +346,7 @@ class ChartPacker {
                           beaten_above);
     }
 
-    // Every order (up to kFewCharts charts; the first beyond), strip width and scoring rule.
+    // Every order, strip width and scoring rule.
     // `density_strip` is among the widths: its skyline packing is the one the density was
     // fitted to, so some trial always fits. Strip widths are geometrically spaced from 0.83 to
     // 1.39 times the square's side (k = 2 .. 8 of a series from 0.7 to 1.8). The density is
@@ -459,10 +362,9 @@ class ChartPacker {
         std::sort(widths.begin(), widths.end());
         widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
         std::vector<Trial> list;
-        const size_t orders = count_ <= kFewCharts ? orders_.size() : 1;
         for (int limit : {kAllTurns, 4}) {
-            if (limit == 4 && (count_ > kFewCharts || !any_turned_)) continue;
-            for (size_t o = 0; o < orders; ++o) {
+            if (limit == 4 && !any_turned_) continue;
+            for (size_t o = 0; o < orders_.size(); ++o) {
                 for (int32_t w : widths) {
                     list.push_back({o, w, false, limit});
                     list.push_back({o, w, true, limit});
@@ -478,13 +380,13 @@ class ChartPacker {
     bool best_layout(Found& found) const {
         const std::vector<Trial> list = trials();
         std::vector<Layout> packed;
-        const size_t best = cheapest(list, orders_, packed, kUnbeaten, kHoledLayouts);
+        const size_t best = cheapest(list, orders_, packed, kUnbeaten);
         if (best == list.size()) return false;
         found = {std::move(packed[best]), list[best], orders_[list[best].order]};
         // A layout wider than tall is tried in narrower strips, a taller one in wider strips.
         const double toward = found.layout.width >= found.layout.height ? -1.0 : 1.0;
         const std::vector<Trial> near = near_square(found.trial, toward, 6);
-        const size_t closer = cheapest(near, orders_, packed, found.layout.cost(), 1);
+        const size_t closer = cheapest(near, orders_, packed, found.layout.cost());
         if (closer < near.size() && packed[closer].cost() < found.layout.cost()) {
             found.layout = std::move(packed[closer]);
             found.trial = near[closer];
@@ -507,22 +409,16 @@ class ChartPacker {
         return list;
     }
 
-    // Packs every trial and returns the index of the cheapest that fits (list.size(): none).
-    // Up to kFewCharts charts, where each chart's place matters and a packing is cheap, every
-    // trial fills holes. With more, the skyline alone, and holes filled in the `holed` cheapest
-    // (kHoledLayouts of the first search): for 2,000 separate triangles the rest took three
-    // times as long and found no better layout. Trial t packs `orders[t.order]`; `beaten`: a
-    // cost already found elsewhere.
+    // Packs every trial, with holes filled (or on the skyline alone where filling holes
+    // overflows the atlas), and returns the index of the cheapest that fits (list.size():
+    // none). Trial t packs `orders[t.order]`; `beaten`: a cost already found elsewhere.
     size_t cheapest(const std::vector<Trial>& list, const std::vector<std::vector<size_t>>& orders,
-                    std::vector<Layout>& packed, int64_t beaten, size_t holed) const {
-        const bool few = count_ <= kFewCharts;
+                    std::vector<Layout>& packed, int64_t beaten) const {
         packed.assign(list.size(), Layout());
         std::vector<char> fits(list.size(), 0);
-        // Up to kFewCharts charts, a trial is given up once its cost exceeds the cheapest
-        // finished so far: it cannot be the cheapest. (With more, the skyline layouts are
-        // ranked, and several of the cheapest kept.)
+        // A trial is given up once its cost exceeds the cheapest finished so far: it cannot be
+        // the cheapest.
         std::atomic<int64_t> cheapest_yet{beaten};
-        const std::atomic<int64_t>* bound = few ? &cheapest_yet : nullptr;
         // The strips nearest the square's side first: the cheapest layouts are nearly square,
         // and an early cheap layout gives up more of the rest. The layout chosen does not
         // depend on it.
@@ -536,14 +432,12 @@ class ChartPacker {
             beat_.report(0.0);
             const size_t k = schedule[i];
             const Trial& t = list[k];
-            StripResult result =
-                few ? pack(orders[t.order], t, true, packed[k], bound) : StripResult::kTooLarge;
+            StripResult result = pack(orders[t.order], t, true, packed[k], &cheapest_yet);
             if (result == StripResult::kTooLarge)
-                result = pack(orders[t.order], t, false, packed[k], bound);
+                result = pack(orders[t.order], t, false, packed[k], &cheapest_yet);
             fits[k] = result == StripResult::kFits;
             if (fits[k]) lower_to(cheapest_yet, packed[k].cost());
         });
-        if (!few) fill_holes_of_best(list, orders, fits, packed, holed);
         size_t best = list.size();
         for (size_t k = 0; k < list.size(); ++k) {
             if (fits[k] && (best == list.size() || packed[k].cost() < packed[best].cost()))
@@ -555,29 +449,6 @@ class ChartPacker {
     static void lower_to(std::atomic<int64_t>& bound, int64_t value) {
         int64_t now = bound.load();
         while (value < now && !bound.compare_exchange_weak(now, value)) {
-        }
-    }
-
-    void fill_holes_of_best(const std::vector<Trial>& list,
-                            const std::vector<std::vector<size_t>>& orders,
-                            const std::vector<char>& fits, std::vector<Layout>& packed,
-                            size_t holed) const {
-        std::vector<size_t> ranked;
-        for (size_t k = 0; k < list.size(); ++k) {
-            if (fits[k]) ranked.push_back(k);
-        }
-        std::stable_sort(ranked.begin(), ranked.end(),
-                         [&](size_t a, size_t b) { return packed[a].cost() < packed[b].cost(); });
-        ranked.resize(std::min(ranked.size(), holed));
-        std::vector<Layout> with_holes(ranked.size());
-        std::vector<char> holes_fit(ranked.size(), 0);
-        parallel_for_each(pool_, ranked.size(), [&](size_t k) {
-            beat_.report(0.0);
-            const Trial& t = list[ranked[k]];
-            holes_fit[k] = pack(orders[t.order], t, true, with_holes[k]) == StripResult::kFits;
-        });
-        for (size_t k = 0; k < ranked.size(); ++k) {
-            if (holes_fit[k]) packed[ranked[k]] = std::move(with_holes[k]);
         }
     }
 

@@ -10,7 +10,8 @@
 // and the one held by the smallest square wins (its strip width is then refined, and up to 16
 // charts its order improved by pair swaps). The texel density is then raised until the layout's
 // longer side is `resolution` texels. uvs are texels over the resolution on both axes, so a
-// square texture maps them at equal density in u and v.
+// square texture maps them at equal density in u and v. Meant for up to about 100 charts: the
+// atlas pipeline packs more with the whole-texel packer (page_packing.h).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "atlas/chart_box.h"
 #include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
@@ -51,24 +53,5 @@ struct PackResult {
 // Charts are rasterised, and layouts tried, on `pool`; the result does not depend on its size.
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
                        ThreadPool& pool, const ProgressSpan& progress = {});
-
-// The counter-clockwise turn, in degrees in [0, 360), of a chart turned by `rotation` (cos,
-// sin: its points p go to (r.x p.x + r.y p.y, -r.y p.x + r.x p.y), a clockwise turn) and then by
-// `quarters` quarter turns counter-clockwise.
-double turn_degrees(const Eigen::Vector2d& rotation, int quarters);
-
-// A chart's smallest bounding box: the rotation (cos, sin) that aligns it with the axes, and how
-// well the chart fills it, uv area / box area, in (0, 1]. Arches, rings and L-shapes fill it
-// badly and waste packing space around them.
-struct ChartBox {
-    Eigen::Vector2d rotation = Eigen::Vector2d(1, 0);
-    double fill = 1;
-};
-// boundary: the chart's boundary vertices, whose hull is the chart's when the map is injective
-// (the hull is searched over them alone; a map that is not gets a box that is still valid, if
-// not the smallest).
-ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
-                               const std::vector<Triangle>& triangles,
-                               const std::vector<int32_t>& boundary);
 
 }  // namespace raps
