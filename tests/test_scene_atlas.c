@@ -612,8 +612,8 @@ static void blocks_and_margins(void** state) {
     test_mesh_free(&cone);
 }
 
-/* Whole texels at a resolution: one page within the resolution at the largest density that
- * fits, the padding exact at its texels, copies moved by whole texels. */
+/* Whole texels at a resolution: one page, the square of the resolution, at the largest density
+ * that fits, the padding exact at its texels, copies moved by whole texels. */
 static void whole_texels_at_a_resolution_fill_one_page(void** state) {
     (void)state;
     three_meshes t;
@@ -634,6 +634,8 @@ static void whole_texels_at_a_resolution_fill_one_page(void** state) {
                   a.stats.utilization);
     assert_int_equal(a.stats.page_count, 1);
     assert_int_equal(a.stats.scaled_down_charts, 0);
+    assert_int_equal(a.stats.atlas_width, 256);
+    assert_int_equal(a.stats.atlas_height, 256);
     check_pages(&a, a.stats.texels_per_unit, 256, 256);
     check_gaps(&a, 2, 1);
     check_whole_texel_copies(&a, 1, RAPS_ROTATION_NONE);

@@ -557,8 +557,9 @@ namespace Raps
         /// alignment) on one page of at most RAPS_PARAM_ATLAS_RESOLUTION x
         /// RAPS_PARAM_ATLAS_RESOLUTION texels, at the largest density (within 1%) at which every
         /// chart fits it unshrunk (raps_stats.texels_per_unit reports it); a lightmap of a fixed
-        /// size. The atlas may then be smaller than the resolution on both sides. Refused
-        /// (INVALID_ARGUMENT) when no density fits the charts with their padding. Default 0.
+        /// size: the atlas is that square, uvs texels over the resolution on both axes, the charts
+        /// in its lower left corner. Refused (INVALID_ARGUMENT) when no density fits the charts
+        /// with their padding. Default 0.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_WHOLE_TEXELS = 45;
         /// <summary>
@@ -671,7 +672,7 @@ namespace Raps
         /// texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
         /// as a texture of that size maps them: at a resolution the atlas is a square of
         /// RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density
-        /// (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT) and whole-texel atlases are cropped to their charts.
+        /// (RAPS_PARAM_ATLAS_TEXELS_PER_UNIT) are cropped to their charts.
         /// </summary>
         public const int RAPS_DOMAIN_ATLAS = 2;
 

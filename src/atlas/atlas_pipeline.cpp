@@ -347,8 +347,9 @@ PageSettings page_settings(const Settings& settings) {
 // 100 charts pack_charts was the denser on every shared mesh but one.
 constexpr size_t kSquareOnWholeTexelsAbove = 100;
 
-// The whole-texel page at a resolution as the square atlas: its uvs, normalised per axis to the
-// page's cropped width x height, become texels over the resolution on both axes.
+// The whole-texel page at a resolution as the square atlas of the resolution (the lightmap of a
+// fixed size it is for): its uvs, normalised per axis to the page's cropped width x height,
+// become texels over the resolution on both axes, and the page's texels stay whole.
 PackResult as_square(PackResult page, int32_t resolution) {
     const double to_u = static_cast<double>(page.width) / resolution;
     const double to_v = static_cast<double>(page.height) / resolution;
@@ -359,14 +360,16 @@ PackResult as_square(PackResult page, int32_t resolution) {
     return page;
 }
 
-// At a density, onto pages; on whole texels at a resolution, onto one page at the largest
-// density that fits; otherwise into the square atlas of the resolution.
+// At a density, onto pages; at a resolution, into its square: on whole texels at the largest
+// density that fits, or with pack_charts's search.
 PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, ThreadPool& pool,
                 const ProgressSpan& progress) {
     if (settings.atlas_texels_per_unit > 0)
         return pack_pages(inputs, page_settings(settings), pool, progress);
-    if (settings.atlas_whole_texels)
-        return pack_one_page(inputs, page_settings(settings), pool, progress);
+    if (settings.atlas_whole_texels) {
+        return as_square(pack_one_page(inputs, page_settings(settings), pool, progress),
+                         settings.atlas_resolution);
+    }
     if (inputs.size() > kSquareOnWholeTexelsAbove) {
         PageSettings square = page_settings(settings);
         square.margin = 0;  // the lightmap settings are the whole-texel atlas's, not this one's
