@@ -323,12 +323,32 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     for (double scale : set.scale) {
         if (scale < settings.texels_per_unit) return false;
     }
-    Layout layout;
-    layout.page.assign(charts.size(), 0);
-    layout.place.resize(charts.size());
-    if (!place_first_fit(set.prepared, set.order, grid, true, layout)) return false;
-    result = layout_uvs(charts, settings, grid, set, layout);
-    return true;
+    // Largest first by the longer side, by the box's area and by the shorter side: which fits
+    // varies with the density, and any fits. The first that does is kept.
+    auto by = [&](auto size_of) {
+        std::vector<size_t> order(charts.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return size_of(a) > size_of(b); });
+        return order;
+    };
+    auto extent = [&](size_t c) { return (set.oriented[c].extent * set.scale[c]).eval(); };
+    const std::vector<std::vector<size_t>> orders = {
+        set.order, by([&](size_t c) { return extent(c).prod(); }),
+        by([&](size_t c) { return extent(c).minCoeff(); })};
+    std::vector<Layout> layouts(orders.size());
+    std::vector<char> fits(orders.size(), 0);
+    parallel_for_each(pool, orders.size(), [&](size_t k) {
+        layouts[k].page.assign(charts.size(), 0);
+        layouts[k].place.resize(charts.size());
+        fits[k] = place_first_fit(set.prepared, orders[k], grid, true, layouts[k]);
+    });
+    for (size_t k = 0; k < orders.size(); ++k) {
+        if (!fits[k]) continue;
+        result = layout_uvs(charts, settings, grid, set, layouts[k]);
+        return true;
+    }
+    return false;
 }
 
 }  // namespace
