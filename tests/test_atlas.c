@@ -77,6 +77,9 @@ static void check_structure(const test_mesh* mesh, const atlas* a) {
         }
     }
     for (size_t t = 0; t < a->index_count / 3; ++t) assert_true(a->chart[t] < a->stats.chart_count);
+    /* At a resolution (here the default, 1024) the atlas is its square, whichever packer. */
+    assert_int_equal(a->stats.atlas_width, 1024);
+    assert_int_equal(a->stats.atlas_height, 1024);
     for (size_t v = 0; v < a->vertex_count; ++v) {
         assert_true(a->remap[v] < mesh->vertex_count);
         assert_true(a->uv[2 * v] >= 0.0f && a->uv[2 * v] <= 1.0f);
@@ -694,6 +697,31 @@ static void developable_and_curved_patches_stay_one_chart(void** state) {
     test_mesh_free(&cap);
 }
 
+/* uvs share one scale in u and v: a flat 4 x 1 strip, one chart, keeps its 4:1 aspect in uv
+ * space (its box turned either way), as a square texture and uvmetrics see it; an atlas
+ * normalised per axis to a cropped page would show it about 1:1. */
+static void uvs_share_one_scale_in_u_and_v(void** state) {
+    (void)state;
+    test_mesh strip = make_grid(40, 10, 4.0, 1.0);
+    atlas a = run_atlas(&strip, 0, 1);
+    check_structure(&strip, &a);
+    assert_int_equal(a.stats.chart_count, 1);
+    float low[2] = {1, 1}, high[2] = {0, 0};
+    for (size_t v = 0; v < a.vertex_count; ++v) {
+        for (int k = 0; k < 2; ++k) {
+            if (a.uv[2 * v + k] < low[k]) low[k] = a.uv[2 * v + k];
+            if (a.uv[2 * v + k] > high[k]) high[k] = a.uv[2 * v + k];
+        }
+    }
+    const double du = high[0] - low[0], dv = high[1] - low[1];
+    const double aspect = du > dv ? du / dv : dv / du;
+    print_message("uv box %.4f x %.4f, aspect %.3f\n", du, dv, aspect);
+    assert_true(fabs(aspect - 4.0) < 0.05);
+    assert_true(du > 0.99 || dv > 0.99); /* the longer side spans the square */
+    atlas_free(&a);
+    test_mesh_free(&strip);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_shared_mesh_gets_a_valid_atlas),
@@ -708,6 +736,7 @@ int main(void) {
         cmocka_unit_test(progress_calls_never_overlap),
         cmocka_unit_test(hard_edges_become_seams),
         cmocka_unit_test(developable_and_curved_patches_stay_one_chart),
+        cmocka_unit_test(uvs_share_one_scale_in_u_and_v),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
