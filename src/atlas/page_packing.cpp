@@ -144,10 +144,11 @@ struct Layout {
     std::vector<std::unique_ptr<SkylineStrip>> pages;
     std::vector<int32_t> page;
     std::vector<Placement> place;
+    bool count_waste = false;  // of the pages it opens (SkylineStrip)
 
     size_t first_open() const { return pages.size() > kOpenPages ? pages.size() - kOpenPages : 0; }
     void open_page(const PageGrid& grid) {
-        pages.push_back(std::make_unique<SkylineStrip>(grid.strip, false, true));
+        pages.push_back(std::make_unique<SkylineStrip>(grid.strip, count_waste, true));
         if (pages.size() > kOpenPages) pages[pages.size() - kOpenPages - 1].reset();
     }
 };
@@ -323,8 +324,10 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     for (double scale : set.scale) {
         if (scale < settings.texels_per_unit) return false;
     }
-    // Largest first by the longer side, by the box's area and by the shorter side: which fits
-    // varies with the density, and any fits. The first that does is kept.
+    // Largest first by the longer side, by the box's area and by the shorter side, each on the
+    // skyline's lowest place and then, where none of the three fits, on the place that leaves
+    // the fewest cells empty under the chart: which fits varies with the density, and any fits.
+    // The first that does is kept.
     auto by = [&](auto size_of) {
         std::vector<size_t> order(charts.size());
         std::iota(order.begin(), order.end(), 0);
@@ -336,17 +339,20 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     const std::vector<std::vector<size_t>> orders = {
         set.order, by([&](size_t c) { return extent(c).prod(); }),
         by([&](size_t c) { return extent(c).minCoeff(); })};
-    std::vector<Layout> layouts(orders.size());
-    std::vector<char> fits(orders.size(), 0);
-    parallel_for_each(pool, orders.size(), [&](size_t k) {
-        layouts[k].page.assign(charts.size(), 0);
-        layouts[k].place.resize(charts.size());
-        fits[k] = place_first_fit(set.prepared, orders[k], grid, true, layouts[k]);
-    });
-    for (size_t k = 0; k < orders.size(); ++k) {
-        if (!fits[k]) continue;
-        result = layout_uvs(charts, settings, grid, set, layouts[k]);
-        return true;
+    for (bool count_waste : {false, true}) {
+        std::vector<Layout> layouts(orders.size());
+        std::vector<char> fits(orders.size(), 0);
+        parallel_for_each(pool, orders.size(), [&](size_t k) {
+            layouts[k].page.assign(charts.size(), 0);
+            layouts[k].place.resize(charts.size());
+            layouts[k].count_waste = count_waste;
+            fits[k] = place_first_fit(set.prepared, orders[k], grid, true, layouts[k]);
+        });
+        for (size_t k = 0; k < orders.size(); ++k) {
+            if (!fits[k]) continue;
+            result = layout_uvs(charts, settings, grid, set, layouts[k]);
+            return true;
+        }
     }
     return false;
 }
