@@ -344,7 +344,7 @@ PageSettings page_settings(const Settings& settings) {
 // with holes filled, pair swaps) is for fewer, and ranked layouts on the skyline alone to bound
 // its time beyond 100. Measured (docs/square-atlas.md): the ten-mesh scene (157 charts) 3.30 ->
 // 3.39 texels per unit; noisy scans of 110 to 139 charts +0.05 to +0.08 of the square. Up to
-// 100 charts pack_charts was the denser on every shared mesh but one.
+// 100 charts pack_charts is denser on most shared meshes (up to 0.1 of the square).
 constexpr size_t kSquareOnWholeTexelsAbove = 100;
 
 // The whole-texel page at a resolution as the square atlas of the resolution (the lightmap of a
