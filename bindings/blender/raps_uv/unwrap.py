@@ -199,6 +199,12 @@ class Job:
         chart_ids = numpy.asarray(result.chart_ids(), dtype=numpy.int64)
         charts = result.charts()
         chart_page = numpy.array([c.page for c in charts], dtype=numpy.float64)
+        if self.options.size_mode == "DENSITY":
+            # Pages at a density are cropped to their charts, their uvs normalised to the page;
+            # a UDIM tile is a square texture of the resolution, so the page takes its lower
+            # left corner at one scale in u and v.
+            uvs = uvs * numpy.array([stats.atlas_width, stats.atlas_height]) / \
+                self.options.resolution
         chart_mesh = numpy.array([c.mesh for c in charts], dtype=numpy.int64)
         chart_area = numpy.array([c.area_3d for c in charts], dtype=numpy.float64)
         chart_l2 = numpy.array([c.stretch_l2 for c in charts], dtype=numpy.float64)
