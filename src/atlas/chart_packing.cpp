@@ -121,8 +121,15 @@ class ChartPacker {
         const int32_t side = std::max(found.layout.width, found.layout.height);
         if (count_ < 2 || side >= kRefitBelow * limit_) return;
         const double fitted = scale_, denser = 0.995 * limit_ / side;
-        std::vector<PreparedChart> kept = prepared_;
-        const int32_t kept_widest = widest_;
+        // The first density's rasters are kept aside (moved, not copied) in case they stay.
+        std::vector<PreparedChart> kept = std::move(prepared_);
+        prepared_ = std::vector<PreparedChart>(count_);
+        for (size_t c = 0; c < count_; ++c) {
+            prepared_[c].rotation = kept[c].rotation;
+            prepared_[c].origin = kept[c].origin;
+            prepared_[c].turns = kept[c].turns;
+            prepared_[c].profiles.resize(kept[c].profiles.size());
+        }
         scale_ *= denser;
         rasterise_all();
         Trial trial = found.trial;
@@ -141,7 +148,7 @@ class ChartPacker {
         }
         scale_ = fitted;
         prepared_ = std::move(kept);
-        widest_ = kept_widest;
+        find_widest();
     }
 
     // Texels per uv unit once `layout`, packed at `scale`, is stretched to fill the square.
@@ -198,25 +205,10 @@ class ChartPacker {
 
     const Eigen::Vector2d& extent(size_t c) const { return orientations_[c][0].extent; }
 
-    // Three orders to place the charts in, largest first by the longer side of their box, by
-    // its area and by its shorter side (ties by index): which packs best varies from mesh to
-    // mesh (measured: lion, suzanne and teapot each best in a different one).
     void make_orders() {
-        auto largest_first = [&](auto size_of) {
-            std::vector<size_t> order(count_);
-            std::iota(order.begin(), order.end(), 0);
-            std::stable_sort(order.begin(), order.end(),
-                             [&](size_t a, size_t b) { return size_of(a) > size_of(b); });
-            return order;
-        };
-        orders_ = {largest_first([&](size_t c) { return std::max(extent(c).x(), extent(c).y()); }),
-                   largest_first([&](size_t c) { return extent(c).x() * extent(c).y(); }),
-                   largest_first([&](size_t c) { return std::min(extent(c).x(), extent(c).y()); })};
-        // Charts of one size (thousands of equal quads) come in the same order every way.
-        for (size_t k = orders_.size(); k-- > 1;) {
-            if (std::find(orders_.begin(), orders_.begin() + k, orders_[k]) != orders_.begin() + k)
-                orders_.erase(orders_.begin() + k);
-        }
+        std::vector<Eigen::Vector2d> extents(count_);
+        for (size_t c = 0; c < count_; ++c) extents[c] = extent(c);
+        orders_ = size_orders(extents);
     }
 
     // The chart's raster in orientation `o` at `scale` texels per uv unit, padded, and its

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numeric>
 #include <string>
 
 #include "atlas/chart_raster.h"
@@ -195,12 +194,14 @@ bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<Prepare
 }
 
 // The charts turned, at their densities (the atlas's, or less for one larger than a page),
-// rasterised, and the order they are placed in.
+// rasterised, and the orders they may be placed in.
 struct PreparedCharts {
     std::vector<OrientedChart> oriented;
     std::vector<double> scale;
     std::vector<PreparedChart> prepared;
-    std::vector<size_t> order;  // largest first, by the longer side of the box (ties by index)
+    // size_orders of the boxes at their densities; the first, largest first by the longer side,
+    // is the order of pages.
+    std::vector<std::vector<size_t>> orders;
 };
 
 PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSettings& settings,
@@ -217,11 +218,9 @@ PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSe
     parallel_for_each(pool, count, [&](size_t c) {
         prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
     });
-    set.order.resize(count);
-    std::iota(set.order.begin(), set.order.end(), 0);
-    auto longer = [&](size_t c) { return set.oriented[c].extent.maxCoeff() * set.scale[c]; };
-    std::stable_sort(set.order.begin(), set.order.end(),
-                     [&](size_t a, size_t b) { return longer(a) > longer(b); });
+    std::vector<Eigen::Vector2d> extents(count);
+    for (size_t c = 0; c < count; ++c) extents[c] = set.oriented[c].extent * set.scale[c];
+    set.orders = size_orders(extents);
     return set;
 }
 
@@ -233,7 +232,7 @@ void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& 
     for (const PackInput& chart : charts) parts = std::max(parts, chart.part + 1);
     for (int32_t part = 0; part < parts; ++part) {
         std::vector<size_t> members;
-        for (size_t c : set.order) {
+        for (size_t c : set.orders[0]) {
             if (charts[c].part == part) members.push_back(c);
         }
         if (members.empty()) continue;
@@ -324,21 +323,10 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     for (double scale : set.scale) {
         if (scale < settings.texels_per_unit) return false;
     }
-    // Largest first by the longer side, by the box's area and by the shorter side, each on the
-    // skyline's lowest place and then, where none of the three fits, on the place that leaves
-    // the fewest cells empty under the chart: which fits varies with the density, and any fits.
-    // The first that does is kept.
-    auto by = [&](auto size_of) {
-        std::vector<size_t> order(charts.size());
-        std::iota(order.begin(), order.end(), 0);
-        std::stable_sort(order.begin(), order.end(),
-                         [&](size_t a, size_t b) { return size_of(a) > size_of(b); });
-        return order;
-    };
-    auto extent = [&](size_t c) { return (set.oriented[c].extent * set.scale[c]).eval(); };
-    const std::vector<std::vector<size_t>> orders = {
-        set.order, by([&](size_t c) { return extent(c).prod(); }),
-        by([&](size_t c) { return extent(c).minCoeff(); })};
+    // Each of size_orders on the skyline's lowest place and then, where none fits, on the place
+    // that leaves the fewest cells empty under the chart: which fits varies with the density,
+    // and any fits. The first that does is kept.
+    const std::vector<std::vector<size_t>>& orders = set.orders;
     for (bool count_waste : {false, true}) {
         std::vector<Layout> layouts(orders.size());
         std::vector<char> fits(orders.size(), 0);
@@ -370,7 +358,7 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
     if (settings.part_per_page) {
         place_parts_per_page(charts, grid, pool, set, layout);
     } else {
-        place_first_fit(set.prepared, set.order, grid, false, layout);
+        place_first_fit(set.prepared, set.orders[0], grid, false, layout);
     }
     return layout_uvs(charts, settings, grid, set, layout);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 namespace raps {
@@ -454,6 +455,25 @@ StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::ve
             return StripResult::kBeaten;
     }
     return StripResult::kFits;
+}
+
+std::vector<std::vector<size_t>> size_orders(const std::vector<Eigen::Vector2d>& extents) {
+    auto largest_first = [&](auto size_of) {
+        std::vector<size_t> order(extents.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return size_of(a) > size_of(b); });
+        return order;
+    };
+    std::vector<std::vector<size_t>> orders = {
+        largest_first([&](size_t c) { return extents[c].maxCoeff(); }),
+        largest_first([&](size_t c) { return extents[c].x() * extents[c].y(); }),
+        largest_first([&](size_t c) { return extents[c].minCoeff(); })};
+    for (size_t k = orders.size(); k-- > 1;) {
+        if (std::find(orders.begin(), orders.begin() + k, orders[k]) != orders.begin() + k)
+            orders.erase(orders.begin() + k);
+    }
+    return orders;
 }
 
 }  // namespace raps
