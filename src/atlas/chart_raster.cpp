@@ -204,6 +204,7 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
         const int32_t r = eighths * chart.height / 8;
         if (r == chart.height / 2) continue;
         profile.sample_runs.push_back(r);
+        profile.sample_runs.push_back(longest_run_begin(profile, r));
         profile.sample_runs.push_back(longest_run(
             profile.padded_bits.data() + static_cast<size_t>(r) * chart.words, chart.width, true));
     }

@@ -99,8 +99,8 @@ struct Profile {
     // a row of the layout with no free run as long has no room for the chart.
     int32_t middle_run = 0;
     int32_t middle_begin = 0;  // where that run begins (the first, of equal runs)
-    // A few more rows (r, the longest run of padded cells in row r) pairs: a position whose
-    // layout row y + r has no free run as long cannot take the chart.
+    // A few more rows as (r, begin, length) of the longest run of padded cells in row r: a
+    // position whose layout row y + r has no free run around that run cannot take the chart.
     std::vector<int32_t> sample_runs;
     // Per row of padded_bits: its first word with a cell and one past its last (collision
     // tests skip the rest; the rows of a rounded chart are short near its ends).

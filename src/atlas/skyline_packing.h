@@ -64,6 +64,10 @@ class SkylineStrip {
   private:
     // Moves `place` lower, into a hole under an overhang, where the chart fits there.
     void find_hole(const PreparedChart& chart, Placement& place);
+    // The chart's left columns at which its middle row and each sample row (Profile) lie in
+    // one free run of the layout's row they land on with the chart at row y: ascending
+    // intervals [lo, hi] as pairs in `out`. Any other column collides.
+    void run_positions(const Profile& p, int32_t y, std::vector<int32_t>& out);
     // Whether each of the chart's sample rows (Profile::sample_runs) has a free run as long in
     // the layout's row it lands on with the chart at row y: else no position of the row fits.
     bool room_in_samples(const Profile& p, int32_t y);
@@ -78,6 +82,7 @@ class SkylineStrip {
     // one run (a connected chart's are), the skyline's sum is one difference.
     std::vector<int64_t> skyline_sum_;
     int64_t hole_tests_left_;  // of the layout's hole searches (skyline_packing.cpp)
+    std::vector<int32_t> run_scratch_;  // run_positions's intervals under construction
 };
 
 enum class StripResult {
