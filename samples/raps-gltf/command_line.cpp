@@ -156,7 +156,7 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
         } else if (arg == "--uv-format") {
             const std::string f = value();
             if (f != "float" && f != "unorm16") throw UsageError("--uv-format is float or unorm16");
-            options.bake.uv_format = f == "float" ? UvFormat::kFloat : UvFormat::kUnorm16;
+            options.bake.uv_format = f == "float" ? UvFormat::kFloat32 : UvFormat::kUnorm16;
         } else if (const raps_samples::SwitchFlag* on = raps_samples::find_switch_flag(arg);
                    on && on->gltf) {
             const std::string error = raps_samples::set_switch(settings, *on);

@@ -31,7 +31,7 @@ struct BakeOptions {
     bool overwrite = false;  // replace a set the asset already has
     Grouping grouping = Grouping::kMesh;
     bool keep_uv_seams = false;  // the seams of TEXCOORD_0 stay chart boundaries
-    UvFormat uv_format = UvFormat::kFloat;
+    UvFormat uv_format = UvFormat::kFloat32;
     const raps_settings* settings = nullptr;  // the library's settings (domain set to atlas here)
     // Called from the library's progress callback: a label ("mesh 2/5 'wheels'"), the phase and
     // its fraction. Return false to cancel.

@@ -114,7 +114,7 @@ Json settings_json(const raps_settings* settings, const BakeOptions& options) {
                    : options.grouping == Grouping::kPrimitive ? "primitive"
                                                               : "scene";
     out["keep_uv_seams"] = options.keep_uv_seams;
-    out["uv_format"] = options.uv_format == UvFormat::kFloat ? "float" : "unorm16";
+    out["uv_format"] = options.uv_format == UvFormat::kFloat32 ? "float" : "unorm16";
     const raps_param choices[] = {RAPS_PARAM_WEIGHTS, RAPS_PARAM_MONITOR, RAPS_PARAM_ITERATION_MODE,
                                   RAPS_PARAM_ATLAS_ROTATION};
     const raps_param numbers[] = {RAPS_PARAM_ALPHA,

@@ -32,7 +32,7 @@ uint16_t quantize(double x, uint64_t n) {
 EncodedTexcoords encode_texcoords(const std::vector<float>& uv, UvFormat format, uint64_t width,
                                   uint64_t height) {
     EncodedTexcoords out;
-    if (format == UvFormat::kFloat) {
+    if (format == UvFormat::kFloat32) {
         out.component_type = kFloat;
         out.bytes.resize(uv.size() * sizeof(float));
         std::memcpy(out.bytes.data(), uv.data(), out.bytes.size());

@@ -13,7 +13,7 @@
 
 namespace raps_gltf {
 
-enum class UvFormat { kFloat, kUnorm16 };
+enum class UvFormat { kFloat32, kUnorm16 };
 
 struct EncodedTexcoords {
     int component_type = 0;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 
+#include "atlas/chart_raster.h"
 #include "atlas/skyline_packing.h"
 #include "core/error.h"
 #include "core/portable_math.h"
@@ -33,10 +34,6 @@ constexpr double kRefitBelow = 0.97;
 struct Orientation {
     Eigen::Vector2d rotation, origin, extent;
 };
-
-Eigen::Vector2d turned(const Eigen::Vector2d& r, const Eigen::Vector2d& p) {
-    return Eigen::Vector2d(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
-}
 
 Orientation orientation_of(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& r) {
     Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);

@@ -41,6 +41,11 @@ struct BitImage {
     }
 };
 
+// Point p turned by a chart's rotation r = (cos, sin): the uvs both packers rasterise.
+inline Eigen::Vector2d turned(const Eigen::Vector2d& r, const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
+}
+
 // floor(x) for the raster's coordinates (well inside int32_t): std::floor is a library call
 // on baseline x86-64, and was a quarter of rasterising.
 inline int32_t floor_cell(double x) {

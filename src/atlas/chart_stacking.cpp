@@ -115,9 +115,9 @@ bool congruent(const AtlasChart& a, const AtlasChart& b, const StackSettings& se
 
 // Charts that may stack: the same counts and the same triangles (hashed), and the same part
 // when stacking stays within one.
-using Key = std::tuple<int32_t, size_t, size_t, uint64_t>;
+using StackKey = std::tuple<int32_t, size_t, size_t, uint64_t>;
 
-Key key_of(const AtlasChart& chart, int32_t part) {
+StackKey key_of(const AtlasChart& chart, int32_t part) {
     uint64_t hash = 0;
     for (const Triangle& t : chart.disk.mesh.triangles) {
         for (int32_t v : t) hash = mix_bits(hash ^ static_cast<uint32_t>(v));
@@ -135,7 +135,7 @@ PointMatch match_points(const std::vector<Eigen::Vector3d>& a,
 std::vector<int32_t> stack_charts(const std::vector<AtlasChart>& charts,
                                   const std::vector<int32_t>& part, const StackSettings& settings) {
     std::vector<int32_t> place(charts.size());
-    std::map<Key, std::vector<int32_t>> places;  // per key, the charts that hold a place
+    std::map<StackKey, std::vector<int32_t>> places;  // per key, the charts that hold a place
     for (size_t c = 0; c < charts.size(); ++c) {
         place[c] = static_cast<int32_t>(c);
         std::vector<int32_t>& candidates =

@@ -137,8 +137,8 @@ Instances find_instances(const TriangleMesh& mesh, const AtlasParts& parts,
         if (a >= 0 && a == piece_of_vertex[welded[mesh.seam_edges[e][1]]])
             seams[a].push_back(static_cast<int32_t>(e));
     }
-    using Key = std::tuple<int32_t, size_t, size_t, uint64_t>;
-    std::map<Key, std::vector<int32_t>> candidates;
+    using PieceKey = std::tuple<int32_t, size_t, size_t, uint64_t>;
+    std::map<PieceKey, std::vector<int32_t>> candidates;
     std::vector<PieceLayout> layouts(count);
     found.source.resize(count);
     for (int32_t p = 0; p < count; ++p) {
@@ -146,7 +146,7 @@ Instances find_instances(const TriangleMesh& mesh, const AtlasParts& parts,
         const Instances::Piece& piece = found.pieces[p];
         if (has_points[p]) continue;
         layouts[p] = layout_of(mesh, welded, local_index, piece, seams[p]);
-        const Key key{across_parts ? 0 : piece.part, piece.vertices.size(), piece.triangles.size(),
+        const PieceKey key{across_parts ? 0 : piece.part, piece.vertices.size(), piece.triangles.size(),
                       hash_of(layouts[p])};
         std::vector<int32_t>& earlier = candidates[key];
         const std::vector<Eigen::Vector3d> positions = positions_of(mesh, piece);

@@ -41,10 +41,6 @@ struct OrientedChart {
     int turns = 4;
 };
 
-Eigen::Vector2d turned(const Eigen::Vector2d& r, const Eigen::Vector2d& p) {
-    return Eigen::Vector2d(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
-}
-
 OrientedChart orient(const PackInput& chart, ChartRotation policy) {
     OrientedChart o;
     if (policy == ChartRotation::kAny) o.rotation = chart.rotation;
@@ -139,7 +135,7 @@ void prepare(const PackInput& input, const OrientedChart& o, double scale, const
 constexpr size_t kOpenPages = 8;
 
 // The pages (closed ones null) and where each chart went.
-struct Layout {
+struct PageLayout {
     std::vector<std::unique_ptr<SkylineStrip>> pages;
     std::vector<int32_t> page;
     std::vector<Placement> place;
@@ -163,7 +159,7 @@ bool place_on(SkylineStrip& page, const PreparedChart& chart, int32_t rows, Plac
 // Each chart in `order` on the first page with room for it, or a new one. With one_page, a
 // chart that does not fit the first page fails the layout (returns false).
 bool place_first_fit(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
-                     const PageGrid& grid, bool one_page, Layout& layout) {
+                     const PageGrid& grid, bool one_page, PageLayout& layout) {
     for (size_t c : order) {
         bool placed = false;
         for (size_t p = layout.first_open(); p < layout.pages.size() && !placed; ++p) {
@@ -182,7 +178,7 @@ bool place_first_fit(const std::vector<PreparedChart>& prepared, const std::vect
 
 // All of `charts` on `page`, or none (the page is then unchanged).
 bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<PreparedChart>& prepared,
-                  const std::vector<size_t>& charts, const PageGrid& grid, Layout& layout) {
+                  const std::vector<size_t>& charts, const PageGrid& grid, PageLayout& layout) {
     auto trial = std::make_unique<SkylineStrip>(*page);
     std::vector<Placement> places(charts.size());
     for (size_t k = 0; k < charts.size(); ++k) {
@@ -227,7 +223,7 @@ PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSe
 // One mesh's charts together: on the first page with room for all of them, or a new page;
 // shrunk together while even an empty page has too little room.
 void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& grid,
-                          ThreadPool& pool, PreparedCharts& set, Layout& layout) {
+                          ThreadPool& pool, PreparedCharts& set, PageLayout& layout) {
     int32_t parts = 0;
     for (const PackInput& chart : charts) parts = std::max(parts, chart.part + 1);
     for (int32_t part = 0; part < parts; ++part) {
@@ -262,7 +258,7 @@ void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& 
 // inside the margin: whole cells), every page as large as any page's charts reach with the
 // margin, then normalised to it.
 PackResult layout_uvs(const std::vector<PackInput>& charts, const PageSettings& settings,
-                      const PageGrid& grid, const PreparedCharts& set, const Layout& layout) {
+                      const PageGrid& grid, const PreparedCharts& set, const PageLayout& layout) {
     const size_t count = charts.size();
     PackResult result;
     result.uv.resize(count);
@@ -328,7 +324,7 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     // and any fits. The first that does is kept.
     const std::vector<std::vector<size_t>>& orders = set.orders;
     for (bool count_waste : {false, true}) {
-        std::vector<Layout> layouts(orders.size());
+        std::vector<PageLayout> layouts(orders.size());
         std::vector<char> fits(orders.size(), 0);
         parallel_for_each(pool, orders.size(), [&](size_t k) {
             layouts[k].page.assign(charts.size(), 0);
@@ -352,7 +348,7 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
     const PageGrid grid = checked_grid(settings);
     PreparedCharts set = prepare_charts(charts, settings, grid, pool);
     progress.report(0.5);
-    Layout layout;
+    PageLayout layout;
     layout.page.assign(charts.size(), 0);
     layout.place.resize(charts.size());
     if (settings.part_per_page) {
