@@ -551,6 +551,11 @@ class RapsGltfTest(unittest.TestCase):
         import time
         src = os.path.join(DATA, 'gltf', 'CesiumMilkTruck', 'CesiumMilkTruck.gltf')
         rng = random.Random(20261123)
+        # Under the sanitizers (RAPS_TEST_SANITIZER, tests/CMakeLists.txt) a third of the kills:
+        # the order of writes and renames pinned down here is the same there, where each run
+        # takes five times as long (this test alone took 104 s of the suite's 188).
+        sanitized = os.environ.get('RAPS_TEST_SANITIZER') is not None
+        least_kills, least_while_writing = (8, 2) if sanitized else (24, 6)
         for ext in ('.glb', '.gltf'):
             ref_dir, out_dir = os.path.join(self.tmp, 'ref' + ext), os.path.join(self.tmp, 'out' + ext)
             os.mkdir(ref_dir)
@@ -573,7 +578,7 @@ class RapsGltfTest(unittest.TestCase):
             def temporaries():
                 return [f for f in os.listdir(out_dir) if '.tmp-' in f]
             kills, while_writing = 0, 0
-            while kills < 24 or (while_writing < 6 and kills < 200):
+            while kills < least_kills or (while_writing < least_while_writing and kills < 200):
                 watch = kills % 2 == 1
                 kills += 1
                 proc = subprocess.Popen([RAPS_GLTF, '--no-progress', src, main, '--overwrite'],
@@ -611,7 +616,8 @@ class RapsGltfTest(unittest.TestCase):
                     shutil.rmtree(out_dir)
                     os.mkdir(out_dir)
                     self.bake(src, main, '--overwrite', '--resolution', '256')
-            self.assertGreaterEqual(while_writing, 6, f'{ext}: of {kills} kills, {while_writing} '
+            self.assertGreaterEqual(while_writing, least_while_writing,
+                                    f'{ext}: of {kills} kills, {while_writing} '
                                     'landed while the output was being written')
             # A kill can leave a temporary (OUT.tmp-XXXXXX) beside the output, never anything else.
             leftovers = [f for f in os.listdir(out_dir) if '.tmp-' not in f]

@@ -7,6 +7,7 @@
 file(REMOVE_RECURSE ${WORK_DIR})
 
 include(${CMAKE_CURRENT_LIST_DIR}/../run_step.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/package_root.cmake)
 
 # Nothing from the repository or the build tree may reach the installed package.
 set(clean_env ${CMAKE_COMMAND} -E env --unset=RAPS_LIBRARY --unset=PYTHONPATH
@@ -31,19 +32,18 @@ file(GLOB sdist ${WORK_DIR}/dist/raps-*.tar.gz)
 if(NOT sdist)
   message(FATAL_ERROR "no sdist in ${WORK_DIR}/dist")
 endif()
-# Unpacked here rather than by pip into a random folder, so that the compiler launcher's cache
-# (ccache) sees the same paths on every run.
+# Unpacked here rather than by pip into a random folder, and built at PACKAGE_ROOT, so that the
+# compiler launcher's cache (ccache) sees the same paths as the other package builds.
 file(MAKE_DIRECTORY ${WORK_DIR}/sdist)
 run(${CMAKE_COMMAND} -E chdir ${WORK_DIR}/sdist ${CMAKE_COMMAND} -E tar xzf ${sdist})
 file(GLOB unpacked LIST_DIRECTORIES true ${WORK_DIR}/sdist/raps-*)
+package_root_claim(${unpacked})
 
-set(cmake_args "")
-if(LAUNCHER)
-  set(cmake_args "-DCMAKE_C_COMPILER_LAUNCHER=${LAUNCHER} -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
-endif()
-run(${clean_env} "RAPS_CMAKE_ARGS=${cmake_args}" CMAKE_BUILD_PARALLEL_LEVEL=${JOBS}
+list(JOIN package_cmake_args " " cmake_args)
+run(${clean_env} ${package_build_env} "RAPS_CMAKE_ARGS=${cmake_args}"
+    CMAKE_BUILD_PARALLEL_LEVEL=${JOBS}
     ${python} -m pip wheel --no-build-isolation --no-index --no-deps -w ${WORK_DIR}/wheels
-    ${unpacked})
+    ${PACKAGE_ROOT})
 file(GLOB wheel ${WORK_DIR}/wheels/raps-*.whl)
 if(NOT wheel MATCHES "-py3-none-linux_[a-z0-9_]+\\.whl$")
   message(FATAL_ERROR "the wheel is not tagged for this platform: ${wheel}")

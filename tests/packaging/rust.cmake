@@ -7,6 +7,7 @@ file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/crates)
 
 include(${CMAKE_CURRENT_LIST_DIR}/../run_step.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/package_root.cmake)
 
 # One crate at a time: raps names raps-sys by version, which no registry offline has, so a
 # patch points it at the sources. Debian bookworm's cargo (1.65) cannot package a workspace's
@@ -29,19 +30,18 @@ foreach(crate raps-sys raps)
   set(${var}_dir ${unpacked})
 endforeach()
 
+# raps-sys carries the library's sources: built at PACKAGE_ROOT (package_root.cmake).
+package_root_claim(${raps_sys_dir})
 set(RAPS_CRATE ${raps_dir})
-set(RAPS_SYS_CRATE ${raps_sys_dir})
+set(RAPS_SYS_CRATE ${PACKAGE_ROOT})
 configure_file(${SOURCE_DIR}/tests/packaging/rust-consumer/Cargo.toml.in
                ${WORK_DIR}/consumer/Cargo.toml @ONLY)
 file(COPY ${SOURCE_DIR}/tests/packaging/rust-consumer/src DESTINATION ${WORK_DIR}/consumer)
 
 # The enclosing build's compiler launcher (ccache) reaches the bundled CMake build; no
 # RAPS_LIB_DIR or LD_LIBRARY_PATH: nothing but the bundled static library can satisfy the link.
-set(cmake_args "")
-if(LAUNCHER)
-  set(cmake_args "-DCMAKE_C_COMPILER_LAUNCHER=${LAUNCHER} -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
-endif()
-run(${CMAKE_COMMAND} -E env --unset=RAPS_LIB_DIR --unset=LD_LIBRARY_PATH
+list(JOIN package_cmake_args " " cmake_args)
+run(${CMAKE_COMMAND} -E env --unset=RAPS_LIB_DIR --unset=LD_LIBRARY_PATH ${package_build_env}
     CARGO_TARGET_DIR=${WORK_DIR}/consumer/target NUM_JOBS=${JOBS} "RAPS_CMAKE_ARGS=${cmake_args}"
     ${CARGO} test --offline --jobs ${JOBS} --manifest-path ${WORK_DIR}/consumer/Cargo.toml)
 # cargo prints the test results on stdout and its progress on stderr.
