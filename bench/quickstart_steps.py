@@ -22,6 +22,7 @@ def main():
         now = time.monotonic() - start
         line = raw.decode(errors='replace')
         sys.stdout.write('%7.1f %s' % (now, line))
+        sys.stdout.flush()
         tree = re.match(r'Test project (\S+)', line)
         if tree:
             name = tree.group(1).rstrip('/').rsplit('/', 1)[-1]
