@@ -146,8 +146,8 @@ Instances find_instances(const TriangleMesh& mesh, const AtlasParts& parts,
         const Instances::Piece& piece = found.pieces[p];
         if (has_points[p]) continue;
         layouts[p] = layout_of(mesh, welded, local_index, piece, seams[p]);
-        const PieceKey key{across_parts ? 0 : piece.part, piece.vertices.size(), piece.triangles.size(),
-                      hash_of(layouts[p])};
+        const PieceKey key{across_parts ? 0 : piece.part, piece.vertices.size(),
+                           piece.triangles.size(), hash_of(layouts[p])};
         std::vector<int32_t>& earlier = candidates[key];
         const std::vector<Eigen::Vector3d> positions = positions_of(mesh, piece);
         for (int32_t q : earlier) {
