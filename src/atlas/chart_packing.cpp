@@ -118,17 +118,15 @@ class ChartPacker {
         const int32_t side = std::max(found.layout.width, found.layout.height);
         if (count_ < 2 || side >= kRefitBelow * limit_) return;
         const double fitted = scale_, denser = 0.995 * limit_ / side;
-        // The first density's rasters are kept aside (moved, not copied) in case they stay.
-        std::vector<PreparedChart> kept = std::move(prepared_);
-        prepared_ = std::vector<PreparedChart>(count_);
-        for (size_t c = 0; c < count_; ++c) {
-            prepared_[c].rotation = kept[c].rotation;
-            prepared_[c].origin = kept[c].origin;
-            prepared_[c].turns = kept[c].turns;
-            prepared_[c].profiles.resize(kept[c].profiles.size());
+        // Of the first density's rasters only their sizes are kept aside, which is all to_uvs
+        // needs if that layout stays: their cells are freed before the second density's are
+        // made, so the refit needs no more memory (fresh pages cost a fifth of the packing).
+        std::vector<PreparedChart> kept = prepared_sizes();
+        for (PreparedChart& chart : prepared_) {
+            for (Profile& profile : chart.profiles) profile = Profile();
         }
         scale_ *= denser;
-        rasterise_all();
+        rasterise_all(found.trial.turn_limit);
         Trial trial = found.trial;
         trial.order = 0;
         trial.width = std::clamp(static_cast<int32_t>(trial.width * denser), widest_, limit_);
@@ -148,16 +146,34 @@ class ChartPacker {
         find_widest();
     }
 
+    // prepared_ without the profiles' cells: only their sizes.
+    std::vector<PreparedChart> prepared_sizes() const {
+        std::vector<PreparedChart> sizes(count_);
+        for (size_t c = 0; c < count_; ++c) {
+            sizes[c].rotation = prepared_[c].rotation;
+            sizes[c].origin = prepared_[c].origin;
+            sizes[c].turns = prepared_[c].turns;
+            sizes[c].profiles.resize(prepared_[c].profiles.size());
+            for (size_t k = 0; k < sizes[c].profiles.size(); ++k) {
+                sizes[c].profiles[k].width = prepared_[c].profiles[k].width;
+                sizes[c].profiles[k].height = prepared_[c].profiles[k].height;
+            }
+        }
+        return sizes;
+    }
+
     // Texels per uv unit once `layout`, packed at `scale`, is stretched to fill the square.
     double final_density(const Layout& layout, double scale) const {
         return scale * limit_ / std::max(std::max(layout.width, layout.height), 1);
     }
 
-    // Every chart's every orientation at scale_.
-    void rasterise_all() {
+    // Every chart's orientations that placements below `turn_limit` use, at scale_.
+    void rasterise_all(int turn_limit) {
         std::vector<std::pair<size_t, size_t>> ways;
         for (size_t c = 0; c < count_; ++c) {
-            for (size_t o = 0; o < orientations_[c].size(); ++o) ways.emplace_back(c, o);
+            for (size_t o = 0; o < orientations_[c].size() && 4 * static_cast<int>(o) < turn_limit;
+                 ++o)
+                ways.emplace_back(c, o);
         }
         parallel_for_each(pool_, ways.size(), [&](size_t k) {
             beat_.report(0.0);

@@ -130,36 +130,40 @@ Profile make_profile(const BitImage& chart, int32_t padding) {
     profile.words = chart.words;
     profile.chart_bits = chart.bits;
     profile.top.assign(chart.width, -1);
-    // Padding by dilation: each row spread sideways by `padding` cells, then rows combined
-    // with their `padding` neighbours above and below.
-    std::vector<uint64_t> wide(chart.bits.size());
+    // Padding by dilation: each row spread sideways by `padding` cells, then each row combined
+    // with its `padding` neighbours above and below, in place: `padding` passes that add the
+    // row below (rows visited downwards, so each adds its neighbour as it was), then `padding`
+    // that add the row above.
+    profile.padded_bits = chart.bits;
+    const int32_t words = chart.words;
     for (int32_t y = 0; y < chart.height; ++y) {
-        const uint64_t* src = chart.row(y);
-        uint64_t* dst = wide.data() + static_cast<size_t>(y) * chart.words;
-        std::copy(src, src + chart.words, dst);
+        uint64_t* dst = profile.padded_bits.data() + static_cast<size_t>(y) * words;
         for (int32_t k = 0; k < padding; ++k) {
             uint64_t carry_up = 0;
-            for (int32_t w = 0; w < chart.words; ++w) {  // shift towards higher x
+            for (int32_t w = 0; w < words; ++w) {  // shift towards higher x
                 const uint64_t word = dst[w];
                 dst[w] = word | (word << 1) | carry_up;
                 carry_up = word >> 63;
             }
             uint64_t carry_down = 0;
-            for (int32_t w = chart.words - 1; w >= 0; --w) {  // towards lower x
+            for (int32_t w = words - 1; w >= 0; --w) {  // towards lower x
                 const uint64_t word = dst[w];
                 dst[w] = word | (word >> 1) | carry_down;
                 carry_down = word << 63;
             }
         }
     }
-    profile.padded_bits.assign(chart.bits.size(), 0);
-    for (int32_t y = 0; y < chart.height; ++y) {
-        uint64_t* dst = profile.padded_bits.data() + static_cast<size_t>(y) * chart.words;
-        for (int32_t yy = std::max(0, y - padding); yy <= std::min(chart.height - 1, y + padding);
-             ++yy) {
-            const uint64_t* src = wide.data() + static_cast<size_t>(yy) * chart.words;
-            for (int32_t w = 0; w < chart.words; ++w) dst[w] |= src[w];
-        }
+    auto padded_row = [&](int32_t y) {
+        return profile.padded_bits.data() + static_cast<size_t>(y) * words;
+    };
+    auto add_row = [&](int32_t to, int32_t from) {
+        for (int32_t w = 0; w < words; ++w) padded_row(to)[w] |= padded_row(from)[w];
+    };
+    for (int32_t k = 0; k < padding; ++k) {
+        for (int32_t y = chart.height - 1; y > 0; --y) add_row(y, y - 1);
+    }
+    for (int32_t k = 0; k < padding; ++k) {
+        for (int32_t y = 0; y + 1 < chart.height; ++y) add_row(y, y + 1);
     }
     // The first row (from the bottom or from the top) that sets each column: per row only the
     // columns not seen yet are visited, so this is linear in rows times words plus columns.

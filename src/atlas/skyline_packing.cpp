@@ -9,8 +9,17 @@ namespace raps {
 
 // The placed charts' cells as bit rows of a strip, growing upwards as needed.
 class Occupancy {
+    static constexpr int32_t kReservedRows = 4096;
+
   public:
-    explicit Occupancy(int32_t strip) : strip_(strip), words_((strip + 63) / 64 + 1) {}
+    // Room for as many rows as the strip is wide is reserved (up to kReservedRows): layouts
+    // grow to about a square, and growing the rows a chart at a time moved them again and
+    // again (a tenth of packing a small mesh's atlas).
+    explicit Occupancy(int32_t strip) : strip_(strip), words_((strip + 63) / 64 + 1) {
+        const size_t rows = static_cast<size_t>(std::min(strip, kReservedRows));
+        cells_.reserve(rows * words_);
+        longest_free_.reserve(rows);
+    }
 
     // Whether the padded chart placed with its lower left cell at (x, y) meets an occupied
     // cell.
@@ -357,7 +366,7 @@ bool SkylineStrip::find(const PreparedChart& chart, Placement& place) {
 void SkylineStrip::find_hole(const PreparedChart& chart, Placement& place) {
     Occupancy& occupancy = *occupancy_;
     int64_t& tests = hole_tests_left_;
-    std::vector<int32_t> intervals;
+    std::vector<int32_t>& intervals = intervals_;
     for (int q = 0; q < std::min(chart.turns, turn_limit); ++q) {
         const Profile& p = chart.profiles[q];
         if (p.width > strip) continue;

@@ -81,8 +81,9 @@ class SkylineStrip {
     // With count_waste, the skyline's prefix sums: under a chart whose occupied columns are
     // one run (a connected chart's are), the skyline's sum is one difference.
     std::vector<int64_t> skyline_sum_;
-    int64_t hole_tests_left_;  // of the layout's hole searches (skyline_packing.cpp)
+    int64_t hole_tests_left_;           // of the layout's hole searches (skyline_packing.cpp)
     std::vector<int32_t> run_scratch_;  // run_positions's intervals under construction
+    std::vector<int32_t> intervals_;    // find_hole's, kept for the next chart
 };
 
 enum class StripResult {
