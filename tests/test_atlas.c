@@ -625,6 +625,29 @@ static void exact_copies_add_no_texels(void** state) {
     test_mesh_free(&disk);
 }
 
+/* A mesh given twice in one place (a scan exported with its copy, a scene merged twice): every
+ * copy takes its first copy's uvs corner for corner, unflipped. A welded vertex can lie on one
+ * chart more than once, where the chart's boundary passes it twice; copies used to take the
+ * first of them, and the bunny given twice came out with 14 flipped copies. */
+static void a_mesh_given_twice_keeps_its_copies_on_their_originals(void** state) {
+    (void)state;
+    test_mesh bunny = load_shared_mesh("bunny.off");
+    test_mesh twice = join_meshes(&bunny, &bunny, 0.0, 0.0, 0.0);
+    for (size_t i = bunny.index_count; i < twice.index_count; ++i)
+        twice.indices[i] -= (uint32_t)bunny.vertex_count;
+    atlas a = run_atlas(&twice, 0, 1);
+    check_structure(&twice, &a);
+    assert_int_equal(a.stats.flipped_triangles, 0);
+    for (size_t i = bunny.index_count; i < twice.index_count; ++i) {
+        const uint32_t copy = a.indices[i], original = a.indices[i - bunny.index_count];
+        if (a.uv[2 * copy] != a.uv[2 * original] || a.uv[2 * copy + 1] != a.uv[2 * original + 1])
+            fail_msg("corner %zu: the copy's uv is not its original's", i);
+    }
+    atlas_free(&a);
+    test_mesh_free(&twice);
+    test_mesh_free(&bunny);
+}
+
 /* The back of a two-sided surface (every face repeated over the same vertices, wound the other
  * way: leaves, cards and cloth are modelled so) makes every inner edge non-manifold, four
  * half-edges on it. Pairing them front with front and back with back keeps each side one sheet:
@@ -730,6 +753,7 @@ int main(void) {
         cmocka_unit_test(split_vertices_are_welded_back),
         cmocka_unit_test(collapsed_parts_keep_their_vertices),
         cmocka_unit_test(exact_copies_add_no_texels),
+        cmocka_unit_test(a_mesh_given_twice_keeps_its_copies_on_their_originals),
         cmocka_unit_test(two_sided_surfaces_keep_one_chart_per_side),
         cmocka_unit_test(an_atlas_of_zero_area_is_refused),
         cmocka_unit_test(atlas_progress_and_cancellation),

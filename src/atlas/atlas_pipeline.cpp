@@ -148,9 +148,23 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
             const Triangle& v = mesh.triangles[t];
             int32_t chart = -1;
             if (surface.aside_primary[i] >= 0) {
-                chart = sources.chart[surface.input_triangle[surface.aside_primary[i]]];
+                // A copy takes its primary's corners, corner for corner: a welded vertex can lie
+                // on one chart more than once (where the chart's boundary passes it twice), and
+                // the first of them need not be the primary's (a mesh given twice in one place
+                // came out with flipped copies).
+                const int32_t primary = surface.input_triangle[surface.aside_primary[i]];
+                const Triangle& p = mesh.triangles[primary];
+                sources.chart[t] = sources.chart[primary];
                 sources.copy[t] = 1;
-            } else if (polygon_chart[i] >= 0) {
+                for (int k = 0; k < 3; ++k) {
+                    for (int j = 0; j < 3; ++j) {
+                        if (welded[p[j]] == welded[v[k]])
+                            sources.vertex[t][k] = sources.vertex[primary][j];
+                    }
+                }
+                continue;
+            }
+            if (polygon_chart[i] >= 0) {
                 chart = polygon_chart[i];
             } else {
                 for (int k = 0; k < 3 && chart < 0; ++k)
