@@ -1,6 +1,7 @@
 #include "gltf_document.h"
 
 #include <algorithm>
+#include <set>
 
 #include "gltf_accessors.h"
 #include "gltf_error.h"
@@ -342,7 +343,9 @@ void check_header(const Json& doc) {
     const std::vector<std::string> used = string_list(doc, "extensionsUsed");
     for (const std::string& name : refused_extensions()) {
         const bool is_required = std::count(required.begin(), required.end(), name) > 0;
-        if (is_required || std::count(used.begin(), used.end(), name) > 0) {
+        // Draco beside uncompressed accessors is read from those (drop_draco_fallback_copies).
+        const bool has_fallback = name == "KHR_draco_mesh_compression" && !is_required;
+        if (is_required || (!has_fallback && std::count(used.begin(), used.end(), name) > 0)) {
             throw GltfError("unsupported",
                             "the asset " + std::string(is_required ? "requires" : "uses") + " " +
                                 name +
@@ -351,6 +354,63 @@ void check_header(const Json& doc) {
                                 "data (decompress it first, e.g. gltf-transform copy)");
         }
     }
+    for (const std::string& name : required) {
+        if (!extension_is_known(name)) {
+            throw GltfError("unsupported", "the asset requires " + name +
+                                               ", which raps-gltf does not know: it may change "
+                                               "what the geometry means, so the asset is not read");
+        }
+    }
+}
+
+std::string drop_draco_fallback_copies(Json& doc) {
+    const char* kDraco = "KHR_draco_mesh_compression";
+    const std::vector<std::string> used = string_list(doc, "extensionsUsed");
+    if (std::count(used.begin(), used.end(), kDraco) == 0) return "";
+    const Json& accessors = array_of(doc, "accessors");
+    size_t dropped = 0;
+    if (doc.contains("meshes") && doc["meshes"].is_array()) {
+        for (size_t m = 0; m < doc["meshes"].size(); ++m) {
+            Json& mesh = doc["meshes"][m];
+            if (!mesh.is_object() || !mesh.contains("primitives")) continue;
+            for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+                Json& primitive = mesh["primitives"][p];
+                if (!primitive.is_object() || !primitive.contains("extensions") ||
+                    !primitive["extensions"].is_object() ||
+                    !primitive["extensions"].contains(kDraco))
+                    continue;
+                const Json* attributes = member(primitive, "attributes");
+                const Json* position = attributes ? member(*attributes, "POSITION") : nullptr;
+                const bool readable = position && position->is_number_unsigned() &&
+                                      position->get<uint64_t>() < accessors.size() &&
+                                      (member(accessors[position->get<size_t>()], "bufferView") ||
+                                       member(accessors[position->get<size_t>()], "sparse"));
+                if (!readable) {
+                    throw GltfError("unsupported",
+                                    "mesh " + std::to_string(m) + " primitive " +
+                                        std::to_string(p) + " has its geometry only in " + kDraco +
+                                        ", which raps-gltf does not decode (decompress it first, "
+                                        "e.g. gltf-transform copy)");
+                }
+                primitive["extensions"].erase(kDraco);
+                if (primitive["extensions"].empty()) primitive.erase("extensions");
+                ++dropped;
+            }
+        }
+    }
+    Json kept = Json::array();
+    for (const std::string& name : used) {
+        if (name != kDraco) kept.push_back(name);
+    }
+    if (kept.empty()) {
+        doc.erase("extensionsUsed");
+    } else {
+        doc["extensionsUsed"] = kept;
+    }
+    if (dropped == 0) return "";
+    return "read the uncompressed accessors of " + std::to_string(dropped) +
+           " Draco-compressed primitive(s) and dropped their compressed copies, which would not "
+           "carry the new uvs";
 }
 
 void check_document(const Json& doc, const std::vector<uint64_t>& buffer_sizes) {
@@ -367,6 +427,15 @@ void check_document(const Json& doc, const std::vector<uint64_t>& buffer_sizes) 
         }
         if (has_view) get_index(images[i], "bufferView", views.size(), "image " + str(i), true);
     }
+}
+
+bool extension_is_known(const std::string& name) {
+    static const std::set<std::string> kKnown = {
+        "KHR_texture_transform",  "KHR_mesh_quantization",  "KHR_lights_punctual",
+        "KHR_texture_basisu",     "EXT_texture_webp",       "EXT_texture_avif",
+        "KHR_materials_variants", "KHR_xmp_json_ld",        "EXT_mesh_gpu_instancing",
+        "KHR_animation_pointer",  "EXT_lights_image_based", "KHR_materials_pbrSpecularGlossiness"};
+    return kKnown.count(name) || name.compare(0, 14, "KHR_materials_") == 0;
 }
 
 }  // namespace raps_gltf

@@ -15,8 +15,21 @@
 
 namespace raps_gltf {
 
-// asset.version and the extensions raps-gltf refuses (compressed geometry it cannot decode).
+// asset.version and the extensions: refuses compressed geometry raps-gltf cannot decode (see
+// refused_extensions) and any required extension it does not know (a loader must not read an
+// asset whose required extensions it does not support: they may change what the data means).
 void check_header(const Json& doc);
+
+// Draco-compressed primitives that carry uncompressed accessors too (the extension used, not
+// required): the compressed copy is dropped from each primitive and from extensionsUsed, so the
+// output's uvs and split vertices are in the only geometry left. Returns a warning per asset
+// ("" if there was nothing to drop). Throws GltfError("unsupported") when such a primitive has
+// no uncompressed POSITION to fall back on.
+std::string drop_draco_fallback_copies(Json& doc);
+
+// Extensions known not to refer to accessors or bufferViews by index (or whose references are
+// renumbered here: EXT_mesh_gpu_instancing), and that change nothing raps-gltf reads.
+bool extension_is_known(const std::string& name);
 
 // Everything after the buffers: `buffer_sizes` are the buffers' byteLengths, whose bytes (or
 // absence, for placeholders) the loader already checked.

@@ -112,6 +112,7 @@ Asset load_asset(const std::string& path) {
         }
     }
     check_json_depth(text, text_size, kMaxJsonDepth);
+    check_utf8(text, text_size);
     try {
         asset.doc = Json::parse(text, text + text_size);
     } catch (const nlohmann::json::exception& e) {
@@ -121,6 +122,8 @@ Asset load_asset(const std::string& path) {
     normalize_integers(asset.doc);
     load_buffers(asset, bytes, asset.binary ? &glb : nullptr);
     check_document(asset.doc, buffer_sizes(asset));
+    const std::string dropped = drop_draco_fallback_copies(asset.doc);
+    if (!dropped.empty()) asset.warnings.push_back(dropped);
     check_image_uris(asset);
     return asset;
 }

@@ -14,6 +14,7 @@
 #include <set>
 
 #include "gltf_accessors.h"
+#include "gltf_document.h"
 #include "gltf_error.h"
 #include "gltf_safety.h"
 
@@ -512,15 +513,6 @@ std::set<std::string> input_files(const Asset& asset) {
 }
 
 }  // namespace
-
-bool extension_is_known(const std::string& name) {
-    static const std::set<std::string> kKnown = {
-        "KHR_texture_transform",  "KHR_mesh_quantization",  "KHR_lights_punctual",
-        "KHR_texture_basisu",     "EXT_texture_webp",       "EXT_texture_avif",
-        "KHR_materials_variants", "KHR_xmp_json_ld",        "EXT_mesh_gpu_instancing",
-        "KHR_animation_pointer",  "EXT_lights_image_based", "KHR_materials_pbrSpecularGlossiness"};
-    return kKnown.count(name) || name.compare(0, 14, "KHR_materials_") == 0;
-}
 
 void write_file_atomically(const std::string& path, const std::vector<uint8_t>& bytes) {
     StagedFiles staged;

@@ -35,10 +35,6 @@ struct WriteReport {
     std::vector<std::string> embedded_images, copied_images;
 };
 
-// Extensions known not to refer to accessors or bufferViews by index (or whose references are
-// renumbered here: EXT_mesh_gpu_instancing).
-bool extension_is_known(const std::string& name);
-
 // Throws GltfError("io", ...) when a file cannot be written, or when an output file would be one
 // of the input's files.
 WriteReport write_output(const Asset& asset, BakeResult& bake, const std::string& path,

@@ -119,6 +119,48 @@ GlbParts split_glb(const std::vector<uint8_t>& bytes) {
     return parts;
 }
 
+void check_utf8(const char* text, size_t size) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(text);
+    // The offset and value of the first byte of the ill-formed sequence: a Latin-1 letter, not
+    // the quote after it.
+    auto refuse = [&](size_t at) {
+        char hex[8];
+        std::snprintf(hex, sizeof(hex), "0x%02X", bytes[at]);
+        throw GltfError("json", "the JSON is not UTF-8 (glTF requires it): byte " +
+                                    std::to_string(at) + " (" + hex +
+                                    ") does not start a well-formed UTF-8 character");
+    };
+    for (size_t i = 0; i < size;) {
+        const unsigned char b = bytes[i];
+        // The sequence's length and its second byte's range (RFC 3629: no overlong forms, no
+        // surrogates, nothing above U+10FFFF).
+        size_t length = 1;
+        unsigned char low = 0x80, high = 0xBF;
+        if (b < 0x80) {
+            ++i;
+            continue;
+        } else if (b >= 0xC2 && b <= 0xDF) {
+            length = 2;
+        } else if (b >= 0xE0 && b <= 0xEF) {
+            length = 3;
+            if (b == 0xE0) low = 0xA0;
+            if (b == 0xED) high = 0x9F;
+        } else if (b >= 0xF0 && b <= 0xF4) {
+            length = 4;
+            if (b == 0xF0) low = 0x90;
+            if (b == 0xF4) high = 0x8F;
+        } else {
+            refuse(i);
+        }
+        for (size_t k = 1; k < length; ++k) {
+            if (i + k >= size) refuse(i);
+            const unsigned char next = bytes[i + k];
+            if (k == 1 ? (next < low || next > high) : (next < 0x80 || next > 0xBF)) refuse(i);
+        }
+        i += length;
+    }
+}
+
 void check_json_depth(const char* text, size_t size, int max_depth) {
     int depth = 0;
     bool in_string = false;
@@ -309,6 +351,7 @@ std::string resolve_inside(const std::string& folder, const std::string& uri,
     struct stat st;
     if (lstat(joined.c_str(), &st) != 0) return "";
     const std::string real = real_path(joined);
+    if (real == folder) refuse("it names the asset's folder itself, not a file");
     if (!inside(folder, real)) refuse("it resolves (through a link) outside the asset's folder");
     if (!is_regular_file(real)) refuse("not a regular file");
     return real;

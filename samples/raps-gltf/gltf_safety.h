@@ -32,6 +32,10 @@ GlbParts split_glb(const std::vector<uint8_t>& bytes);
 // escapes included), so no recursive parser or serializer downstream can run out of stack.
 void check_json_depth(const char* text, size_t size, int max_depth);
 
+// Refuses JSON text that is not UTF-8 (glTF requires it), naming the first bad byte's offset:
+// a Latin-1 name would otherwise be read and then fail only when the output is written.
+void check_utf8(const char* text, size_t size);
+
 // Reads a whole regular file of at most max_bytes. Throws GltfError("io", ...).
 std::vector<uint8_t> read_file(const std::string& path, uint64_t max_bytes);
 

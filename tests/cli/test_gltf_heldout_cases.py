@@ -69,6 +69,69 @@ class HeldoutCases(unittest.TestCase):
         self.assertFalse(os.path.exists(self.path('short_out.glb')))
 
 
+    def test_extensions_are_read_as_the_specification_says(self):
+        """Draco beside uncompressed accessors (used, not required) is valid glTF: the
+        uncompressed data is baked and the compressed copy, which would not carry the new uvs,
+        dropped. A required extension raps-gltf does not know is refused, naming it: it may
+        change what the data means."""
+        b = Builder()
+        prim, _, _ = b.grid_primitive()
+        prim['extensions'] = {'KHR_draco_mesh_compression': {
+            'bufferView': 0, 'attributes': {'POSITION': 0}}}
+        b.doc['meshes'].append({'primitives': [prim]})
+        b.doc['extensionsUsed'] = ['KHR_draco_mesh_compression']
+        src = self.path('draco_fallback.gltf')
+        b.write_gltf(src)
+        self.assertEqual(spec.error_codes(src), set())
+        g, report = self.bake_clean(src)
+        self.assertNotIn('KHR_draco_mesh_compression', g.json.get('extensionsUsed', []))
+        out_prim = g.json['meshes'][0]['primitives'][0]
+        self.assertNotIn('extensions', out_prim)
+        self.assertIn('TEXCOORD_0', out_prim['attributes'])
+        self.assertTrue(any('Draco' in w for w in report.get('loader_warnings', [])), report)
+        b = Builder()
+        prim, _, _ = b.grid_primitive()
+        b.doc['meshes'].append({'primitives': [prim]})
+        b.doc['extensionsUsed'] = b.doc['extensionsRequired'] = ['EXT_not_known_to_raps']
+        src = self.path('unknown_required.gltf')
+        b.write_gltf(src)
+        rc, _, stderr = spec.run(src, self.path('unknown_out.glb'))
+        self.assertEqual(rc, 1, stderr)
+        self.assertIn('requires EXT_not_known_to_raps', stderr)
+        self.assertFalse(os.path.exists(self.path('unknown_out.glb')))
+
+    def test_text_that_is_not_utf8_is_refused_at_its_first_bad_byte(self):
+        """glTF's JSON is UTF-8. A Latin-1 name (one byte 0xE9 for an accented e) is refused
+        before anything is read, with the byte's offset and value; it used to be read and then
+        fail as an internal error, naming the quote after it, when the output was written."""
+        b = Builder()
+        prim, _, _ = b.grid_primitive()
+        b.doc['meshes'].append({'primitives': [prim], 'name': 'cafX'})
+        src = self.path('latin1.gltf')
+        b.write_gltf(src)
+        with open(src, 'rb') as fh:
+            text = fh.read()
+        text = text.replace(b'"cafX"', b'"caf\xe9"')
+        with open(src, 'wb') as fh:
+            fh.write(text)
+        rc, _, stderr = spec.run(src, self.path('latin1_out.glb'))
+        self.assertEqual(rc, 1, stderr)
+        offset = text.index(b'\xe9')
+        self.assertIn(f'byte {offset} (0xE9)', stderr)
+        self.assertIn('UTF-8', stderr)
+        self.assertFalse(os.path.exists(self.path('latin1_out.glb')))
+
+    def test_a_uri_naming_the_folder_is_refused_as_such(self):
+        """uri '.' is the asset's own folder: refused as a folder, not as a link leading out."""
+        b = Builder()
+        prim, _, _ = b.grid_primitive()
+        b.doc['meshes'].append({'primitives': [prim]})
+        src = self.path('dot.gltf')
+        b.write_gltf(src, uri='.')
+        rc, _, stderr = spec.run(src, self.path('dot_out.glb'))
+        self.assertEqual(rc, 1, stderr)
+        self.assertIn("names the asset's folder itself", stderr)
+
     def test_texture_transform_texcoord_decides_the_tangents(self):
         """KHR_texture_transform's texCoord overrides the normal texture's own: the tangents
         follow the set the normal map really reads."""
