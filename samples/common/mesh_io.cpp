@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -291,14 +292,93 @@ void append_number(std::string& out, double value) {
 
 }  // namespace
 
+std::vector<std::array<uint32_t, 3>> PolygonMesh::polygon_triangles(size_t f) const {
+    const uint32_t begin = polygon_offsets[f], size = polygon_offsets[f + 1] - begin;
+    std::vector<std::array<uint32_t, 3>> fan;
+    for (uint32_t i = 0; i + 2 < size; ++i) fan.push_back({0, i + 1, i + 2});
+    if (size <= 3) return fan;
+    auto point = [&](uint32_t k) {
+        const double* p = &positions[3 * static_cast<size_t>(corners[begin + k])];
+        return std::array<double, 3>{p[0], p[1], p[2]};
+    };
+    auto sub = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+        return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    };
+    auto cross = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
+        return std::array<double, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                     u[0] * v[1] - u[1] * v[0]};
+    };
+    auto dot = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
+        return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    };
+    // The polygon's normal (Newell) and its longest edge, squared: "zero area" is below 1e-12
+    // of that edge's square, whatever the units.
+    std::array<double, 3> normal = {0, 0, 0};
+    double longest = 0;
+    for (uint32_t k = 0; k < size; ++k) {
+        const std::array<double, 3> p = point(k), q = point((k + 1) % size);
+        const std::array<double, 3> n = cross(p, q);
+        for (int d = 0; d < 3; ++d) normal[d] += n[d];
+        longest = std::max(longest, dot(sub(q, p), sub(q, p)));
+    }
+    const double flat = 1e-12 * longest;
+    auto signed_area = [&](uint32_t a, uint32_t b, uint32_t c) {  // twice, along the normal
+        const double length = std::sqrt(dot(normal, normal));
+        return length > 0
+                   ? dot(cross(sub(point(b), point(a)), sub(point(c), point(a))), normal) / length
+                   : 0.0;
+    };
+    bool fan_is_flat = false;
+    for (const auto& t : fan) fan_is_flat |= !(std::abs(signed_area(t[0], t[1], t[2])) > flat);
+    if (!fan_is_flat) return fan;
+    // Ear clipping: each time the ear (a corner whose triangle with its neighbours turns the
+    // polygon's way with area and holds no other corner) of the roundest triangle, the first of
+    // equals. Corners in a straight line are never ears, and clipping the roundest ear first
+    // leaves no straight run for last (the first ear each time, along a rectangle's bottom,
+    // left its top as a flat remainder).
+    std::vector<uint32_t> left(size);
+    for (uint32_t k = 0; k < size; ++k) left[k] = k;
+    auto roundness = [&](uint32_t a, uint32_t b, uint32_t c) {
+        const std::array<double, 3> u = sub(point(b), point(a)), v = sub(point(c), point(b)),
+                                    w = sub(point(a), point(c));
+        return signed_area(a, b, c) / (dot(u, u) + dot(v, v) + dot(w, w));
+    };
+    std::vector<std::array<uint32_t, 3>> ears;
+    while (left.size() > 3) {
+        const size_t n = left.size();
+        size_t best = n;
+        double best_roundness = 0;
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t a = left[(k + n - 1) % n], b = left[k], c = left[(k + 1) % n];
+            if (!(signed_area(a, b, c) > flat)) continue;
+            bool holds_corner = false;
+            for (size_t j = 0; j < n && !holds_corner; ++j) {
+                const uint32_t p = left[j];
+                if (p == a || p == b || p == c) continue;
+                holds_corner = signed_area(a, b, p) >= -flat && signed_area(b, c, p) >= -flat &&
+                               signed_area(c, a, p) >= -flat;
+            }
+            const double r = roundness(a, b, c);
+            if (!holds_corner && (best == n || r > best_roundness)) {
+                best = k;
+                best_roundness = r;
+            }
+        }
+        if (best == n) return fan;
+        ears.push_back({left[(best + n - 1) % n], left[best], left[(best + 1) % n]});
+        left.erase(left.begin() + static_cast<std::ptrdiff_t>(best));
+    }
+    if (!(signed_area(left[0], left[1], left[2]) > flat)) return fan;
+    ears.push_back({left[0], left[1], left[2]});
+    return ears;
+}
+
 std::vector<uint32_t> PolygonMesh::triangles() const {
     std::vector<uint32_t> out;
     out.reserve(3 * (corners.size() - 2 * polygon_count()));
     for (size_t f = 0; f < polygon_count(); ++f) {
-        for (uint32_t c = polygon_offsets[f] + 1; c + 1 < polygon_offsets[f + 1]; ++c) {
-            out.push_back(corners[polygon_offsets[f]]);
-            out.push_back(corners[c]);
-            out.push_back(corners[c + 1]);
+        for (const std::array<uint32_t, 3>& t : polygon_triangles(f)) {
+            for (uint32_t k : t) out.push_back(corners[polygon_offsets[f] + k]);
         }
     }
     return out;
@@ -311,10 +391,8 @@ std::vector<double> PolygonMesh::triangle_texcoords() const {
         out.push_back(texcoords[2 * static_cast<size_t>(texcoord_corners[corner]) + 1]);
     };
     for (size_t f = 0; f < polygon_count(); ++f) {
-        for (uint32_t c = polygon_offsets[f] + 1; c + 1 < polygon_offsets[f + 1]; ++c) {
-            add(polygon_offsets[f]);
-            add(c);
-            add(c + 1);
+        for (const std::array<uint32_t, 3>& t : polygon_triangles(f)) {
+            for (uint32_t k : t) add(polygon_offsets[f] + k);
         }
     }
     return out;

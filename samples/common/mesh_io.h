@@ -1,8 +1,10 @@
 // Reading OBJ, OFF and PLY meshes and writing OBJ with texture coordinates, for the command-line
 // samples, the benchmarks and the tests. Not part of the library: raps itself never touches
-// files. Polygons are kept as they are for writing back and fan-triangulated for the library.
+// files. Polygons are kept as they are for writing back and cut into triangles for the library
+// (PolygonMesh::polygon_triangles).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,7 +25,13 @@ struct PolygonMesh {
 
     size_t vertex_count() const { return positions.size() / 3; }
     size_t polygon_count() const { return polygon_offsets.size() - 1; }
-    // Triangle indices, polygons fanned from their first corner, in polygon order.
+    // Polygon f as size - 2 triangles of its corners (0 .. size - 1, counted from its first
+    // corner): the fan from its first corner, unless that fan has a triangle of zero area
+    // (corners in a straight line, as CAD n-gons have along straight edges); then ear clipping
+    // in the polygon's plane, which never cuts off a straight corner, if it finds triangles that
+    // all have area; else the fan.
+    std::vector<std::array<uint32_t, 3>> polygon_triangles(size_t f) const;
+    // Triangle indices, polygon_triangles of each polygon in polygon order.
     std::vector<uint32_t> triangles() const;
     // Per triangle of triangles(), its polygon's group (empty without groups).
     std::vector<uint32_t> triangle_groups() const;

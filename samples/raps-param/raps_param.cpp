@@ -162,9 +162,10 @@ void check(raps_status status, Message&& message) {
 }
 
 // The OBJ's faces and, per corner, its output vertex (its `vt`). A polygon stays a polygon when
-// its fan triangles (in the order PolygonMesh::triangles() made them) agree on every corner's
-// output vertex, that is when no seam runs through it; otherwise it is written as its triangles.
-// Disk domain: output vertex = input vertex, so the input's faces come back unchanged.
+// its triangles (PolygonMesh::polygon_triangles, in the order triangles() made them) agree on
+// every corner's output vertex, that is when no seam runs through it; otherwise it is written as
+// its triangles. Disk domain: output vertex = input vertex, so the input's faces come back
+// unchanged.
 void faces_with_output_vertices(const raps_samples::PolygonMesh& polygons,
                                 const std::vector<uint32_t>& out_indices,
                                 raps_samples::PolygonMesh& written,
@@ -173,11 +174,12 @@ void faces_with_output_vertices(const raps_samples::PolygonMesh& polygons,
     size_t triangle = 0;
     for (size_t f = 0; f < polygons.polygon_count(); ++f) {
         const uint32_t begin = polygons.polygon_offsets[f], end = polygons.polygon_offsets[f + 1];
-        const size_t fan = end - begin - 2;
+        const std::vector<std::array<uint32_t, 3>> parts = polygons.polygon_triangles(f);
+        const size_t fan = parts.size();
         std::vector<int64_t> corner_vertex(end - begin, -1);
         bool consistent = true;
         for (size_t i = 0; i < fan; ++i) {
-            const size_t corners[3] = {0, i + 1, i + 2};
+            const std::array<uint32_t, 3>& corners = parts[i];
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = out_indices[3 * (triangle + i) + k];
                 int64_t& slot = corner_vertex[corners[k]];
@@ -193,8 +195,8 @@ void faces_with_output_vertices(const raps_samples::PolygonMesh& polygons,
             written.polygon_offsets.push_back(static_cast<uint32_t>(written.corners.size()));
         } else {
             for (size_t i = 0; i < fan; ++i) {
-                const uint32_t corners[3] = {begin, static_cast<uint32_t>(begin + i + 1),
-                                             static_cast<uint32_t>(begin + i + 2)};
+                const uint32_t corners[3] = {begin + parts[i][0], begin + parts[i][1],
+                                             begin + parts[i][2]};
                 for (int k = 0; k < 3; ++k) {
                     written.corners.push_back(polygons.corners[corners[k]]);
                     uv_corners.push_back(out_indices[3 * (triangle + i) + k]);

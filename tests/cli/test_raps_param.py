@@ -87,6 +87,37 @@ class RapsParamTest(unittest.TestCase):
         self.assertEqual(len(f_out), 36)
         self.assertTrue(all(len(face) == 4 for face in f_out))
 
+    def test_polygons_with_corners_in_a_straight_line_are_mapped(self):
+        """CAD n-gons keep corners along their straight edges: a strip of rectangles 1, 2 and 3
+        cells long (4-, 6- and 8-gons, up to 4 corners in a line). Fanned from the first corner
+        they gave zero-area triangles, which the disk domain refused; they are cut into
+        triangles with area, and written back whole."""
+        src = os.path.join(self.dir.name, 'ngons.obj')
+        nx, ny = 12, 4
+        with open(src, 'w') as fh:
+            for j in range(ny + 1):
+                for i in range(nx + 1):
+                    fh.write(f'v {i} {j} {0.05 * i * j}\n')
+            faces = 0
+            for j in range(ny):
+                i, k = 0, 0
+                while i < nx:
+                    w = min((1, 2, 3)[k % 3], nx - i)
+                    k += 1
+                    bottom = [j * (nx + 1) + i + a + 1 for a in range(w + 1)]
+                    top = [(j + 1) * (nx + 1) + i + w - a + 1 for a in range(w + 1)]
+                    fh.write('f ' + ' '.join(map(str, bottom + top)) + '\n')
+                    faces += 1
+                    i += w
+        for flags in ((), ('--atlas',)):
+            rc, out, err = run(src, '-o', self.out, *flags)
+            self.assertEqual(rc, 0, (flags, err))
+            stats = json.loads(out)
+            self.assertEqual(stats['stats']['flipped_triangles'], 0, flags)
+            self.assertEqual(stats['stats']['zero_area_triangles'], 0, flags)
+            _, _, f_out = obj_records(self.out)
+            self.assertEqual(len(f_out), faces, flags)
+
     def test_json_reports_settings_stats_and_phase_times(self):
         rc, out, err = run(self.mesh('lion.off'), '-o', self.out, '--weights', 'uniform',
                            '--monitor', 'length', '--alpha', '1.5', '--iterations', '2',
