@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -37,8 +38,9 @@ input and output sizes, the settings used, the distortion statistics and the tim
 in milliseconds. On failure it prints {"error": {...}} on stdout, a message on stderr, writes
 nothing, and exits with 1 (2 for a usage error).
 
-Disk domain (default): the mesh must be a topological disk; one `vt` per vertex and the input's
-faces in their order (`f v/vt ...`).
+Disk domain (default): the mesh must be a topological disk; one `vt` per vertex a face uses,
+in vertex order, and the input's faces in their order (`f v/vt ...`). Vertices no face uses
+are left out of the map (the library refuses them) and keep their `v` line, with no `vt`.
 Atlas domain (--atlas): any mesh is cut into charts, each mapped and packed into one atlas;
 seams get separate `vt` indices (`f v/vt`), faces are the input's in their order (a polygon is
 written as triangles where a seam crosses it). With several inputs, all are packed into one
@@ -47,7 +49,7 @@ followed by that input's `v`, `vt` and `f` lines; the JSON adds per input, per p
 chart figures ("inputs", "pages", "charts"). `vt` are normalised to the page (--texels-per-unit).
 Sphere domain (--sphere): the mesh must be closed and of genus 0; it is mapped onto the unit
 sphere (paper section 7) and OUT.obj gets the same faces with the points on the sphere as its `v` lines, in
-input order, and no `vt`. With --sphere-uv octahedral the `v` lines are the same and the sphere
+input order (a vertex no face uses keeps its position), and no `vt`. With --sphere-uv octahedral the `v` lines are the same and the sphere
 is also unfolded onto [0,1]^2 through the octahedron: `vt` lines, one per output vertex (the
 vertices on the cut get one per side), faces `f v/vt`. The statistics are then those of the
 uvs; without it, those of the sphere map (exact spherical triangle areas, angles between
@@ -210,6 +212,7 @@ void faces_with_output_vertices(const raps_samples::PolygonMesh& polygons,
 
 // The sphere domain writes its points on the sphere as the OBJ's `v` lines, in input order.
 std::vector<double> sphere_positions(const raps_samples::PolygonMesh& polygons,
+                                     const std::vector<uint32_t>& vertex_of,
                                      const raps_result* result) {
     const size_t vertices = raps_result_vertex_count(result);
     std::vector<double> points(3 * vertices);
@@ -218,9 +221,11 @@ std::vector<double> sphere_positions(const raps_samples::PolygonMesh& polygons,
           [] { return "cannot copy sphere points"; });
     check(raps_result_copy_vertex_remap(result, remap.data(), vertices),
           [] { return "cannot copy the vertex remap"; });
-    std::vector<double> positions(polygons.positions.size());
+    // A vertex no face uses keeps its position: it is on no triangle, so on no sphere.
+    std::vector<double> positions = polygons.positions;
     for (size_t o = 0; o < vertices; ++o) {
-        for (int c = 0; c < 3; ++c) positions[3 * remap[o] + c] = points[3 * o + c];
+        const size_t v = vertex_of.empty() ? remap[o] : vertex_of[remap[o]];
+        for (int c = 0; c < 3; ++c) positions[3 * v + c] = points[3 * o + c];
     }
     return positions;
 }
@@ -311,6 +316,9 @@ bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& op
 struct Input {
     raps_samples::PolygonMesh polygons;
     raps_mesh* mesh = nullptr;
+    // The disk and sphere domains map only the vertices faces use (the library refuses any
+    // other): per vertex given to the library, its vertex of `polygons`; empty when all are.
+    std::vector<uint32_t> vertex_of;
     Input() = default;
     Input(const Input&) = delete;
     Input& operator=(const Input&) = delete;
@@ -365,10 +373,33 @@ bool pass_polygons(const Options& options, const raps_settings* settings) {
     return domain == RAPS_DOMAIN_ATLAS && !options.split_polygons && !options.repack;
 }
 
-void load_input(const std::string& path, const Options& options, bool polygons, Input& input) {
+// The vertices `triangles` use, renumbered in their order, and the positions of those alone:
+// `vertex_of` gets each one's old number (left empty when every vertex is used).
+void drop_unused_vertices(raps_samples::PolygonMesh& mesh, std::vector<uint32_t>& triangles,
+                          std::vector<uint32_t>& vertex_of) {
+    std::vector<uint32_t> number(mesh.vertex_count(), UINT32_MAX);
+    for (uint32_t v : triangles) {
+        if (v >= number.size()) return;  // the library names the index out of range
+        number[v] = 0;
+    }
+    if (std::count(number.begin(), number.end(), UINT32_MAX) == 0) return;
+    std::vector<double> kept;
+    for (uint32_t v = 0; v < number.size(); ++v) {
+        if (number[v] == UINT32_MAX) continue;
+        number[v] = static_cast<uint32_t>(vertex_of.size());
+        vertex_of.push_back(v);
+        kept.insert(kept.end(), mesh.positions.begin() + 3 * v, mesh.positions.begin() + 3 * v + 3);
+    }
+    for (uint32_t& v : triangles) v = number[v];
+    mesh.positions = std::move(kept);
+}
+
+void load_input(const std::string& path, const Options& options, bool polygons,
+                bool used_vertices_only, Input& input) {
     input.polygons = raps_samples::read_mesh(path);
-    const raps_samples::PolygonMesh library = library_view(path, input.polygons, options);
-    const std::vector<uint32_t> triangles = library.triangles();
+    raps_samples::PolygonMesh library = library_view(path, input.polygons, options);
+    std::vector<uint32_t> triangles = library.triangles();
+    if (used_vertices_only) drop_unused_vertices(library, triangles, input.vertex_of);
     check(raps_mesh_create(&input.mesh), [] { return "cannot create a mesh"; });
     if (library.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no vertices");
     if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no faces");
@@ -430,8 +461,8 @@ raps_samples::ObjObject output_object(const std::string& path, const Input& inpu
         object.mesh.polygon_offsets = input.polygons.polygon_offsets;
         object.mesh.corners = input.polygons.corners;
     }
-    object.mesh.positions =
-        sphere ? sphere_positions(input.polygons, result) : input.polygons.positions;
+    object.mesh.positions = sphere ? sphere_positions(input.polygons, input.vertex_of, result)
+                                   : input.polygons.positions;
     return object;
 }
 
@@ -446,9 +477,12 @@ int run(int argc, char** argv) {
     std::vector<const raps_mesh*> meshes;
     size_t polygons = 0;
     const bool whole_polygons = pass_polygons(options, h.settings);
+    int64_t mapped_domain = 0;
+    raps_settings_get_int(h.settings, RAPS_PARAM_DOMAIN, &mapped_domain);
     for (const std::string& path : options.inputs) {
         inputs.push_back(std::make_unique<Input>());
-        load_input(path, options, whole_polygons, *inputs.back());
+        load_input(path, options, whole_polygons, mapped_domain != RAPS_DOMAIN_ATLAS,
+                   *inputs.back());
         meshes.push_back(inputs.back()->mesh);
         polygons += inputs.back()->polygons.polygon_count();
     }

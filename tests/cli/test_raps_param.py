@@ -118,6 +118,52 @@ class RapsParamTest(unittest.TestCase):
             _, _, f_out = obj_records(self.out)
             self.assertEqual(len(f_out), faces, flags)
 
+    def test_vertices_no_face_uses_are_left_out_of_the_disk_and_the_sphere(self):
+        """OBJ files may hold vertices no face uses (left by an editor, or a shared vertex list).
+        The library's disk and sphere domains refuse them (RAPS_ERROR_ISOLATED_VERTEX); raps-param
+        maps the vertices faces use, writes their vt in vertex order, and keeps every v line."""
+        for name, flags in (('alligator.obj', ()), ('bunny.off', ('--sphere',))):
+            v_in, _, f_in = obj_records(self.mesh(name)) if name.endswith('.obj') else (None, None, None)
+            src = os.path.join(self.dir.name, 'stray.obj')
+            rc, _, err = run(self.mesh(name), '-o', os.path.join(self.dir.name, 'plain.obj'), *flags)
+            self.assertEqual(rc, 0, err)
+            plain_v, _, plain_f = obj_records(os.path.join(self.dir.name, 'plain.obj'))
+            # The mesh again with a stray vertex before its first and after its last.
+            with open(src, 'w') as fh:
+                fh.write('v 100 100 100\n')
+                if name.endswith('.obj'):
+                    for p in v_in:
+                        fh.write('v %r %r %r\n' % p)
+                    faces = [[c[0] + 1 for c in face] for face in f_in]
+                else:
+                    with open(self.mesh(name)) as off:
+                        words = off.read().split()
+                    nv, nf = int(words[1]), int(words[2])
+                    numbers = words[4:]
+                    for k in range(nv):
+                        fh.write('v %s %s %s\n' % tuple(numbers[3 * k:3 * k + 3]))
+                    faces, at = [], 3 * nv
+                    for _ in range(nf):
+                        n = int(numbers[at])
+                        faces.append([int(x) + 2 for x in numbers[at + 1:at + 1 + n]])
+                        at += n + 1
+                fh.write('v -100 -100 -100\n')
+                for face in faces:
+                    fh.write('f ' + ' '.join(map(str, face)) + '\n')
+            rc, out, err = run(src, '-o', self.out, *flags)
+            self.assertEqual(rc, 0, (name, err))
+            self.assertEqual(json.loads(out)['stats']['flipped_triangles'], 0)
+            v_out, vt_out, f_out = obj_records(self.out)
+            self.assertEqual(len(v_out), len(plain_v) + 2)
+            self.assertEqual(v_out[0], (100.0, 100.0, 100.0))
+            self.assertEqual(v_out[-1], (-100.0, -100.0, -100.0))
+            self.assertEqual([[c[0] for c in f] for f in f_out], [[c[0] + 1 for c in f] for f in plain_f])
+            if not flags:
+                self.assertEqual(len(vt_out), len(plain_v))
+                self.assertTrue(all(c[1] == c[0] - 1 for f in f_out for c in f))
+            else:
+                self.assertEqual(v_out[1:-1], plain_v)  # the same points on the sphere
+
     def test_json_reports_settings_stats_and_phase_times(self):
         rc, out, err = run(self.mesh('lion.off'), '-o', self.out, '--weights', 'uniform',
                            '--monitor', 'length', '--alpha', '1.5', '--iterations', '2',
