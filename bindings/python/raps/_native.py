@@ -276,7 +276,10 @@ RAPS_DOMAIN_SPHERE = 1
 #   parts, zero-area and duplicate triangles): cut into charts, each mapped (a free-boundary
 #   conformal map, then the adaptive step) and packed into one texture atlas. Output vertices
 #   are duplicated along seams (raps_result_copy_vertex_remap gives each one's input vertex);
-#   output triangles are the input triangles, in input order, with a chart id each. uvs are
+#   output triangles are the input triangles, in input order, with a chart id each. A
+#   triangle repeated over the same (welded) vertices in the same winding takes its first
+#   copy's uvs, corner for corner (one surface, one set of texels); wound the other way it is
+#   the back of a two-sided surface and gets charts of its own. uvs are
 #   texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
 #   as a texture of that size maps them: at a resolution the atlas is a square of
 #   RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density
