@@ -671,7 +671,10 @@ namespace Raps
         /// output triangles are the input triangles, in input order, with a chart id each. A
         /// triangle repeated over the same (welded) vertices in the same winding takes its first
         /// copy's uvs, corner for corner (one surface, one set of texels); wound the other way it is
-        /// the back of a two-sided surface and gets charts of its own. uvs are
+        /// the back of a two-sided surface and gets charts of its own. At a resolution, a chart
+        /// more than twice as long as the square at the density the charts' area allows is cut
+        /// across into pieces that keep its map (a 5.7:1 chart alone covered 0.086 of the square,
+        /// its 4 pieces 0.676): the seams grow, the stretch does not. uvs are
         /// texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
         /// as a texture of that size maps them: at a resolution the atlas is a square of
         /// RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density

@@ -14,6 +14,7 @@
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
 #include "atlas/chart_stacking.h"
+#include "atlas/long_chart_split.h"
 #include "atlas/corner_sources.h"
 #include "atlas/instanced_parts.h"
 #include "atlas/page_packing.h"
@@ -502,6 +503,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     limits.max_stretch_linf = settings.atlas_max_linf;
     set.charts =
         build_charts(surface, std::move(chart_of_surface), seam, settings, limits, progress, pool);
+    split_long_charts(surface, settings, set.charts);
     chart_timer.finish();
     // The charts hold their own meshes now: what is left to do (corner sources, packing,
     // output) reads only the surface's maps back to the input, so its mesh, twins and angles

@@ -1,0 +1,151 @@
+#include "atlas/long_chart_split.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "atlas/chart_raster.h"
+#include "metrics/distortion.h"
+
+namespace raps {
+namespace {
+
+// The share of the square the charts' area is expected to fill, and how many times longer than
+// the square's side a chart must be at the density this allows to be cut: it would lower every
+// chart's density at least that many times, and the charts would cover under a quarter of what
+// they could (below 0.18 of the square). Shorter ones are left whole: a 4:1 strip or a half
+// cylinder of 3:1 is one chart covering a quarter or a third of the square, and a seam across
+// it would cost more than the texels it saves.
+constexpr double kExpectedFill = 0.7;
+constexpr double kTooLong = 2.0;
+// Each piece at most this share of the square's side long at that density, so that pieces lie
+// side by side with room to spare.
+constexpr double kPieceLength = 0.8;
+
+double chart_uv_area(const AtlasChart& chart) {
+    double area = 0;
+    for (const Triangle& t : chart.disk.mesh.triangles) {
+        const Eigen::Vector2d a = chart.map.uv[t[1]] - chart.map.uv[t[0]];
+        const Eigen::Vector2d b = chart.map.uv[t[2]] - chart.map.uv[t[0]];
+        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    }
+    return area;
+}
+
+// Per chart triangle, the first triangle of its input polygon in the chart (itself without
+// polygons): triangles joined by a polygon's inner edges are one unit.
+std::vector<int32_t> polygon_groups_of(const AtlasSurface& surface, const AtlasChart& chart) {
+    const std::vector<int32_t>& surface_triangle = chart.disk.surface_triangle;
+    std::vector<int32_t> unit(surface_triangle.size());
+    std::iota(unit.begin(), unit.end(), 0);
+    if (surface.polygon_inner.empty()) return unit;
+    auto find = [&](int32_t t) {
+        while (unit[t] != t) t = unit[t] = unit[unit[t]];
+        return t;
+    };
+    std::vector<int32_t> local(surface.input_triangle.size(), -1);
+    for (size_t t = 0; t < surface_triangle.size(); ++t)
+        local[surface_triangle[t]] = static_cast<int32_t>(t);
+    for (size_t t = 0; t < surface_triangle.size(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t h = 3 * surface_triangle[t] + k;
+            if (!joins_polygon(surface, h) || surface.twin[h] < 0) continue;
+            const int32_t other = local[surface.twin[h] / 3];
+            if (other < 0) continue;
+            const int32_t a = find(static_cast<int32_t>(t)), b = find(other);
+            unit[std::max(a, b)] = std::min(a, b);
+        }
+    }
+    for (size_t t = 0; t < unit.size(); ++t) unit[t] = find(static_cast<int32_t>(t));
+    return unit;
+}
+
+// The chart's triangles in `pieces` pieces by where their polygon's first triangle lies along
+// the chart's longer side (the x of its smallest box), each piece a chart of its own.
+std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart& chart,
+                                   int pieces) {
+    const std::vector<Triangle>& triangles = chart.disk.mesh.triangles;
+    const std::vector<int32_t> unit = polygon_groups_of(surface, chart);
+    Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
+    for (const Eigen::Vector2d& p : chart.map.uv) {
+        low = low.cwiseMin(turned(chart.box.rotation, p));
+        high = high.cwiseMax(turned(chart.box.rotation, p));
+    }
+    const int axis = high.x() - low.x() >= high.y() - low.y() ? 0 : 1;
+    const double from = low[axis], length = std::max(high[axis] - low[axis], 1e-300);
+    std::vector<int> piece_of(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        const Triangle& v = triangles[unit[t]];
+        const Eigen::Vector2d centre =
+            (chart.map.uv[v[0]] + chart.map.uv[v[1]] + chart.map.uv[v[2]]) / 3.0;
+        const double along = (turned(chart.box.rotation, centre)[axis] - from) / length;
+        piece_of[t] = std::clamp(static_cast<int>(along * pieces), 0, pieces - 1);
+    }
+    std::vector<AtlasChart> out;
+    for (int piece = 0; piece < pieces; ++piece) {
+        AtlasChart part;
+        std::vector<int32_t> vertex_of(chart.map.uv.size(), -1);
+        for (size_t t = 0; t < triangles.size(); ++t) {
+            if (piece_of[t] != piece) continue;
+            Triangle local;
+            for (int k = 0; k < 3; ++k) {
+                int32_t& v = vertex_of[triangles[t][k]];
+                if (v < 0) {
+                    v = static_cast<int32_t>(part.map.uv.size());
+                    part.map.uv.push_back(chart.map.uv[triangles[t][k]]);
+                    part.disk.mesh.positions.push_back(chart.disk.mesh.positions[triangles[t][k]]);
+                    part.disk.surface_vertex.push_back(chart.disk.surface_vertex[triangles[t][k]]);
+                }
+                local[k] = v;
+            }
+            part.disk.mesh.triangles.push_back(local);
+            part.disk.surface_triangle.push_back(chart.disk.surface_triangle[t]);
+        }
+        if (part.disk.mesh.triangles.empty()) continue;
+        const Stretch stretch =
+            measure_stretch(part.disk.mesh.positions, part.map.uv, part.disk.mesh.triangles);
+        part.map.stretch_l2 = stretch.l2;
+        part.map.stretch_linf = stretch.linf;
+        part.map.method = chart.map.method;
+        part.map.injective = chart.map.injective;
+        part.map.adaptive_solves = out.empty() ? chart.map.adaptive_solves : 0;
+        std::vector<int32_t> every(part.map.uv.size());
+        std::iota(every.begin(), every.end(), 0);
+        part.box = smallest_bounding_box(part.map.uv, part.disk.mesh.triangles, every);
+        out.push_back(std::move(part));
+    }
+    return out;
+}
+
+}  // namespace
+
+void split_long_charts(const AtlasSurface& surface, const Settings& settings,
+                       std::vector<AtlasChart>& charts) {
+    if (settings.atlas_texels_per_unit > 0 || settings.atlas_repack || charts.empty()) return;
+    double area = 0;
+    for (const AtlasChart& chart : charts) area += chart_uv_area(chart);
+    if (!(area > 0)) return;
+    const double side = settings.atlas_resolution;
+    const double density = std::sqrt(kExpectedFill * side * side / area);  // texels per unit
+    std::vector<AtlasChart> out;
+    out.reserve(charts.size());
+    for (AtlasChart& chart : charts) {
+        Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
+        for (const Eigen::Vector2d& p : chart.map.uv) {
+            low = low.cwiseMin(turned(chart.box.rotation, p));
+            high = high.cwiseMax(turned(chart.box.rotation, p));
+        }
+        const double longest = (high - low).maxCoeff() * density;  // texels
+        if (!(longest > kTooLong * side)) {
+            out.push_back(std::move(chart));
+            continue;
+        }
+        const int pieces =
+            static_cast<int>(std::min(std::ceil(longest / (kPieceLength * side)),
+                                      static_cast<double>(chart.disk.mesh.triangles.size())));
+        for (AtlasChart& part : cut_across(surface, chart, pieces)) out.push_back(std::move(part));
+    }
+    charts = std::move(out);
+}
+
+}  // namespace raps
