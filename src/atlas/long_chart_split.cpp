@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "atlas/chart_raster.h"
 #include "metrics/distortion.h"
@@ -43,14 +44,21 @@ std::vector<int32_t> polygon_groups_of(const AtlasSurface& surface, const AtlasC
         while (unit[t] != t) t = unit[t] = unit[unit[t]];
         return t;
     };
-    std::vector<int32_t> local(surface.input_triangle.size(), -1);
+    // The chart's triangles by surface id, to find a neighbour's chart triangle: sorted, not
+    // an array over the whole surface (many long charts would each allocate one).
+    std::vector<std::pair<int32_t, int32_t>> by_id(surface_triangle.size());
     for (size_t t = 0; t < surface_triangle.size(); ++t)
-        local[surface_triangle[t]] = static_cast<int32_t>(t);
+        by_id[t] = {surface_triangle[t], static_cast<int32_t>(t)};
+    std::sort(by_id.begin(), by_id.end());
+    auto local = [&](int32_t id) {
+        const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(id, -1));
+        return it != by_id.end() && it->first == id ? it->second : -1;
+    };
     for (size_t t = 0; t < surface_triangle.size(); ++t) {
         for (int k = 0; k < 3; ++k) {
             const int32_t h = 3 * surface_triangle[t] + k;
             if (!joins_polygon(surface, h) || surface.twin[h] < 0) continue;
-            const int32_t other = local[surface.twin[h] / 3];
+            const int32_t other = local(surface.twin[h] / 3);
             if (other < 0) continue;
             const int32_t a = find(static_cast<int32_t>(t)), b = find(other);
             unit[std::max(a, b)] = std::min(a, b);
@@ -73,20 +81,21 @@ std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart
     }
     const int axis = high.x() - low.x() >= high.y() - low.y() ? 0 : 1;
     const double from = low[axis], length = std::max(high[axis] - low[axis], 1e-300);
-    std::vector<int> piece_of(triangles.size());
+    std::vector<std::vector<int32_t>> members(pieces);  // each piece's triangles, ascending
     for (size_t t = 0; t < triangles.size(); ++t) {
         const Triangle& v = triangles[unit[t]];
         const Eigen::Vector2d centre =
             (chart.map.uv[v[0]] + chart.map.uv[v[1]] + chart.map.uv[v[2]]) / 3.0;
         const double along = (turned(chart.box.rotation, centre)[axis] - from) / length;
-        piece_of[t] = std::clamp(static_cast<int>(along * pieces), 0, pieces - 1);
+        members[std::clamp(static_cast<int>(along * pieces), 0, pieces - 1)].push_back(
+            static_cast<int32_t>(t));
     }
     std::vector<AtlasChart> out;
-    for (int piece = 0; piece < pieces; ++piece) {
+    std::vector<int32_t> vertex_of(chart.map.uv.size(), -1);
+    for (const std::vector<int32_t>& piece : members) {
+        if (piece.empty()) continue;
         AtlasChart part;
-        std::vector<int32_t> vertex_of(chart.map.uv.size(), -1);
-        for (size_t t = 0; t < triangles.size(); ++t) {
-            if (piece_of[t] != piece) continue;
+        for (int32_t t : piece) {
             Triangle local;
             for (int k = 0; k < 3; ++k) {
                 int32_t& v = vertex_of[triangles[t][k]];
@@ -101,7 +110,9 @@ std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart
             part.disk.mesh.triangles.push_back(local);
             part.disk.surface_triangle.push_back(chart.disk.surface_triangle[t]);
         }
-        if (part.disk.mesh.triangles.empty()) continue;
+        for (int32_t t : piece) {  // reset for the next piece, touching only what was set
+            for (int32_t v : triangles[t]) vertex_of[v] = -1;
+        }
         const Stretch stretch =
             measure_stretch(part.disk.mesh.positions, part.map.uv, part.disk.mesh.triangles);
         part.map.stretch_l2 = stretch.l2;
