@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -292,11 +291,11 @@ void append_number(std::string& out, double value) {
 
 }  // namespace
 
-std::vector<std::array<uint32_t, 3>> PolygonMesh::polygon_triangles(size_t f) const {
+void PolygonMesh::polygon_triangles(size_t f, std::vector<std::array<uint32_t, 3>>& fan) const {
     const uint32_t begin = polygon_offsets[f], size = polygon_offsets[f + 1] - begin;
-    std::vector<std::array<uint32_t, 3>> fan;
+    fan.clear();
     for (uint32_t i = 0; i + 2 < size; ++i) fan.push_back({0, i + 1, i + 2});
-    if (size <= 3) return fan;
+    if (size <= 3) return;
     auto point = [&](uint32_t k) {
         const double* p = &positions[3 * static_cast<size_t>(corners[begin + k])];
         return std::array<double, 3>{p[0], p[1], p[2]};
@@ -330,7 +329,7 @@ std::vector<std::array<uint32_t, 3>> PolygonMesh::polygon_triangles(size_t f) co
     };
     bool fan_is_flat = false;
     for (const auto& t : fan) fan_is_flat |= !(std::abs(signed_area(t[0], t[1], t[2])) > flat);
-    if (!fan_is_flat) return fan;
+    if (!fan_is_flat) return;
     // Ear clipping: each time the ear (a corner whose triangle with its neighbours turns the
     // polygon's way with area and holds no other corner) of the roundest triangle, the first of
     // equals. Corners in a straight line are never ears, and clipping the roundest ear first
@@ -364,20 +363,22 @@ std::vector<std::array<uint32_t, 3>> PolygonMesh::polygon_triangles(size_t f) co
                 best_roundness = r;
             }
         }
-        if (best == n) return fan;
+        if (best == n) return;  // the fan, as it is
         ears.push_back({left[(best + n - 1) % n], left[best], left[(best + 1) % n]});
         left.erase(left.begin() + static_cast<std::ptrdiff_t>(best));
     }
-    if (!(signed_area(left[0], left[1], left[2]) > flat)) return fan;
+    if (!(signed_area(left[0], left[1], left[2]) > flat)) return;
     ears.push_back({left[0], left[1], left[2]});
-    return ears;
+    fan = std::move(ears);
 }
 
 std::vector<uint32_t> PolygonMesh::triangles() const {
     std::vector<uint32_t> out;
     out.reserve(3 * (corners.size() - 2 * polygon_count()));
+    std::vector<std::array<uint32_t, 3>> parts;
     for (size_t f = 0; f < polygon_count(); ++f) {
-        for (const std::array<uint32_t, 3>& t : polygon_triangles(f)) {
+        polygon_triangles(f, parts);
+        for (const std::array<uint32_t, 3>& t : parts) {
             for (uint32_t k : t) out.push_back(corners[polygon_offsets[f] + k]);
         }
     }
@@ -390,8 +391,10 @@ std::vector<double> PolygonMesh::triangle_texcoords() const {
         out.push_back(texcoords[2 * static_cast<size_t>(texcoord_corners[corner])]);
         out.push_back(texcoords[2 * static_cast<size_t>(texcoord_corners[corner]) + 1]);
     };
+    std::vector<std::array<uint32_t, 3>> parts;
     for (size_t f = 0; f < polygon_count(); ++f) {
-        for (const std::array<uint32_t, 3>& t : polygon_triangles(f)) {
+        polygon_triangles(f, parts);
+        for (const std::array<uint32_t, 3>& t : parts) {
             for (uint32_t k : t) add(polygon_offsets[f] + k);
         }
     }

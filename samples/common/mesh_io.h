@@ -30,7 +30,8 @@ struct PolygonMesh {
     // (corners in a straight line, as CAD n-gons have along straight edges); then ear clipping
     // in the polygon's plane, which never cuts off a straight corner, if it finds triangles that
     // all have area; else the fan.
-    std::vector<std::array<uint32_t, 3>> polygon_triangles(size_t f) const;
+    // Written into `out` (cleared first), which callers reuse: no allocation per polygon.
+    void polygon_triangles(size_t f, std::vector<std::array<uint32_t, 3>>& out) const;
     // Triangle indices, polygon_triangles of each polygon in polygon order.
     std::vector<uint32_t> triangles() const;
     // Per triangle of triangles(), its polygon's group (empty without groups).

@@ -174,9 +174,10 @@ void faces_with_output_vertices(const raps_samples::PolygonMesh& polygons,
                                 std::vector<uint32_t>& uv_corners) {
     written.polygon_offsets.assign(1, 0);
     size_t triangle = 0;
+    std::vector<std::array<uint32_t, 3>> parts;
     for (size_t f = 0; f < polygons.polygon_count(); ++f) {
         const uint32_t begin = polygons.polygon_offsets[f], end = polygons.polygon_offsets[f + 1];
-        const std::vector<std::array<uint32_t, 3>> parts = polygons.polygon_triangles(f);
+        polygons.polygon_triangles(f, parts);
         const size_t fan = parts.size();
         std::vector<int64_t> corner_vertex(end - begin, -1);
         bool consistent = true;
