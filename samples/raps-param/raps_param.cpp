@@ -48,12 +48,13 @@ atlas at one texel density and OUT.obj holds one `o` line per input, in the orde
 followed by that input's `v`, `vt` and `f` lines; the JSON adds per input, per page and per
 chart figures ("inputs", "pages", "charts"). `vt` are normalised to the page (--texels-per-unit).
 Sphere domain (--sphere): the mesh must be closed and of genus 0; it is mapped onto the unit
-sphere (paper section 7) and OUT.obj gets the same faces with the points on the sphere as its `v` lines, in
-input order (a vertex no face uses keeps its position), and no `vt`. With --sphere-uv octahedral the `v` lines are the same and the sphere
-is also unfolded onto [0,1]^2 through the octahedron: `vt` lines, one per output vertex (the
-vertices on the cut get one per side), faces `f v/vt`. The statistics are then those of the
-uvs; without it, those of the sphere map (exact spherical triangle areas, angles between
-great-circle arcs, flipped = det[a, b, c] < 0).
+sphere (paper section 7) and OUT.obj gets the same faces with the points on the sphere as its
+`v` lines, in input order (a vertex no face uses keeps its position), and no `vt`. With
+--sphere-uv octahedral the `v` lines are the same and the sphere is also unfolded onto [0,1]^2
+through the octahedron: `vt` lines, one per output vertex (the vertices on the cut get one per
+side), faces `f v/vt`. The statistics are then those of the uvs; without it, those of the
+sphere map (exact spherical triangle areas, angles between great-circle arcs, flipped =
+det[a, b, c] < 0).
 
 options:
   -o, --output FILE          where to write the OBJ (required)
