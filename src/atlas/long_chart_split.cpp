@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "atlas/chart_raster.h"
+#include "atlas/local_index.h"
+#include "atlas/polygon_units.h"
 #include "metrics/distortion.h"
 
 namespace raps {
@@ -33,63 +35,52 @@ double chart_uv_area(const AtlasChart& chart) {
     return area;
 }
 
-// Per chart triangle, the first triangle of its input polygon in the chart (itself without
-// polygons): triangles joined by a polygon's inner edges are one unit.
-std::vector<int32_t> polygon_groups_of(const AtlasSurface& surface, const AtlasChart& chart) {
-    const std::vector<int32_t>& surface_triangle = chart.disk.surface_triangle;
-    std::vector<int32_t> unit(surface_triangle.size());
-    std::iota(unit.begin(), unit.end(), 0);
-    if (surface.polygon_inner.empty()) return unit;
-    auto find = [&](int32_t t) {
-        while (unit[t] != t) t = unit[t] = unit[unit[t]];
-        return t;
-    };
-    // The chart's triangles by surface id, to find a neighbour's chart triangle: sorted, not
-    // an array over the whole surface (many long charts would each allocate one).
-    std::vector<std::pair<int32_t, int32_t>> by_id(surface_triangle.size());
-    for (size_t t = 0; t < surface_triangle.size(); ++t)
-        by_id[t] = {surface_triangle[t], static_cast<int32_t>(t)};
-    std::sort(by_id.begin(), by_id.end());
-    auto local = [&](int32_t id) {
-        const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(id, -1));
-        return it != by_id.end() && it->first == id ? it->second : -1;
-    };
-    for (size_t t = 0; t < surface_triangle.size(); ++t) {
-        for (int k = 0; k < 3; ++k) {
-            const int32_t h = 3 * surface_triangle[t] + k;
-            if (!joins_polygon(surface, h) || surface.twin[h] < 0) continue;
-            const int32_t other = local(surface.twin[h] / 3);
-            if (other < 0) continue;
-            const int32_t a = find(static_cast<int32_t>(t)), b = find(other);
-            unit[std::max(a, b)] = std::min(a, b);
-        }
-    }
-    for (size_t t = 0; t < unit.size(); ++t) unit[t] = find(static_cast<int32_t>(t));
-    return unit;
-}
-
-// The chart's triangles in `pieces` pieces by where their polygon's first triangle lies along
-// the chart's longer side (the x of its smallest box), each piece a chart of its own.
-std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart& chart,
-                                   int pieces) {
-    const std::vector<Triangle>& triangles = chart.disk.mesh.triangles;
-    const std::vector<int32_t> unit = polygon_groups_of(surface, chart);
+// The chart's box: its lower corner and size, in the frame its smallest box turns it to.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> box_of(const AtlasChart& chart) {
     Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
     for (const Eigen::Vector2d& p : chart.map.uv) {
         low = low.cwiseMin(turned(chart.box.rotation, p));
         high = high.cwiseMax(turned(chart.box.rotation, p));
     }
-    const int axis = high.x() - low.x() >= high.y() - low.y() ? 0 : 1;
-    const double from = low[axis], length = std::max(high[axis] - low[axis], 1e-300);
-    std::vector<std::vector<int32_t>> members(pieces);  // each piece's triangles, ascending
+    return {low, high - low};
+}
+
+// Every input polygon in the piece of its first triangle (polygon_units.h): polygons stay whole.
+void keep_polygons_whole(const AtlasSurface& surface, const AtlasChart& chart,
+                         std::vector<int32_t>& piece) {
+    if (surface.polygon_inner.empty()) return;
+    const std::vector<int32_t>& triangles = chart.disk.surface_triangle;
+    const LocalIndex local(triangles, surface.input_triangle.size());
+    std::vector<int32_t> neighbour(3 * triangles.size(), -1);
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t twin = surface.twin[3 * triangles[i] + k];
+            if (twin >= 0) neighbour[3 * i + k] = local(twin / 3);
+        }
+    }
+    keep_polygons_together(surface, triangles, neighbour, piece);
+}
+
+// The chart's triangles in `pieces` pieces by where they lie along the chart's longer side (in
+// its smallest box), each polygon with its first triangle, each piece a chart of its own.
+std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart& chart,
+                                   int pieces) {
+    const std::vector<Triangle>& triangles = chart.disk.mesh.triangles;
+    const auto [low, size] = box_of(chart);
+    const int axis = size.x() >= size.y() ? 0 : 1;
+    std::vector<int32_t> piece_of(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
-        const Triangle& v = triangles[unit[t]];
+        const Triangle& v = triangles[t];
         const Eigen::Vector2d centre =
             (chart.map.uv[v[0]] + chart.map.uv[v[1]] + chart.map.uv[v[2]]) / 3.0;
-        const double along = (turned(chart.box.rotation, centre)[axis] - from) / length;
-        members[std::clamp(static_cast<int>(along * pieces), 0, pieces - 1)].push_back(
-            static_cast<int32_t>(t));
+        const double along =
+            (turned(chart.box.rotation, centre)[axis] - low[axis]) / std::max(size[axis], 1e-300);
+        piece_of[t] = std::clamp(static_cast<int32_t>(along * pieces), 0, pieces - 1);
     }
+    keep_polygons_whole(surface, chart, piece_of);
+    std::vector<std::vector<int32_t>> members(pieces);  // each piece's triangles, ascending
+    for (size_t t = 0; t < triangles.size(); ++t)
+        members[piece_of[t]].push_back(static_cast<int32_t>(t));
     std::vector<AtlasChart> out;
     std::vector<int32_t> vertex_of(chart.map.uv.size(), -1);
     for (const std::vector<int32_t>& piece : members) {
@@ -141,12 +132,7 @@ void split_long_charts(const AtlasSurface& surface, const Settings& settings,
     std::vector<AtlasChart> out;
     out.reserve(charts.size());
     for (AtlasChart& chart : charts) {
-        Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
-        for (const Eigen::Vector2d& p : chart.map.uv) {
-            low = low.cwiseMin(turned(chart.box.rotation, p));
-            high = high.cwiseMax(turned(chart.box.rotation, p));
-        }
-        const double longest = (high - low).maxCoeff() * density;  // texels
+        const double longest = box_of(chart).second.maxCoeff() * density;  // texels
         if (!(longest > kTooLong * side)) {
             out.push_back(std::move(chart));
             continue;
