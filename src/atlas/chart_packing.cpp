@@ -238,8 +238,9 @@ class ChartPacker {
         }
         rasterise(points, *charts_[c].triangles, raster);
         for (int q = 0; q < 4; ++q) {
-            prepared_[c].profiles[4 * o + q] = make_profile(raster, padding_);
-            if (q < 3) raster = rotate_quarter(raster);
+            BitImage turned = q < 3 ? rotate_quarter(raster) : BitImage();
+            prepared_[c].profiles[4 * o + q] = make_profile(std::move(raster), padding_);
+            raster = std::move(turned);
         }
     }
 

@@ -123,18 +123,18 @@ int32_t longest_run(const uint64_t* bits, int32_t count, bool value) {
     return longest;
 }
 
-Profile make_profile(const BitImage& chart, int32_t padding) {
+Profile make_profile(BitImage chart, int32_t padding) {
     Profile profile;
     profile.width = chart.width;
     profile.height = chart.height;
     profile.words = chart.words;
-    profile.chart_bits = chart.bits;
+    profile.padded_bits = chart.bits;
+    profile.chart_bits = std::move(chart.bits);
     profile.top.assign(chart.width, -1);
     // Padding by dilation: each row spread sideways by `padding` cells, then each row combined
     // with its `padding` neighbours above and below, in place: `padding` passes that add the
     // row below (rows visited downwards, so each adds its neighbour as it was), then `padding`
     // that add the row above.
-    profile.padded_bits = chart.bits;
     const int32_t words = chart.words;
     for (int32_t y = 0; y < chart.height; ++y) {
         uint64_t* dst = profile.padded_bits.data() + static_cast<size_t>(y) * words;

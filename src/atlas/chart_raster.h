@@ -113,6 +113,6 @@ struct Profile {
 };
 
 // The profile of a chart's cells, its padded footprint dilated by `padding` cells.
-Profile make_profile(const BitImage& chart, int32_t padding);
+Profile make_profile(BitImage chart, int32_t padding);
 
 }  // namespace raps

@@ -1,6 +1,7 @@
 #include "atlas/page_packing.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -91,7 +92,6 @@ double fitting_scale(const OrientedChart& o, double scale, const PageGrid& grid)
 
 // A set cell for every block of `cell` x `cell` texels that holds a set texel.
 BitImage to_cells(const BitImage& texels, int32_t cell) {
-    if (cell == 1) return texels;
     BitImage cells;
     cells.resize(texels.width / cell, texels.height / cell);
     for (int32_t y = 0; y < texels.height; ++y) {
@@ -119,13 +119,14 @@ void prepare(const PackInput& input, const OrientedChart& o, double scale, const
     for (size_t v = 0; v < points.size(); ++v)
         points[v] = raster_point(o, scale, grid, (*input.uv)[v]);
     rasterise(points, *input.triangles, raster);
-    BitImage cells = to_cells(raster, grid.cell);
+    BitImage cells = grid.cell == 1 ? std::move(raster) : to_cells(raster, grid.cell);
     prepared.rotation = o.rotation;
     prepared.origin = o.origin;
     prepared.turns = o.turns;
     for (int q = 0; q < 4; ++q) {
-        prepared.profiles[q] = make_profile(cells, grid.pad_cells);
-        if (q < 3) cells = rotate_quarter(cells);
+        BitImage turned = q < 3 ? rotate_quarter(cells) : BitImage();
+        prepared.profiles[q] = make_profile(std::move(cells), grid.pad_cells);
+        cells = std::move(turned);
     }
 }
 
@@ -321,20 +322,24 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     }
     // Each of size_orders on the skyline's lowest place and then, where none fits, on the place
     // that leaves the fewest cells empty under the chart: which fits varies with the density,
-    // and any fits. The first that does is kept.
+    // and any fits. The first that does is kept, so an order after one that fitted is not
+    // packed (which ones are skipped depends on the threads, never the layout kept).
     const std::vector<std::vector<size_t>>& orders = set.orders;
     for (bool count_waste : {false, true}) {
         std::vector<PageLayout> layouts(orders.size());
-        std::vector<char> fits(orders.size(), 0);
+        std::atomic<size_t> first_fit{orders.size()};
         parallel_for_each(pool, orders.size(), [&](size_t k) {
+            if (first_fit.load() < k) return;
             layouts[k].page.assign(charts.size(), 0);
             layouts[k].place.resize(charts.size());
             layouts[k].count_waste = count_waste;
-            fits[k] = place_first_fit(set.prepared, orders[k], grid, true, layouts[k]);
+            if (!place_first_fit(set.prepared, orders[k], grid, true, layouts[k])) return;
+            size_t now = first_fit.load();
+            while (k < now && !first_fit.compare_exchange_weak(now, k)) {
+            }
         });
-        for (size_t k = 0; k < orders.size(); ++k) {
-            if (!fits[k]) continue;
-            result = layout_uvs(charts, settings, grid, set, layouts[k]);
+        if (first_fit.load() < orders.size()) {
+            result = layout_uvs(charts, settings, grid, set, layouts[first_fit.load()]);
             return true;
         }
     }
