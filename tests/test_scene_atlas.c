@@ -646,6 +646,40 @@ static void whole_texels_at_a_resolution_fill_one_page(void** state) {
     free_three_meshes(&t);
 }
 
+/* At the density whole texels find for a page of a resolution, the same page as a maximum holds
+ * every chart: the density path tries one page the way the whole-texel search does before it
+ * places charts first-fit, which could spill onto a second page. Over several resolutions, so
+ * that some density is one only the later orders fit. */
+static void a_density_one_page_holds_takes_one_page(void** state) {
+    (void)state;
+    three_meshes t;
+    make_three_meshes(&t);
+    for (int64_t resolution = 96; resolution <= 256; resolution += 16) {
+        raps_settings* s = atlas_settings(0, 2);
+        assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_RESOLUTION, resolution),
+                         RAPS_OK);
+        assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), RAPS_OK);
+        scene_atlas whole = run_scene(&t.sc, s);
+        assert_int_equal(whole.stats.page_count, 1);
+        raps_settings* d =
+            density_settings(0, 2, whole.stats.texels_per_unit, resolution, resolution);
+        scene_atlas a = run_scene(&t.sc, d);
+        if (a.stats.page_count != 1)
+            fail_msg(
+                "resolution %lld: %.6g texels per unit fit one page as whole texels, but "
+                "took %llu pages",
+                (long long)resolution, whole.stats.texels_per_unit,
+                (unsigned long long)a.stats.page_count);
+        check_pages(&a, whole.stats.texels_per_unit, resolution, resolution);
+        check_gaps(&a, 2, 1);
+        scene_atlas_free(&a);
+        scene_atlas_free(&whole);
+        raps_settings_destroy(d);
+        raps_settings_destroy(s);
+    }
+    free_three_meshes(&t);
+}
+
 /* Runs a scene of `count` handles and checks the status and that the message names `what`. */
 static void expect_refused(const raps_mesh* const* meshes, size_t count,
                            const raps_settings* settings, raps_status status, const char* what) {
@@ -778,6 +812,7 @@ int main(void) {
         cmocka_unit_test(charts_sit_on_whole_texels_under_each_rotation_policy),
         cmocka_unit_test(blocks_and_margins),
         cmocka_unit_test(whole_texels_at_a_resolution_fill_one_page),
+        cmocka_unit_test(a_density_one_page_holds_takes_one_page),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -314,9 +314,9 @@ PageGrid checked_grid(const PageSettings& settings) {
 
 // The layout of every chart on one page at `settings.texels_per_unit`, unshrunk, if there is
 // one.
-bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& settings,
-                      const PageGrid& grid, ThreadPool& pool, PackResult& result) {
-    const PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+bool layout_on_one_page(const std::vector<PackInput>& charts, const PageSettings& settings,
+                        const PageGrid& grid, const PreparedCharts& set, ThreadPool& pool,
+                        PackResult& result) {
     for (double scale : set.scale) {
         if (scale < settings.texels_per_unit) return false;
     }
@@ -346,6 +346,25 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
     return false;
 }
 
+bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& settings,
+                      const PageGrid& grid, ThreadPool& pool, PackResult& result) {
+    return layout_on_one_page(charts, settings, grid, prepare_charts(charts, settings, grid, pool),
+                              pool, result);
+}
+
+// The charts' area in uv units (3D units).
+double uv_area(const std::vector<PackInput>& charts) {
+    double area = 0;
+    for (const PackInput& chart : charts) {
+        for (const Triangle& t : *chart.triangles) {
+            const Eigen::Vector2d a = (*chart.uv)[t[1]] - (*chart.uv)[t[0]];
+            const Eigen::Vector2d b = (*chart.uv)[t[2]] - (*chart.uv)[t[0]];
+            area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+        }
+    }
+    return area;
+}
+
 }  // namespace
 
 PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
@@ -353,6 +372,15 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
     const PageGrid grid = checked_grid(settings);
     PreparedCharts set = prepare_charts(charts, settings, grid, pool);
     progress.report(0.5);
+    // Charts whose area one page holds are first tried on one page the way pack_one_page
+    // packs them: at the density it finds, the first-fit order alone could spill onto a
+    // second page. Without part_per_page the first order is tried first, so a layout it fits
+    // on one page is unchanged.
+    const double page_area = static_cast<double>(settings.max_width) * settings.max_height;
+    PackResult one_page;
+    if (uv_area(charts) * settings.texels_per_unit * settings.texels_per_unit <= page_area &&
+        layout_on_one_page(charts, settings, grid, set, pool, one_page))
+        return one_page;
     PageLayout layout;
     layout.page.assign(charts.size(), 0);
     layout.place.resize(charts.size());
@@ -369,16 +397,10 @@ PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings sett
     const PageGrid grid = checked_grid(settings);
     // Above this density the charts' area alone overflows the page, or the longest chart its
     // longer side.
-    double area = 0, longest = 0;
-    for (const PackInput& chart : charts) {
-        const OrientedChart o = orient(chart, settings.rotation);
-        longest = std::max(longest, o.extent.maxCoeff());
-        for (const Triangle& t : *chart.triangles) {
-            const Eigen::Vector2d a = (*chart.uv)[t[1]] - (*chart.uv)[t[0]];
-            const Eigen::Vector2d b = (*chart.uv)[t[2]] - (*chart.uv)[t[0]];
-            area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-        }
-    }
+    const double area = uv_area(charts);
+    double longest = 0;
+    for (const PackInput& chart : charts)
+        longest = std::max(longest, orient(chart, settings.rotation).extent.maxCoeff());
     const double side = std::max(settings.max_width, settings.max_height);
     double high = longest > 0 ? side / longest : 1.0;
     if (area > 0) high = std::min(high, std::sqrt(settings.max_width * settings.max_height / area));

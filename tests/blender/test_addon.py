@@ -428,9 +428,9 @@ class AddonTest(unittest.TestCase):
 
     def test_density_spreads_over_udim_tiles(self):
         obj = load("teapot.obj")
-        # Two pages of 512 x 387 texels, no chart shrunk to fit one (raps-param --atlas
-        # teapot.obj --texels-per-unit 56 --max-size 512).
-        self.assertEqual(bpy.ops.raps.unwrap(size_mode="DENSITY", texels_per_unit=56,
+        # Two pages of 512 x 498 texels, no chart shrunk to fit one (raps-param --atlas
+        # teapot.obj --texels-per-unit 64 --max-size 512; at 56 the charts fit one page).
+        self.assertEqual(bpy.ops.raps.unwrap(size_mode="DENSITY", texels_per_unit=64,
                                              resolution=512), {"FINISHED"})
         uv = uv_array(obj)
         self.assertGreaterEqual(uv.min(), 0.0)
