@@ -190,6 +190,14 @@ bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<Prepare
     return true;
 }
 
+// Between these many charts, size_orders's three further orders are packed too where the first
+// three do not fit a page: a scene of many meshes has many large jagged charts, whose layouts
+// are chaotic in the order, and a layout of a few hundred charts costs little. Never a lower
+// density (a density any order fits is one the search keeps). Measured (docs/square-atlas.md):
+// the ten-mesh scene of issue 23 at 2048 0.696 -> 0.716; soups of 5,000 and 20,000 separate
+// quads gained nothing for 60 to 70% more packing, so not above a thousand.
+constexpr size_t kFurtherOrdersAbove = 100, kFurtherOrdersUpTo = 1000;
+
 // The charts turned, at their densities (the atlas's, or less for one larger than a page),
 // rasterised, and the orders they may be placed in.
 struct PreparedCharts {
@@ -217,7 +225,7 @@ PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSe
     });
     std::vector<Eigen::Vector2d> extents(count);
     for (size_t c = 0; c < count; ++c) extents[c] = set.oriented[c].extent * set.scale[c];
-    set.orders = size_orders(extents);
+    set.orders = size_orders(extents, count > kFurtherOrdersAbove && count <= kFurtherOrdersUpTo);
     return set;
 }
 

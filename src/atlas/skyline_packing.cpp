@@ -485,7 +485,8 @@ StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::ve
     return StripResult::kFits;
 }
 
-std::vector<std::vector<size_t>> size_orders(const std::vector<Eigen::Vector2d>& extents) {
+std::vector<std::vector<size_t>> size_orders(const std::vector<Eigen::Vector2d>& extents,
+                                             bool further) {
     auto largest_first = [&](auto size_of) {
         std::vector<size_t> order(extents.size());
         std::iota(order.begin(), order.end(), 0);
@@ -497,6 +498,11 @@ std::vector<std::vector<size_t>> size_orders(const std::vector<Eigen::Vector2d>&
         largest_first([&](size_t c) { return extents[c].maxCoeff(); }),
         largest_first([&](size_t c) { return extents[c].x() * extents[c].y(); }),
         largest_first([&](size_t c) { return extents[c].minCoeff(); })};
+    if (further) {
+        orders.push_back(largest_first([&](size_t c) { return extents[c].x(); }));
+        orders.push_back(largest_first([&](size_t c) { return extents[c].y(); }));
+        orders.push_back(largest_first([&](size_t c) { return extents[c].sum(); }));
+    }
     for (size_t k = orders.size(); k-- > 1;) {
         if (std::find(orders.begin(), orders.begin() + k, orders[k]) != orders.begin() + k)
             orders.erase(orders.begin() + k);

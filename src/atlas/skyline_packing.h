@@ -117,7 +117,10 @@ StripResult pack_strip(const std::vector<PreparedChart>& prepared, const std::ve
 // Orders to place charts in, largest first by the longer side of their box (`extents`), by its
 // area and by its shorter side (ties by index), each once: charts of one size (thousands of
 // equal quads) come in the same order every way. Which packs best varies from mesh to mesh and
-// with the density (measured: lion, suzanne and teapot each best in a different one).
-std::vector<std::vector<size_t>> size_orders(const std::vector<Eigen::Vector2d>& extents);
+// with the density (measured: lion, suzanne and teapot each best in a different one). With
+// `further`, three more: by the box's width, its height (as the chart is turned before its
+// quarter turns) and its perimeter.
+std::vector<std::vector<size_t>> size_orders(const std::vector<Eigen::Vector2d>& extents,
+                                             bool further = false);
 
 }  // namespace raps
