@@ -5,8 +5,8 @@
 // whole 4x4 blocks), so what the packer keeps apart stays apart in the texture: at least
 // `padding` texels between the texels any two charts touch, at least `margin` between them and
 // the page's border. Charts whose area one page holds are first tried on one page as
-// pack_one_page tries them (three orders, two scoring rules). Otherwise charts are placed largest
-// first, each on the first of the last 8 pages where the skyline search (skyline_packing.h)
+// pack_one_page tries them (its size orders, two scoring rules). Otherwise charts are placed
+// largest first, each on the first of the last 8 pages where the skyline search (skyline_packing.h)
 // finds it room; a chart that fits none opens the next page (and closes the oldest open one).
 // With part_per_page, all charts of one mesh of a scene go on one page, as a lightmap needs. A
 // chart (or a mesh's charts, with part_per_page) larger than a page at that density is shrunk until
