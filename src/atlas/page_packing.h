@@ -40,7 +40,8 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
 // The same placement on one page of at most max_width x max_height at the largest density
 // (within 1%, settings.texels_per_unit ignored) at which every chart fits it unshrunk: a
 // search from the density at which the charts' area would fill the page, down by a fifth
-// until they fit, then by halving the gap. part_per_page is moot on one page. Throws
+// until they fit, then up by halving the gap or, up to 100 charts, to where the last fitting
+// layout's rows would fill the page. part_per_page is moot on one page. Throws
 // kInvalidArgument when no density fits them (too many charts for the page with their padding).
 PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
                          ThreadPool& pool, const ProgressSpan& progress = {});
