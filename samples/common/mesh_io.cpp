@@ -1,5 +1,6 @@
 #include "mesh_io.h"
 
+#include "output_file.h"
 #include "ply_reader.h"
 
 #include <algorithm>
@@ -437,7 +438,9 @@ PolygonMesh read_mesh(const std::string& path) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
-    const std::string temporary = path + ".tmp." + std::to_string(getpid());
+    const OutputFile target = output_file(path);
+    if (target.direct) return write_into(target.path, text.data(), text.size());
+    const std::string temporary = target.path + ".tmp." + std::to_string(getpid());
     FILE* file = std::fopen(temporary.c_str(), "wb");
     if (!file) {
         throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
@@ -445,7 +448,8 @@ void write_file_atomically(const std::string& path, const std::string& text) {
     const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
     const bool flushed = std::fflush(file) == 0 && fsync(fileno(file)) == 0;
     const bool closed = std::fclose(file) == 0;
-    if (!written || !flushed || !closed || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    if (!written || !flushed || !closed ||
+        std::rename(temporary.c_str(), target.path.c_str()) != 0) {
         const std::string reason = std::strerror(errno);
         std::remove(temporary.c_str());
         throw std::runtime_error(path + ": cannot write (" + reason + ")");

@@ -75,7 +75,7 @@ void write_obj_objects(const std::string& path, const std::vector<ObjObject>& ob
 // each edge's midpoint created once: how the benchmarks build large meshes from the shared ones.
 void subdivide_midpoint(std::vector<double>& positions, std::vector<uint32_t>& triangles);
 
-// Writes `text` to `path` through a temporary file and a rename.
+// Writes `text` to `path` whole or not at all, or into a device or pipe (output_file.h).
 void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace raps_samples

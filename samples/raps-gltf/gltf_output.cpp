@@ -1,5 +1,7 @@
 #include "gltf_output.h"
 
+#include "output_file.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -62,7 +64,18 @@ class StagedFiles {
             if (!f.second.empty()) unlink(f.second.c_str());
         }
     }
-    void stage(const std::string& path, const uint8_t* data, size_t size) {
+    void stage(const std::string& given, const uint8_t* data, size_t size) {
+        raps_samples::OutputFile target;
+        try {
+            target = raps_samples::output_file(given);
+        } catch (const std::runtime_error& e) {
+            throw GltfError("io", e.what());
+        }
+        const std::string& path = target.path;
+        if (target.direct) {  // a device or a pipe: written into at commit
+            direct_.emplace_back(path, std::vector<uint8_t>(data, data + size));
+            return;
+        }
         std::string temp = path + ".tmp-XXXXXX";
         std::vector<char> name(temp.begin(), temp.end());
         name.push_back('\0');
@@ -91,10 +104,18 @@ class StagedFiles {
             }
             f.second.clear();
         }
+        for (const auto& f : direct_) {
+            try {
+                raps_samples::write_into(f.first, f.second.data(), f.second.size());
+            } catch (const std::runtime_error& e) {
+                throw GltfError("io", e.what());
+            }
+        }
     }
 
   private:
-    std::vector<std::pair<std::string, std::string>> files_;  // (final path, temporary)
+    std::vector<std::pair<std::string, std::string>> files_;            // (final path, temporary)
+    std::vector<std::pair<std::string, std::vector<uint8_t>>> direct_;  // (device, bytes)
 };
 
 std::string base64(const std::vector<uint8_t>& bytes) {

@@ -13,10 +13,12 @@ import hashlib
 import json
 import os
 import shutil
+import stat
 import struct
 import subprocess
 import sys
 import tempfile
+import threading
 import unittest
 
 import numpy as np
@@ -289,6 +291,34 @@ class RapsGltfTest(unittest.TestCase):
         self.assertEqual(rc, 1)
         self.assertIn('accessor 1: 2147483647 elements of 12 bytes exceed', err)
         self.assertFalse(os.path.exists(os.path.join(self.tmp, 'o.glb')))
+
+    def test_an_output_that_is_a_pipe_or_a_link_is_written_through(self):
+        """A pipe is written into, not replaced by a regular file renamed over it; a symbolic
+        link is followed, so the file it names gets the asset and the link stays a link."""
+        src = os.path.join(DATA, 'gltf', 'BoxTextured.gltf')
+        plain = os.path.join(self.tmp, 'plain.glb')
+        self.bake(src, plain, '--overwrite')
+        with open(plain, 'rb') as fh:
+            expected = fh.read()
+        fifo = os.path.join(self.tmp, 'pipe.glb')
+        os.mkfifo(fifo)
+        got = []
+        reader = threading.Thread(target=lambda: got.append(open(fifo, 'rb').read()), daemon=True)
+        reader.start()
+        self.bake(src, fifo, '--overwrite')
+        reader.join(timeout=60)
+        self.assertTrue(stat.S_ISFIFO(os.stat(fifo).st_mode))
+        self.assertEqual(got, [expected])
+        os.mkdir(os.path.join(self.tmp, 'real'))
+        target = os.path.join(self.tmp, 'real', 'box.glb')
+        open(target, 'w').close()
+        link = os.path.join(self.tmp, 'link.glb')
+        os.symlink(target, link)
+        self.bake(src, link, '--overwrite')
+        self.assertTrue(os.path.islink(link))
+        with open(target, 'rb') as fh:
+            self.assertEqual(fh.read(), expected)
+        self.assertEqual(sorted(os.listdir(self.tmp)), ['link.glb', 'pipe.glb', 'plain.glb', 'real'])
 
     def test_existing_set_needs_overwrite(self):
         src = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')

@@ -11,9 +11,11 @@ usage: test_raps_param.py RAPS_PARAM SHARED_DATA_DIR
 import json
 import math
 import os
+import stat
 import subprocess
 import sys
 import tempfile
+import threading
 import unittest
 
 RAPS_PARAM = None
@@ -117,6 +119,36 @@ class RapsParamTest(unittest.TestCase):
             self.assertEqual(stats['stats']['zero_area_triangles'], 0, flags)
             _, _, f_out = obj_records(self.out)
             self.assertEqual(len(f_out), faces, flags)
+
+    def test_an_output_that_is_a_pipe_or_a_link_is_written_through(self):
+        """A pipe (or /dev/null, /dev/stdout) is written into, not replaced by a regular file
+        renamed over it (as root that would replace /dev/null itself); a symbolic link is
+        followed, so the file it names gets the OBJ and the link stays a link."""
+        fifo = os.path.join(self.dir.name, 'pipe.obj')
+        os.mkfifo(fifo)
+        got = []
+        reader = threading.Thread(target=lambda: got.append(open(fifo).read()), daemon=True)
+        reader.start()
+        rc, _, err = run(self.mesh('alligator.obj'), '-o', fifo)
+        reader.join(timeout=60)
+        self.assertEqual(rc, 0, err)
+        self.assertTrue(stat.S_ISFIFO(os.stat(fifo).st_mode))
+        self.assertEqual(len(got), 1)
+        rc, _, err = run(self.mesh('alligator.obj'), '-o', self.out)
+        self.assertEqual(rc, 0, err)
+        with open(self.out) as fh:
+            self.assertEqual(got[0], fh.read())
+        os.mkdir(os.path.join(self.dir.name, 'real'))
+        target = os.path.join(self.dir.name, 'real', 'mesh.obj')
+        open(target, 'w').close()
+        link = os.path.join(self.dir.name, 'link.obj')
+        os.symlink(target, link)
+        rc, _, err = run(self.mesh('alligator.obj'), '-o', link)
+        self.assertEqual(rc, 0, err)
+        self.assertTrue(os.path.islink(link))
+        with open(target) as fh:
+            self.assertEqual(got[0], fh.read())
+        self.assertEqual(sorted(os.listdir(self.dir.name)), ['link.obj', 'out.obj', 'pipe.obj', 'real'])
 
     def test_vertices_no_face_uses_are_left_out_of_the_disk_and_the_sphere(self):
         """OBJ files may hold vertices no face uses (left by an editor, or a shared vertex list).
