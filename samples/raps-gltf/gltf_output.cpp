@@ -42,17 +42,19 @@ std::string base_name(const std::string& path) {
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The absolute path a file will have, its folder resolved (the file itself may not exist yet).
+std::string real_or_empty(const std::string& path) {
+    std::unique_ptr<char, decltype(&std::free)> real(realpath(path.c_str(), nullptr), &std::free);
+    return real ? std::string(real.get()) : std::string();
+}
+
+// The absolute path a file will have: an existing one's, through its links (a .gltf's buffer
+// file then goes beside the file a link names), else its folder's (it may not exist yet).
 std::string absolute_target(const std::string& path) {
+    if (const std::string real = real_or_empty(path); !real.empty()) return real;
     std::unique_ptr<char, decltype(&std::free)> folder(realpath(folder_of(path).c_str(), nullptr),
                                                        &std::free);
     if (!folder) throw GltfError("io", "the output folder of " + path + " does not exist");
     return std::string(folder.get()) + "/" + base_name(path);
-}
-
-std::string real_or_empty(const std::string& path) {
-    std::unique_ptr<char, decltype(&std::free)> real(realpath(path.c_str(), nullptr), &std::free);
-    return real ? std::string(real.get()) : std::string();
 }
 
 // Files are staged as temporaries, then renamed in order; the destructor removes temporaries

@@ -318,7 +318,18 @@ class RapsGltfTest(unittest.TestCase):
         self.assertTrue(os.path.islink(link))
         with open(target, 'rb') as fh:
             self.assertEqual(fh.read(), expected)
-        self.assertEqual(sorted(os.listdir(self.tmp)), ['link.glb', 'pipe.glb', 'plain.glb', 'real'])
+        # A .gltf through a link: its buffer file goes beside the file the link names.
+        target = os.path.join(self.tmp, 'real', 'box.gltf')
+        open(target, 'w').close()
+        link = os.path.join(self.tmp, 'link.gltf')
+        os.symlink(target, link)
+        report = self.bake(src, link, '--overwrite')
+        self.assertTrue(os.path.islink(link))
+        self.assertEqual(validate(target)['errors'], 0)
+        self.assertTrue(all(os.path.dirname(f) == os.path.dirname(target) for f in report['written']['files']),
+                        report['written']['files'])
+        self.assertEqual(sorted(os.listdir(self.tmp)),
+                         ['link.glb', 'link.gltf', 'pipe.glb', 'plain.glb', 'real'])
 
     def test_existing_set_needs_overwrite(self):
         src = os.path.join(DATA, 'gltf', 'Duck', 'Duck.gltf')
