@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "atlas/chart_raster.h"
 #include "core/portable_math.h"
 
 namespace raps {
@@ -79,21 +80,28 @@ ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
     for (size_t i = 0; i < boundary.size(); ++i) outline[i] = uv[boundary[i]];
     ChartBox box;
     box.rotation = best_rotation(outline);
-    const Eigen::Vector2d r = box.rotation;
+    const Eigen::Vector2d extent = turned_box(uv, box.rotation).extent;
+    const double box_area = extent.x() * extent.y();
+    box.fill = box_area > 0 ? std::min(1.0, uv_area(uv, triangles) / box_area) : 1.0;
+    return box;
+}
+
+TurnedBox turned_box(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& rotation) {
     Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
     for (const Eigen::Vector2d& p : uv) {
-        const Eigen::Vector2d q(r.x() * p.x() + r.y() * p.y(), -r.y() * p.x() + r.x() * p.y());
-        lo = lo.cwiseMin(q);
-        hi = hi.cwiseMax(q);
+        lo = lo.cwiseMin(turned(rotation, p));
+        hi = hi.cwiseMax(turned(rotation, p));
     }
+    return {lo, hi - lo};
+}
+
+double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles) {
     double area = 0;
     for (const Triangle& t : triangles) {
         const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
         area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
     }
-    const double box_area = (hi.x() - lo.x()) * (hi.y() - lo.y());
-    box.fill = box_area > 0 ? std::min(1.0, area / box_area) : 1.0;
-    return box;
+    return area;
 }
 
 }  // namespace raps

@@ -32,4 +32,14 @@ ChartBox smallest_bounding_box(const std::vector<Eigen::Vector2d>& uv,
                                const std::vector<Triangle>& triangles,
                                const std::vector<int32_t>& boundary);
 
+// The axis-aligned box of the points `uv` turned by `rotation` (turned(), chart_raster.h): its
+// lower corner and its size.
+struct TurnedBox {
+    Eigen::Vector2d origin, extent;
+};
+TurnedBox turned_box(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& rotation);
+
+// The area of the triangles in uv (each triangle's, unsigned).
+double uv_area(const std::vector<Eigen::Vector2d>& uv, const std::vector<Triangle>& triangles);
+
 }  // namespace raps

@@ -36,12 +36,8 @@ struct Orientation {
 };
 
 Orientation orientation_of(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& r) {
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const Eigen::Vector2d& p : uv) {
-        lo = lo.cwiseMin(turned(r, p));
-        hi = hi.cwiseMax(turned(r, p));
-    }
-    return {r, lo, hi - lo};
+    const TurnedBox box = turned_box(uv, r);
+    return {r, box.origin, box.extent};
 }
 
 // With any rotation allowed, the 32 largest charts may also be placed turned by 15, 30, 45, 60

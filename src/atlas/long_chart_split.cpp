@@ -5,6 +5,7 @@
 #include <numeric>
 #include <utility>
 
+#include "atlas/chart_box.h"
 #include "atlas/chart_raster.h"
 #include "atlas/local_index.h"
 #include "atlas/polygon_units.h"
@@ -25,24 +26,9 @@ constexpr double kTooLong = 2.0;
 // side by side with room to spare.
 constexpr double kPieceLength = 0.8;
 
-double chart_uv_area(const AtlasChart& chart) {
-    double area = 0;
-    for (const Triangle& t : chart.disk.mesh.triangles) {
-        const Eigen::Vector2d a = chart.map.uv[t[1]] - chart.map.uv[t[0]];
-        const Eigen::Vector2d b = chart.map.uv[t[2]] - chart.map.uv[t[0]];
-        area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    }
-    return area;
-}
-
-// The chart's box: its lower corner and size, in the frame its smallest box turns it to.
-std::pair<Eigen::Vector2d, Eigen::Vector2d> box_of(const AtlasChart& chart) {
-    Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
-    for (const Eigen::Vector2d& p : chart.map.uv) {
-        low = low.cwiseMin(turned(chart.box.rotation, p));
-        high = high.cwiseMax(turned(chart.box.rotation, p));
-    }
-    return {low, high - low};
+// The chart's box in the frame its smallest box turns it to.
+TurnedBox box_of(const AtlasChart& chart) {
+    return turned_box(chart.map.uv, chart.box.rotation);
 }
 
 // Every input polygon in the piece of its first triangle (polygon_units.h): polygons stay whole.
@@ -66,7 +52,8 @@ void keep_polygons_whole(const AtlasSurface& surface, const AtlasChart& chart,
 std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart& chart,
                                    int pieces) {
     const std::vector<Triangle>& triangles = chart.disk.mesh.triangles;
-    const auto [low, size] = box_of(chart);
+    const TurnedBox box = box_of(chart);
+    const Eigen::Vector2d &low = box.origin, &size = box.extent;
     const int axis = size.x() >= size.y() ? 0 : 1;
     std::vector<int32_t> piece_of(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
@@ -125,14 +112,14 @@ void split_long_charts(const AtlasSurface& surface, const Settings& settings,
                        std::vector<AtlasChart>& charts) {
     if (settings.atlas_texels_per_unit > 0 || settings.atlas_repack || charts.empty()) return;
     double area = 0;
-    for (const AtlasChart& chart : charts) area += chart_uv_area(chart);
+    for (const AtlasChart& chart : charts) area += uv_area(chart.map.uv, chart.disk.mesh.triangles);
     if (!(area > 0)) return;
     const double side = settings.atlas_resolution;
     const double density = std::sqrt(kExpectedFill * side * side / area);  // texels per unit
     std::vector<AtlasChart> out;
     out.reserve(charts.size());
     for (AtlasChart& chart : charts) {
-        const double longest = box_of(chart).second.maxCoeff() * density;  // texels
+        const double longest = box_of(chart).extent.maxCoeff() * density;  // texels
         if (!(longest > kTooLong * side)) {
             out.push_back(std::move(chart));
             continue;

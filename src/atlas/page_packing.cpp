@@ -46,13 +46,9 @@ OrientedChart orient(const PackInput& chart, ChartRotation policy) {
     OrientedChart o;
     if (policy == ChartRotation::kAny) o.rotation = chart.rotation;
     o.turns = policy == ChartRotation::kNone ? 1 : 4;
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const Eigen::Vector2d& p : *chart.uv) {
-        lo = lo.cwiseMin(turned(o.rotation, p));
-        hi = hi.cwiseMax(turned(o.rotation, p));
-    }
-    o.origin = lo;
-    o.extent = hi - lo;
+    const TurnedBox box = turned_box(*chart.uv, o.rotation);
+    o.origin = box.origin;
+    o.extent = box.extent;
     return o;
 }
 
@@ -365,8 +361,8 @@ bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& 
                               pool, result, rows_used);
 }
 
-// The charts' area in uv units (3D units).
-double uv_area(const std::vector<PackInput>& charts) {
+// The charts' area in uv units (3D units), summed triangle by triangle across the charts.
+double charts_uv_area(const std::vector<PackInput>& charts) {
     double area = 0;
     for (const PackInput& chart : charts) {
         for (const Triangle& t : *chart.triangles) {
@@ -392,7 +388,7 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
     const double page_area = static_cast<double>(settings.max_width) * settings.max_height;
     PackResult one_page;
     int32_t rows_used = 0;
-    if (uv_area(charts) * settings.texels_per_unit * settings.texels_per_unit <= page_area &&
+    if (charts_uv_area(charts) * settings.texels_per_unit * settings.texels_per_unit <= page_area &&
         layout_on_one_page(charts, settings, grid, set, pool, one_page, rows_used))
         return one_page;
     PageLayout layout;
@@ -411,7 +407,7 @@ PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings sett
     const PageGrid grid = checked_grid(settings);
     // Above this density the charts' area alone overflows the page, or the longest chart its
     // longer side.
-    const double area = uv_area(charts);
+    const double area = charts_uv_area(charts);
     double longest = 0;
     for (const PackInput& chart : charts)
         longest = std::max(longest, orient(chart, settings.rotation).extent.maxCoeff());
