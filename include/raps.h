@@ -41,7 +41,8 @@
  *   - Ownership: create/destroy pairs. The caller owns every handle it created and must destroy
  *     it exactly once; destroy(NULL) is a no-op. The library copies all input arrays it is given
  *     (the caller may free them on return) and never keeps a caller pointer except the progress
- *     callback's user pointer. Output is copied into caller-owned buffers (raps_result_copy_*).
+ *     callback's user pointer and the progress state (raps_settings_set_progress_state).
+ *     Output is copied into caller-owned buffers (raps_result_copy_*).
  *   - Threading: there is no global state. Distinct handles may be used from any threads at
  *     once. Functions taking a const handle only read it, unless they fail: one mesh and one
  *     settings handle may be shared by any number of concurrent raps_parameterize calls, each
@@ -157,7 +158,8 @@ enum {
      * address (65536), more triangles than RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated
      * to need more memory than RAPS_PARAM_MAX_MEMORY_MB allows. */
     RAPS_ERROR_TOO_LARGE = 17,
-    /* The progress callback returned 0. Nothing was produced; the handles stay usable. */
+    /* The progress callback returned 0, or the progress state was cancelled. Nothing was
+     * produced; the handles stay usable. */
     RAPS_ERROR_CANCELLED = 18,
     /* The sparse solver failed (a singular system, e.g. from negative cotangent weights). */
     RAPS_ERROR_SOLVER_FAILED = 19,
@@ -602,7 +604,7 @@ enum {
 
 /* Creates settings holding the defaults above. Errors: INVALID_ARGUMENT, OUT_OF_MEMORY. */
 RAPS_API raps_status raps_settings_create(raps_settings** out_settings);
-/* Creates an independent copy of settings (including its progress callback).
+/* Creates an independent copy of settings (including its progress callback and state).
  * Errors: INVALID_ARGUMENT, OUT_OF_MEMORY. */
 RAPS_API raps_status raps_settings_clone(const raps_settings* settings,
                                          raps_settings** out_settings);
@@ -667,6 +669,44 @@ typedef int32_t (*raps_progress_fn)(void* user, raps_phase phase, double fractio
  * (NULL settings). */
 RAPS_API raps_status raps_settings_set_progress(raps_settings* settings, raps_progress_fn fn,
                                                 void* user);
+
+/* A progress state: progress without a callback, for callers that would rather poll. A run whose
+ * settings name one (raps_settings_set_progress_state) writes every progress report into it
+ * (the same reports, at the same points, as raps_progress_fn receives) and stops at its next
+ * report once the state is cancelled, returning RAPS_ERROR_CANCELLED; the caller reads it
+ * from any thread. For a language whose callbacks are costly to enter from the run's worker
+ * threads: a Python callback called from a thread Python did not create took 40 to 90
+ * microseconds per call, five to nine times the library's own time on a mesh of a few thousand
+ * triangles (docs/blender.md); a report into a state costs a lock. A callback may be set too:
+ * the state records each report before the callback sees it.
+ * Threading: the raps_progress_state_* calls below may run on any thread at any time, also
+ * while runs report into the state; destroy it only when no run uses it. Several runs may
+ * share one state (a cancel stops them all; a read shows the latest report of any of them). */
+typedef struct raps_progress_state raps_progress_state;
+
+/* Creates a state: no report yet (phase -1, fraction 0, 0 reports), not cancelled.
+ * Errors: INVALID_ARGUMENT (NULL out_state), OUT_OF_MEMORY. */
+RAPS_API raps_status raps_progress_state_create(raps_progress_state** out_state);
+/* Destroys a state; NULL is a no-op. No run may be using it. */
+RAPS_API void raps_progress_state_destroy(raps_progress_state* state);
+/* The latest report: its phase (a raps_phase, -1 before the first), the fraction of that phase
+ * done (in [0, 1], never falling within a pass through a phase) and how many reports the state
+ * has recorded since it was created or reset. The three come from one report. Any out pointer
+ * may be NULL. Errors: INVALID_ARGUMENT (NULL state). */
+RAPS_API raps_status raps_progress_state_read(const raps_progress_state* state,
+                                              raps_phase* out_phase, double* out_fraction,
+                                              int64_t* out_reports);
+/* Cancels every run reporting into the state, at its next report (a few milliseconds of work
+ * at most, as for the callback), and every run started with it until it is reset.
+ * Errors: INVALID_ARGUMENT (NULL state). */
+RAPS_API raps_status raps_progress_state_cancel(raps_progress_state* state);
+/* Back to no report and not cancelled, for the next run. Errors: INVALID_ARGUMENT (NULL). */
+RAPS_API raps_status raps_progress_state_reset(raps_progress_state* state);
+/* Runs with these settings report into state (NULL: none); the settings keep the pointer, not
+ * the state, which must outlive every run that uses it. raps_settings_clone copies the
+ * pointer. Errors: INVALID_ARGUMENT (NULL settings). */
+RAPS_API raps_status raps_settings_set_progress_state(raps_settings* settings,
+                                                      raps_progress_state* state);
 
 /* The message of the last failed call on these settings (a setter, a getter, a clone), "" after
  * a setter succeeds; never NULL. */

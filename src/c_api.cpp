@@ -71,10 +71,15 @@ struct raps_mesh {
 
 // The message is mutable: a failing getter or copy, which takes a const handle, still stores
 // its message in the handle, as the header promises for every failing call.
+struct raps_progress_state {
+    raps::ProgressState state;
+};
+
 struct raps_settings {
     raps::Settings settings;
     raps_progress_fn progress = nullptr;
     void* progress_user = nullptr;
+    raps_progress_state* progress_state = nullptr;  // the caller's
     mutable std::string last_error;
 };
 
@@ -560,6 +565,10 @@ raps::Progress::Callback progress_of(const raps_settings* settings) {
     return callback;
 }
 
+raps::ProgressState* state_of(const raps_settings* settings) {
+    return settings && settings->progress_state ? &settings->progress_state->state : nullptr;
+}
+
 void check_u16_reach(const raps_mesh* mesh, const std::string& name) {
     if (mesh->indices_are_u16 && mesh->mesh.positions.size() > 65536) {
         throw Error(ErrorCode::kTooLarge, name + " has " +
@@ -854,6 +863,46 @@ raps_status raps_settings_set_progress(raps_settings* settings, raps_progress_fn
     return RAPS_OK;
 }
 
+raps_status raps_settings_set_progress_state(raps_settings* settings,
+                                            raps_progress_state* state) {
+    if (!settings) return RAPS_ERROR_INVALID_ARGUMENT;
+    settings->progress_state = state;
+    settings->last_error.clear();
+    return RAPS_OK;
+}
+
+raps_status raps_progress_state_create(raps_progress_state** out_state) {
+    if (!out_state) return RAPS_ERROR_INVALID_ARGUMENT;
+    *out_state = nullptr;
+    return guarded(nullptr, [&] { *out_state = new raps_progress_state(); });
+}
+
+void raps_progress_state_destroy(raps_progress_state* state) {
+    delete state;
+}
+
+raps_status raps_progress_state_read(const raps_progress_state* state, raps_phase* out_phase,
+                                     double* out_fraction, int64_t* out_reports) {
+    if (!state) return RAPS_ERROR_INVALID_ARGUMENT;
+    const raps::ProgressState::Reading reading = state->state.read();
+    if (out_phase) *out_phase = reading.phase;
+    if (out_fraction) *out_fraction = reading.fraction;
+    if (out_reports) *out_reports = reading.reports;
+    return RAPS_OK;
+}
+
+raps_status raps_progress_state_cancel(raps_progress_state* state) {
+    if (!state) return RAPS_ERROR_INVALID_ARGUMENT;
+    state->state.cancel();
+    return RAPS_OK;
+}
+
+raps_status raps_progress_state_reset(raps_progress_state* state) {
+    if (!state) return RAPS_ERROR_INVALID_ARGUMENT;
+    state->state.reset();
+    return RAPS_OK;
+}
+
 const char* raps_settings_last_error(const raps_settings* settings) {
     return message_of(settings ? &settings->last_error : nullptr);
 }
@@ -878,7 +927,7 @@ raps_status raps_parameterize(const raps_mesh* mesh, const raps_settings* settin
         check_u16_reach(mesh, "the mesh");
         const raps::Settings defaults;
         const raps::Settings& chosen = settings ? settings->settings : defaults;
-        const raps::Progress progress(progress_of(settings));
+        const raps::Progress progress(progress_of(settings), state_of(settings));
         result->map = raps::parameterize(mesh->mesh, chosen, progress);
         result->has_map = true;
     });
@@ -902,7 +951,7 @@ raps_status raps_parameterize_scene(const raps_mesh* const* meshes, size_t mesh_
             parts[i].mesh = &meshes[i]->mesh;
             parts[i].transform = meshes[i]->transform;
         }
-        const raps::Progress progress(progress_of(settings));
+        const raps::Progress progress(progress_of(settings), state_of(settings));
         result->map = raps::parameterize_scene(parts, settings->settings, progress);
         result->has_map = true;
     });

@@ -46,6 +46,25 @@ namespace Raps
     }
 
     /// <summary>
+    /// Owns one raps_progress_state*: released exactly once by raps_progress_state_destroy, when disposed or finalized.
+    /// </summary>
+    public sealed class ProgressStateHandle : SafeHandle
+    {
+        public ProgressStateHandle() : base(IntPtr.Zero, true) { }
+
+        public override bool IsInvalid
+        {
+            get { return handle == IntPtr.Zero; }
+        }
+
+        protected override bool ReleaseHandle()
+        {
+            Native.raps_progress_state_destroy(handle);
+            return true;
+        }
+    }
+
+    /// <summary>
     /// Owns one raps_result*: released exactly once by raps_result_destroy, when disposed or finalized.
     /// </summary>
     public sealed class ResultHandle : SafeHandle
@@ -341,7 +360,8 @@ namespace Raps
         /// </summary>
         public const int RAPS_ERROR_TOO_LARGE = 17;
         /// <summary>
-        /// The progress callback returned 0. Nothing was produced; the handles stay usable.
+        /// The progress callback returned 0, or the progress state was cancelled. Nothing was
+        /// produced; the handles stay usable.
         /// </summary>
         public const int RAPS_ERROR_CANCELLED = 18;
         /// <summary>
@@ -1030,7 +1050,7 @@ namespace Raps
         public static extern int raps_settings_create(out SettingsHandle out_settings);
 
         /// <summary>
-        /// Creates an independent copy of settings (including its progress callback).
+        /// Creates an independent copy of settings (including its progress callback and state).
         /// Errors: INVALID_ARGUMENT, OUT_OF_MEMORY.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -1084,6 +1104,50 @@ namespace Raps
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int raps_settings_set_progress(SettingsHandle settings, ProgressFn fn, IntPtr user);
+
+        /// <summary>
+        /// Creates a state: no report yet (phase -1, fraction 0, 0 reports), not cancelled.
+        /// Errors: INVALID_ARGUMENT (NULL out_state), OUT_OF_MEMORY.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_progress_state_create(out ProgressStateHandle out_state);
+
+        /// <summary>
+        /// Destroys a state; NULL is a no-op. No run may be using it.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern void raps_progress_state_destroy(IntPtr state);
+
+        /// <summary>
+        /// The latest report: its phase (a raps_phase, -1 before the first), the fraction of that phase
+        /// done (in [0, 1], never falling within a pass through a phase) and how many reports the state
+        /// has recorded since it was created or reset. The three come from one report. Any out pointer
+        /// may be NULL. Errors: INVALID_ARGUMENT (NULL state).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_progress_state_read(ProgressStateHandle state, out int out_phase, out double out_fraction, out long out_reports);
+
+        /// <summary>
+        /// Cancels every run reporting into the state, at its next report (a few milliseconds of work
+        /// at most, as for the callback), and every run started with it until it is reset.
+        /// Errors: INVALID_ARGUMENT (NULL state).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_progress_state_cancel(ProgressStateHandle state);
+
+        /// <summary>
+        /// Back to no report and not cancelled, for the next run. Errors: INVALID_ARGUMENT (NULL).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_progress_state_reset(ProgressStateHandle state);
+
+        /// <summary>
+        /// Runs with these settings report into state (NULL: none); the settings keep the pointer, not
+        /// the state, which must outlive every run that uses it. raps_settings_clone copies the
+        /// pointer. Errors: INVALID_ARGUMENT (NULL settings).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int raps_settings_set_progress_state(SettingsHandle settings, ProgressStateHandle state);
 
         /// <summary>
         /// The message of the last failed call on these settings (a setter, a getter, a clone), "" after

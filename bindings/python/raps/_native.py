@@ -53,7 +53,8 @@ RAPS_ERROR_NONZERO_GENUS = 16
 #   address (65536), more triangles than RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated
 #   to need more memory than RAPS_PARAM_MAX_MEMORY_MB allows.
 RAPS_ERROR_TOO_LARGE = 17
-#   The progress callback returned 0. Nothing was produced; the handles stay usable.
+#   The progress callback returned 0, or the progress state was cancelled. Nothing was
+#   produced; the handles stay usable.
 RAPS_ERROR_CANCELLED = 18
 #   The sparse solver failed (a singular system, e.g. from negative cotangent weights).
 RAPS_ERROR_SOLVER_FAILED = 19
@@ -392,6 +393,10 @@ class raps_settings(ctypes.Structure):
     """Opaque: only ever handled through pointers."""
 
 
+class raps_progress_state(ctypes.Structure):
+    """Opaque: only ever handled through pointers."""
+
+
 class raps_result(ctypes.Structure):
     """Opaque: only ever handled through pointers."""
 
@@ -548,6 +553,12 @@ FUNCTIONS = {
     'raps_settings_get_float': (raps_status, [ctypes.POINTER(raps_settings), raps_param, ctypes.POINTER(ctypes.c_double)]),
     'raps_param_info': (raps_status, [raps_param, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)]),
     'raps_settings_set_progress': (raps_status, [ctypes.POINTER(raps_settings), raps_progress_fn, ctypes.c_void_p]),
+    'raps_progress_state_create': (raps_status, [ctypes.POINTER(ctypes.POINTER(raps_progress_state))]),
+    'raps_progress_state_destroy': (None, [ctypes.POINTER(raps_progress_state)]),
+    'raps_progress_state_read': (raps_status, [ctypes.POINTER(raps_progress_state), ctypes.POINTER(raps_phase), ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int64)]),
+    'raps_progress_state_cancel': (raps_status, [ctypes.POINTER(raps_progress_state)]),
+    'raps_progress_state_reset': (raps_status, [ctypes.POINTER(raps_progress_state)]),
+    'raps_settings_set_progress_state': (raps_status, [ctypes.POINTER(raps_settings), ctypes.POINTER(raps_progress_state)]),
     'raps_settings_last_error': (ctypes.c_char_p, [ctypes.POINTER(raps_settings)]),
     'raps_result_create': (raps_status, [ctypes.POINTER(ctypes.POINTER(raps_result))]),
     'raps_result_destroy': (None, [ctypes.POINTER(raps_result)]),

@@ -56,7 +56,8 @@ pub const RAPS_ERROR_NONZERO_GENUS: i32 = 16;
 /// address (65536), more triangles than RAPS_PARAM_MAX_TRIANGLES allows, or a run estimated
 /// to need more memory than RAPS_PARAM_MAX_MEMORY_MB allows.
 pub const RAPS_ERROR_TOO_LARGE: i32 = 17;
-/// The progress callback returned 0. Nothing was produced; the handles stay usable.
+/// The progress callback returned 0, or the progress state was cancelled. Nothing was
+/// produced; the handles stay usable.
 pub const RAPS_ERROR_CANCELLED: i32 = 18;
 /// The sparse solver failed (a singular system, e.g. from negative cotangent weights).
 pub const RAPS_ERROR_SOLVER_FAILED: i32 = 19;
@@ -398,6 +399,24 @@ pub struct raps_settings {
     _private: [u8; 0],
 }
 
+/// A progress state: progress without a callback, for callers that would rather poll. A run whose
+/// settings name one (raps_settings_set_progress_state) writes every progress report into it
+/// (the same reports, at the same points, as raps_progress_fn receives) and stops at its next
+/// report once the state is cancelled, returning RAPS_ERROR_CANCELLED; the caller reads it
+/// from any thread. For a language whose callbacks are costly to enter from the run's worker
+/// threads: a Python callback called from a thread Python did not create took 40 to 90
+/// microseconds per call, five to nine times the library's own time on a mesh of a few thousand
+/// triangles (docs/blender.md); a report into a state costs a lock. A callback may be set too:
+/// the state records each report before the callback sees it.
+/// Threading: the raps_progress_state_* calls below may run on any thread at any time, also
+/// while runs report into the state; destroy it only when no run uses it. Several runs may
+/// share one state (a cancel stops them all; a read shows the latest report of any of them).
+/// Opaque: only ever handled through pointers.
+#[repr(C)]
+pub struct raps_progress_state {
+    _private: [u8; 0],
+}
+
 /// Opaque: only ever handled through pointers.
 #[repr(C)]
 pub struct raps_result {
@@ -683,7 +702,7 @@ extern "C" {
     /// Creates settings holding the defaults above. Errors: INVALID_ARGUMENT, OUT_OF_MEMORY.
     pub fn raps_settings_create(out_settings: *mut *mut raps_settings) -> raps_status;
 
-    /// Creates an independent copy of settings (including its progress callback).
+    /// Creates an independent copy of settings (including its progress callback and state).
     /// Errors: INVALID_ARGUMENT, OUT_OF_MEMORY.
     pub fn raps_settings_clone(settings: *const raps_settings, out_settings: *mut *mut raps_settings) -> raps_status;
 
@@ -714,6 +733,32 @@ extern "C" {
     /// Sets the progress callback (NULL: none) and the pointer passed to it. Errors: INVALID_ARGUMENT
     /// (NULL settings).
     pub fn raps_settings_set_progress(settings: *mut raps_settings, r#fn: raps_progress_fn, user: *mut c_void) -> raps_status;
+
+    /// Creates a state: no report yet (phase -1, fraction 0, 0 reports), not cancelled.
+    /// Errors: INVALID_ARGUMENT (NULL out_state), OUT_OF_MEMORY.
+    pub fn raps_progress_state_create(out_state: *mut *mut raps_progress_state) -> raps_status;
+
+    /// Destroys a state; NULL is a no-op. No run may be using it.
+    pub fn raps_progress_state_destroy(state: *mut raps_progress_state);
+
+    /// The latest report: its phase (a raps_phase, -1 before the first), the fraction of that phase
+    /// done (in [0, 1], never falling within a pass through a phase) and how many reports the state
+    /// has recorded since it was created or reset. The three come from one report. Any out pointer
+    /// may be NULL. Errors: INVALID_ARGUMENT (NULL state).
+    pub fn raps_progress_state_read(state: *const raps_progress_state, out_phase: *mut raps_phase, out_fraction: *mut f64, out_reports: *mut i64) -> raps_status;
+
+    /// Cancels every run reporting into the state, at its next report (a few milliseconds of work
+    /// at most, as for the callback), and every run started with it until it is reset.
+    /// Errors: INVALID_ARGUMENT (NULL state).
+    pub fn raps_progress_state_cancel(state: *mut raps_progress_state) -> raps_status;
+
+    /// Back to no report and not cancelled, for the next run. Errors: INVALID_ARGUMENT (NULL).
+    pub fn raps_progress_state_reset(state: *mut raps_progress_state) -> raps_status;
+
+    /// Runs with these settings report into state (NULL: none); the settings keep the pointer, not
+    /// the state, which must outlive every run that uses it. raps_settings_clone copies the
+    /// pointer. Errors: INVALID_ARGUMENT (NULL settings).
+    pub fn raps_settings_set_progress_state(settings: *mut raps_settings, state: *mut raps_progress_state) -> raps_status;
 
     /// The message of the last failed call on these settings (a setter, a getter, a clone), "" after
     /// a setter succeeds; never NULL.
