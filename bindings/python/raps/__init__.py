@@ -49,7 +49,7 @@ except ImportError:  # plain sequences in, lists out
 
 __all__ = [
     "Boundary", "Chart", "Domain", "Error", "IterationMode", "Mesh", "MeshRange", "Monitor",
-    "Param", "ParamInfo", "Phase", "Result", "Rotation", "Settings", "SphereMethod", "SphereUv",
+    "Param", "ParamInfo", "Phase", "ProgressState", "Result", "Rotation", "Settings", "SphereMethod", "SphereUv",
     "Stacking",
     "Stats", "Status", "Weights", "parameterize", "parameterize_scene", "version",
     "version_string", "library_path",
@@ -682,14 +682,51 @@ class Result(_Handle):
         return charts
 
 
+ProgressReading = collections.namedtuple("ProgressReading", "phase fraction reports")
+
+
+class ProgressState(_Handle):
+    """Progress to poll: pass it as parameterize's progress and read it from any thread while
+    the run works (read()), or cancel the run there (cancel(): the run stops at its next report
+    and parameterize raises Error(Status.CANCELLED)). Unlike a progress callback, no Python
+    code runs on the library's worker threads, where each call into Python costs tens of
+    microseconds. Cancelled stays cancelled until reset(); one state may serve several runs,
+    also at once (a cancel stops them all). Close it only when no run uses it."""
+
+    def __init__(self):
+        super().__init__(_lib.raps_progress_state_create, _native.raps_progress_state,
+                         _lib.raps_progress_state_destroy)
+
+    def read(self):
+        """The latest report as ProgressReading(phase, fraction, reports): phase is a Phase, or
+        None before the first report; reports counts them since creation or reset()."""
+        phase, fraction, reports = _native.raps_phase(), ctypes.c_double(), ctypes.c_int64()
+        _check(_lib.raps_progress_state_read(self._ptr(), ctypes.byref(phase),
+                                             ctypes.byref(fraction), ctypes.byref(reports)))
+        return ProgressReading(None if phase.value < 0 else _known(Phase, phase.value),
+                               fraction.value, reports.value)
+
+    def cancel(self):
+        """Stops every run reporting into this state at its next report (any thread may call
+        it); runs started later stop at once, until reset()."""
+        _check(_lib.raps_progress_state_cancel(self._ptr()))
+
+    def reset(self):
+        """No report and not cancelled again, for the next run."""
+        _check(_lib.raps_progress_state_reset(self._ptr()))
+
+
 def parameterize(mesh, settings=None, progress=None, result=None):
     """Computes the map of mesh with settings (None: the defaults) and returns a Result.
 
-    progress, if given, is called as progress(phase, fraction) at the start and end of every
+    progress, if given, is a ProgressState the run reports into (read and cancelled from other
+    threads), or a callable called as progress(phase, fraction) at the start and end of every
     phase and about every 1% of the long ones, from this thread or, unless threads is 1, from
     the run's worker threads (never two calls at once); returning False (or 0) cancels, which
     raises Error(Status.CANCELLED). An exception raised by progress (also
-    KeyboardInterrupt) cancels the run and is raised here. result, if given, is refilled
+    KeyboardInterrupt) cancels the run and is raised here. A callable called from the worker
+    threads costs tens of microseconds per call (thousands of calls on a small mesh): where
+    that matters, poll a ProgressState instead. result, if given, is refilled
     instead of creating one. mesh and settings are only read: threads may share them (the
     library runs without the GIL), each with its own result."""
     return _run(lambda settings_ptr, result_ptr:
@@ -717,6 +754,15 @@ def _run(call_native, settings, progress, result):
         result = Result()
     if progress is None:
         status = call_native(settings._ptr() if settings else None, result._ptr())
+        _check(status, _lib.raps_result_last_error, result._pointer)
+        return result
+    if isinstance(progress, ProgressState):
+        # On a private copy, as the callback below: settings shared with other threads never
+        # report into it.
+        with (settings.clone() if settings else Settings()) as private:
+            _check(_lib.raps_settings_set_progress_state(private._ptr(), progress._ptr()),
+                   _lib.raps_settings_last_error, private._pointer)
+            status = call_native(private._ptr(), result._ptr())
         _check(status, _lib.raps_result_last_error, result._pointer)
         return result
 

@@ -212,6 +212,54 @@ class SharedMesh(unittest.TestCase):
         settings.close()
         result.close()
 
+    def test_progress_state_is_read_and_cancelled_from_another_thread(self):
+        # The run works on a thread of its own, as under a user interface; this thread polls
+        # the state and cancels once the adaptive solves have begun (100 of them: seconds of
+        # work left, where the cancel lands within one solve).
+        state = raps.ProgressState()
+        self.assertEqual(state.read(), (None, 0.0, 0))
+        outcome = []
+
+        def work():
+            try:
+                with raps.Settings(iterations=100) as settings:
+                    raps.parameterize(self.mesh, settings, progress=state).close()
+                outcome.append("finished")
+            except raps.Error as error:
+                outcome.append(error.status)
+
+        thread = threading.Thread(target=work)
+        thread.start()
+        seen = []
+        while thread.is_alive():
+            reading = state.read()
+            seen.append(reading.phase)
+            if reading.phase == raps.Phase.ADAPT:
+                state.cancel()
+                break
+            time.sleep(0.001)
+        thread.join()
+        self.assertEqual(outcome, [raps.Status.CANCELLED])
+        reading = state.read()
+        self.assertEqual(reading.phase, raps.Phase.ADAPT)  # stopped inside the phase
+        self.assertLess(reading.fraction, 0.5)
+        self.assertIn(raps.Phase.INITIAL_MAP, seen + [None])
+        # Cancelled until reset: a new run stops at its first report.
+        with self.assertRaises(raps.Error) as caught:
+            raps.parameterize(self.mesh, progress=state)
+        self.assertEqual(caught.exception.status, raps.Status.CANCELLED)
+        self.assertEqual(state.read().phase, raps.Phase.VALIDATE)
+        # Reset, it follows a whole run, whose map is the one without any progress.
+        state.reset()
+        self.assertEqual(state.read(), (None, 0.0, 0))
+        with raps.parameterize(self.mesh, progress=state) as polled, \
+                raps.parameterize(self.mesh) as plain:
+            self.assertEqual(rows(polled.uvs()), rows(plain.uvs()))
+        reading = state.read()
+        self.assertEqual((reading.phase, reading.fraction), (raps.Phase.METRICS, 1.0))
+        self.assertGreater(reading.reports, 5)
+        state.close()
+
     def test_exception_in_progress_propagates(self):
         class Stop(Exception):
             pass
