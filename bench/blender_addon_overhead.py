@@ -7,8 +7,9 @@
 For each mesh (a fresh object per call, as bench/blender_unwrappers.py makes them) and the
 lightmap preset: the operator's call (bpy.ops.raps.lightmap, headless: no progress callback),
 the library's run alone on the same arrays (raps.parameterize with the preset's settings, the
-mesh handle made outside the timing), and that run with a Python progress callback that does
-nothing (what the menu's path, with its progress bar and Esc, adds per call); and Blender's
+mesh handle made outside the timing), that run with a Python progress callback that does
+nothing (what the menu's path, with its progress bar and Esc, cost per call until it polled a
+progress state), and with a raps.ProgressState (what the menu's path adds now); and Blender's
 Lightmap Pack on the same mesh (its call alone, in edit mode, all faces selected; only on meshes
 of at most --lightmap-pack-max-faces faces, as in bench/blender_unwrappers.py). Prints
 medians of wall-clock and process CPU milliseconds (CPU: every thread of Blender's process, so
@@ -105,8 +106,8 @@ def main():
     from raps_uv import mesh_io, unwrap
     print("Milliseconds, medians of %d calls: wall / CPU\n" % ARGS.repeat)
     print("| mesh | faces | Lightmap with raps | library alone | library + Python progress "
-          "| progress calls | Lightmap Pack |")
-    print("|---|---:|---:|---:|---:|---:|---:|")
+          "| library + progress state | progress calls | Lightmap Pack |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for name in ARGS.names:
         verts, faces = read_mesh_file(os.path.join(ARGS.meshes, name))
         base = bpy.data.meshes.new(name)
@@ -119,12 +120,14 @@ def main():
             Library(data, options, None).prepare())
         library = timed(Library(data, options, None))
         with_progress = timed(Library(data, options, lambda phase, fraction: True))
+        from raps_uv.native import raps
+        with_state = timed(Library(data, options, raps.ProgressState()))
         pack = None
         if len(faces) <= ARGS.lightmap_pack_max_faces:  # minutes on the larger meshes
             pack = timed(LightmapPack(lambda: fresh_object(base, "pack")))
             bpy.ops.object.mode_set(mode="OBJECT")
-        print("| %s | %d | %.0f / %.0f | %.0f / %.0f | %.0f / %.0f | %d | %s |" % (
-            name, len(faces), *operator, *library, *with_progress, len(calls),
+        print("| %s | %d | %.0f / %.0f | %.0f / %.0f | %.0f / %.0f | %.0f / %.0f | %d | %s |" % (
+            name, len(faces), *operator, *library, *with_progress, *with_state, len(calls),
             "%.0f / %.0f" % pack if pack else "-"))
         bpy.data.meshes.remove(base)
 

@@ -286,9 +286,11 @@ class AddonTest(unittest.TestCase):
     def test_esc_cancels_mid_run_and_leaves_nothing_to_undo(self):
         # The menu's path as Blender's event loop drives it (operators.ModalRun: what the
         # operator's modal does with each event), with Esc arriving while the library maps the
-        # charts: the worker's progress call waits there until Esc has been handled, so the
-        # cancel lands mid-run whatever the machine's speed.
+        # charts. The job's progress goes into a raps.ProgressState; a library progress callback
+        # beside it (the state records each report first) holds the run at the charts' maps
+        # until Esc has been handled, so the cancel lands mid-run whatever the machine's speed.
         from raps_uv import operators
+        from raps_uv.native import raps
         obj = load("spot.obj")
         name = obj.name
         loaded = uv_array(obj).copy()
@@ -301,18 +303,20 @@ class AddonTest(unittest.TestCase):
         run = operators.Run(operator, bpy.context)
         self.assertIsNone(run.prepare())
         inside, esc_handled = threading.Event(), threading.Event()
-        job_progress = run.job._progress
 
-        def gated(number, count):
-            report = job_progress(number, count)
+        def wait_for_esc(_user, phase, _fraction):
+            if phase == raps_phase("INITIAL_MAP") and not inside.is_set():
+                inside.set()
+                esc_handled.wait()
+            return 1
+        gate = raps._native.raps_progress_fn(wait_for_esc)
+        job_settings = run.job.options.settings
 
-            def wait_for_esc(phase, fraction):
-                if phase == raps_phase("INITIAL_MAP") and not inside.is_set():
-                    inside.set()
-                    esc_handled.wait()
-                return report(phase, fraction)
-            return wait_for_esc
-        run.job._progress = gated
+        def gated_settings():
+            settings = job_settings()
+            raps._lib.raps_settings_set_progress(settings._ptr(), gate, None)
+            return settings
+        run.job.options.settings = gated_settings
         modal = operators.ModalRun(run, bpy.context)
         try:
             self.assertTrue(inside.wait(60), "the library never reached its charts' maps")

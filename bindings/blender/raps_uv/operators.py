@@ -1,11 +1,11 @@
 """UV > Unwrap with raps and UV > Lightmap with raps.
 
 Run from the menu (invoke), raps works on a worker thread while a modal timer shows its progress
-in the status bar and Esc cancels it (the library stops at its next progress call, and nothing
-is written); ModalRun holds that path apart from Blender's event loop, so that a headless test
-drives it too. From a script or the redo panel (execute), the same job runs to its end while
-Blender waits, showing progress on the cursor; in `blender -b` without a progress callback
-(nothing to show, no Esc to press). Either way every selected object's uvs
+in the status bar and Esc cancels it (the library reports into a raps.ProgressState that the
+timer reads and Esc cancels: it stops at its next report, and nothing is written); ModalRun
+holds that path apart from Blender's event loop, so that a headless test drives it too. From a
+script or the redo panel (execute), the same job runs to its end while Blender waits, showing
+progress on the cursor; in `blender -b` without progress (nothing to show, no Esc to press). Either way every selected object's uvs
 are written only once all have succeeded: a failure is reported naming the object, and leaves
 every object as it was. bl_options UNDO makes the write one Ctrl-Z step.
 """
@@ -229,8 +229,7 @@ class _UnwrapBase(UnwrapProperties):
     def execute(self, context):
         """Script, redo panel and background: the job runs while Blender waits."""
         run = Run(self, context)
-        # Headless, nobody sees the progress or presses Esc: the library runs without calling
-        # back into Python.
+        # Headless, nobody sees the progress or presses Esc: the library reports nothing.
         problem = run.prepare(progress=not bpy.app.background)
         if problem:
             self.report({"ERROR"}, "raps: " + problem)

@@ -1,9 +1,11 @@
 """The unwrap job: raps runs on meshes read from Blender, without touching Blender.
 
 A job holds only arrays (mesh_io.MeshInput), so it may run on a worker thread while Blender's
-interface keeps drawing: the library runs without the GIL and reports progress through its
-callback, which also cancels it. Nothing is written back here; the operator writes every
-object's uvs only once all of them have succeeded.
+interface keeps drawing: the library runs without the GIL and reports progress into a
+raps.ProgressState, which the interface's thread reads and cancels (no Python runs on the
+library's threads: a callback there cost 40 to 90 us per call, several times the library's own
+time on small meshes). Nothing is written back here; the operator writes every object's uvs
+only once all of them have succeeded.
 """
 
 import threading
@@ -89,37 +91,56 @@ class Job:
     """Runs raps over named meshes: one atlas each, or one for all (options.one_atlas).
 
     inputs: [(object name, MeshInput)]. run() fills self.outcomes; progress is read from
-    self.fraction (0..1) and cancel() stops the run at the library's next progress call. With
-    progress=False the library runs without calling back into Python (a headless Blender has
-    no progress to show and no Esc to press): no fraction, no cancel, and none of the
-    callback's cost (a few microseconds per call, a thousand calls on a 1,000-face mesh)."""
+    self.fraction (0..1, from any thread) and cancel() stops the run at the library's next
+    progress report. With progress=False the library reports nothing (a headless Blender has
+    no progress to show and no Esc to press): fraction stays 0 until the job is done, and
+    cancel() only keeps the next atlas from starting."""
 
     def __init__(self, inputs, options, progress=True):
         self.inputs = inputs
         self.options = options
-        self.progress = progress
         self.outcomes = [Outcome(name) for name, _ in inputs]
-        self.fraction = 0.0
         self.cancelled = False
         self.done = False
         self.failure = None  # an unexpected exception, raised again by the operator
         self._cancel = threading.Event()
+        self._state = raps.ProgressState() if progress else None
+        self._atlas = (0, 1)  # the atlas running, of how many
 
     def cancel(self):
         self._cancel.set()
+        if self._state is not None:
+            self._state.cancel()
+
+    @property
+    def fraction(self):
+        """How much of the job is done, 0..1: each atlas an equal share, each phase of one the
+        share of a run it usually takes (_PHASE_SHARE)."""
+        if self.done:
+            return 1.0
+        number, count = self._atlas
+        if self._state is None:
+            return number / count
+        phase, fraction, _ = self._state.read()
+        start, share = _PHASE_SPAN.get(int(phase), (0.0, 0.0)) if phase is not None else \
+            (0.0, 0.0)
+        return (number + min(start + share * fraction, 1.0)) / count
 
     def run(self):
         try:
             groups = [list(range(len(self.inputs)))] if self.options.one_atlas else \
                 [[i] for i in range(len(self.inputs))]
             for number, members in enumerate(groups):
-                self._run_atlas(members, number, len(groups))
+                if self._cancel.is_set():
+                    self.cancelled = True
+                    break
+                self._atlas = (number, len(groups))
+                self._run_atlas(members)
                 if self.cancelled:
                     break
         except BaseException as error:  # handed to the main thread, never lost in a thread
             self.failure = error
         finally:
-            self.fraction = 1.0
             self.done = True
 
     def start_thread(self):
@@ -127,25 +148,21 @@ class Job:
         thread.start()
         return thread
 
-    def _progress(self, number, count):
-        """The library's progress callback for atlas `number` of `count`: it moves the bar
-        and is where a cancel() stops the run (the library stops at the call that says so)."""
-        cancel = self._cancel
+    def _progress(self):
+        """What the library reports into for the next atlas: the job's state, its last reading
+        cleared but a cancel() made meanwhile kept (set again after the reset), or None."""
+        state = self._state
+        if state is not None:
+            state.reset()
+            if self._cancel.is_set():
+                state.cancel()
+        return state
 
-        def report(phase, fraction):
-            if cancel.is_set():
-                return False
-            start, share = _PHASE_SPAN.get(int(phase), (0.0, 0.0))
-            self.fraction = (number + min(start + share * fraction, 1.0)) / count
-            return True
-        return report
-
-    def _run_atlas(self, members, number, count):
+    def _run_atlas(self, members):
         """One atlas, one run: the library keeps each polygon's triangles in one chart (their
         polygon ids), so every loop of a polygon gets one uv."""
         started = time.perf_counter()
-        progress = self._progress(number, count) if self.progress else None
-        result = self._solve(members, progress)
+        result = self._solve(members, self._progress())
         if result is None:
             return
         with result:
