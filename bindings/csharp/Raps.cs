@@ -489,6 +489,64 @@ namespace Raps
         }
     }
 
+    /// <summary>A progress state's latest report: its phase (null before the first), the
+    /// fraction of that phase done and the reports since creation or Reset.</summary>
+    public struct ProgressReading
+    {
+        public Phase? Phase;
+        public double Fraction;
+        public long Reports;
+    }
+
+    /// <summary>Progress to poll (raps_progress_state): pass it to Parameterize, then Read it
+    /// or Cancel the run from any thread while the run works; the run stops at its next report
+    /// with Status.Cancelled, and so does every run started until Reset. No managed code runs
+    /// on the library's worker threads. One state may serve several runs, also at once (a
+    /// cancel stops them all); dispose it only when no run uses it.</summary>
+    public sealed class ProgressState : IDisposable
+    {
+        private readonly ProgressStateHandle handle;
+
+        public ProgressState()
+        {
+            ProgressStateHandle created;
+            Interop.Check(Native.raps_progress_state_create(out created));
+            handle = created;
+        }
+
+        /// <summary>The owned handle, for calls into Native.</summary>
+        public ProgressStateHandle Handle { get { return handle; } }
+
+        public ProgressReading Read()
+        {
+            int phase;
+            double fraction;
+            long reports;
+            Interop.Check(Native.raps_progress_state_read(handle, out phase, out fraction,
+                                                          out reports));
+            return new ProgressReading
+            {
+                Phase = phase < 0 ? (Phase?)null : (Phase)phase, Fraction = fraction,
+                Reports = reports
+            };
+        }
+
+        public void Cancel()
+        {
+            Interop.Check(Native.raps_progress_state_cancel(handle));
+        }
+
+        public void Reset()
+        {
+            Interop.Check(Native.raps_progress_state_reset(handle));
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+    }
+
     /// <summary>Facts about a parameter: name, type, inclusive bounds and default.</summary>
     public struct ParamInfo
     {
@@ -1017,6 +1075,33 @@ namespace Raps
             try
             {
                 Parameterize(mesh, settings, result, progress);
+            }
+            catch
+            {
+                result.Dispose();
+                throw;
+            }
+            return result;
+        }
+
+        /// <summary>Like Parameterize, the run reporting into progress (read and cancelled from
+        /// other threads) instead of calling back.</summary>
+        public static Result Parameterize(Mesh mesh, Settings settings, ProgressState progress)
+        {
+            if (mesh == null) throw new ArgumentNullException("mesh");
+            if (progress == null) throw new ArgumentNullException("progress");
+            var result = new Result();
+            try
+            {
+                // On a private copy, so settings shared with other threads never report into it.
+                using (Settings run = settings != null ? settings.Clone() : new Settings())
+                {
+                    Interop.Check(Native.raps_settings_set_progress_state(run.Handle,
+                                                                          progress.Handle));
+                    Interop.Check(Native.raps_parameterize(mesh.Handle, run.Handle,
+                                                           result.Handle),
+                                  result.LastError);
+                }
             }
             catch
             {

@@ -1081,6 +1081,57 @@ static class RapsTests
         }
     }
 
+    static void ProgressStateIsPolledAndCancelled()
+    {
+        Off camel = ReadOff("meshes/camelhead.off");
+        using (var mesh = new Mesh(camel.Xyz, camel.Indices))
+        using (var settings = new Settings())
+        using (var progress = new ProgressState())
+        {
+            ProgressReading before = progress.Read();
+            Expect(before.Phase == null && before.Reports == 0, "no phase before any run");
+
+            // A cancel before the run stops it at its first report, and stays until Reset.
+            progress.Cancel();
+            ExpectFailure(Status.Cancelled, () => Library.Parameterize(mesh, settings, progress));
+            Expect(progress.Read().Reports == 1, "the run stopped at its first report");
+            ExpectFailure(Status.Cancelled, () => Library.Parameterize(mesh, settings, progress));
+
+            progress.Reset();
+            using (Library.Parameterize(mesh, settings, progress))
+            {
+            }
+            ProgressReading done = progress.Read();
+            Expect(done.Phase == Phase.Metrics && done.Fraction == 1 && done.Reports > 5,
+                   "a finished run ends at Metrics, fraction 1, got " + done.Phase + " " +
+                       done.Fraction + " after " + done.Reports + " reports");
+
+            // Another thread polls the state and cancels once the run adapts.
+            progress.Reset();
+            settings.Iterations = 100;
+            bool sawAdapt = false;
+            var poller = new Thread(() =>
+            {
+                var watch = System.Diagnostics.Stopwatch.StartNew();
+                while (watch.Elapsed.TotalSeconds < 60)
+                {
+                    if (progress.Read().Phase == Phase.Adapt)
+                    {
+                        sawAdapt = true;
+                        progress.Cancel();
+                        return;
+                    }
+                    Thread.Sleep(1);
+                }
+            });
+            poller.Start();
+            ExpectFailure(Status.Cancelled, () => Library.Parameterize(mesh, settings, progress));
+            poller.Join();
+            Expect(sawAdapt && progress.Read().Phase == Phase.Adapt,
+                   "cancelled from the polling thread during Adapt");
+        }
+    }
+
     static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -1099,6 +1150,8 @@ static class RapsTests
                                              ConcurrentRunsShareMeshAndSettings),
             new KeyValuePair<string, Action>("progress reports phases and cancels",
                                              ProgressReportsPhasesAndCancels),
+            new KeyValuePair<string, Action>("progress state is polled and cancelled",
+                                             ProgressStateIsPolledAndCancelled),
             new KeyValuePair<string, Action>("closed mesh has no boundary",
                                              ClosedMeshHasNoBoundary),
             new KeyValuePair<string, Action>("index out of range names the index",

@@ -1406,3 +1406,109 @@ where
     }
     result.map(|()| out)
 }
+
+/// Progress to poll instead of a callback (`raps_progress_state`): pass it to
+/// [`parameterize_with_state`], then [`read`](ProgressState::read) it or
+/// [`cancel`](ProgressState::cancel) the run from any thread; the run stops at its next report
+/// with [`Status::CANCELLED`], and so does every run started until
+/// [`reset`](ProgressState::reset). No Rust code runs on the library's worker threads. Several
+/// runs may share one state at once (a cancel stops them all); the borrow checker keeps it
+/// alive while they run.
+pub struct ProgressState {
+    raw: NonNull<sys::raps_progress_state>,
+}
+
+// SAFETY: every raps_progress_state_* call may run on any thread at any time, also while runs
+// report into the state (raps.h); the library locks it.
+unsafe impl Send for ProgressState {}
+unsafe impl Sync for ProgressState {}
+
+/// A [`ProgressState`]'s latest report.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProgressReading {
+    /// The phase of the latest report; `None` before the first.
+    pub phase: Option<Phase>,
+    /// The fraction of that phase done, in [0, 1].
+    pub fraction: f64,
+    /// Reports since creation or the last reset.
+    pub reports: i64,
+}
+
+impl ProgressState {
+    /// A state with no report and not cancelled.
+    pub fn new() -> Result<ProgressState> {
+        let mut raw = ptr::null_mut();
+        // SAFETY: raw is a valid out pointer.
+        check(
+            unsafe { sys::raps_progress_state_create(&mut raw) },
+            no_message,
+        )?;
+        Ok(ProgressState {
+            raw: NonNull::new(raw).expect("raps_progress_state_create gave NULL"),
+        })
+    }
+
+    /// The latest report of any run using this state.
+    pub fn read(&self) -> ProgressReading {
+        let (mut phase, mut fraction, mut reports) = (-1, 0.0, 0i64);
+        // SAFETY: a live handle and valid out pointers; reading is allowed at any time.
+        let status = unsafe {
+            sys::raps_progress_state_read(
+                self.raw.as_ptr(),
+                &mut phase,
+                &mut fraction,
+                &mut reports,
+            )
+        };
+        debug_assert_eq!(status, sys::RAPS_OK);
+        ProgressReading {
+            phase: if phase < 0 { None } else { Some(Phase(phase)) },
+            fraction,
+            reports,
+        }
+    }
+
+    /// Cancels every run using this state at its next report, and every run started until
+    /// [`reset`](ProgressState::reset).
+    pub fn cancel(&self) {
+        // SAFETY: a live handle; cancelling is allowed from any thread at any time.
+        let status = unsafe { sys::raps_progress_state_cancel(self.raw.as_ptr()) };
+        debug_assert_eq!(status, sys::RAPS_OK);
+    }
+
+    /// Clears the reading and the cancel, for the next run.
+    pub fn reset(&self) {
+        // SAFETY: a live handle; resetting is allowed from any thread at any time.
+        let status = unsafe { sys::raps_progress_state_reset(self.raw.as_ptr()) };
+        debug_assert_eq!(status, sys::RAPS_OK);
+    }
+}
+
+impl Drop for ProgressState {
+    fn drop(&mut self) {
+        // SAFETY: owned, destroyed exactly once; no run borrows it any more.
+        unsafe { sys::raps_progress_state_destroy(self.raw.as_ptr()) }
+    }
+}
+
+/// Like [`parameterize`], the run writing its reports into `progress`, which other threads may
+/// read and cancel meanwhile. The state is set on a private copy of `settings`.
+pub fn parameterize_with_state(
+    mesh: &Mesh,
+    settings: Option<&Settings>,
+    progress: &ProgressState,
+) -> Result<Parameterization> {
+    let private = match settings {
+        Some(settings) => settings.try_clone()?,
+        None => Settings::new()?,
+    };
+    // SAFETY: live handles; `progress` is borrowed for this whole function, and `private`
+    // (which holds the pointer) is dropped at its end, after the run.
+    let status = unsafe {
+        sys::raps_settings_set_progress_state(private.raw.as_ptr(), progress.raw.as_ptr())
+    };
+    check(status, || private.last_error())?;
+    let mut out = Parameterization::new()?;
+    parameterize_into(mesh, Some(&private), &mut out)?;
+    Ok(out)
+}

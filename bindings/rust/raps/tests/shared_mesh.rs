@@ -173,3 +173,45 @@ fn a_panic_in_progress_is_resumed_after_the_run() {
     // The mesh is still fine.
     assert!(raps::parameterize(&mesh, None).is_ok());
 }
+
+#[test]
+fn a_progress_state_is_polled_and_cancelled_from_another_thread() {
+    let (_, _, mesh) = camelhead();
+    let progress = raps::ProgressState::new().unwrap();
+    let before = progress.read();
+    assert_eq!((before.phase, before.reports), (None, 0));
+
+    // A cancel before the run stops it at its first report, and stays until reset.
+    progress.cancel();
+    let error = raps::parameterize_with_state(&mesh, None, &progress).unwrap_err();
+    assert_eq!(error.status(), Status::CANCELLED);
+    assert_eq!(progress.read().reports, 1);
+    progress.reset();
+    raps::parameterize_with_state(&mesh, None, &progress).unwrap();
+    let done = progress.read();
+    assert_eq!((done.phase, done.fraction), (Some(Phase::METRICS), 1.0));
+    assert!(done.reports > 5, "{} reports", done.reports);
+
+    // Another thread polls the state and cancels once the run adapts.
+    progress.reset();
+    let mut settings = Settings::new().unwrap();
+    settings.set_iterations(100).unwrap();
+    let outcome = std::thread::scope(|scope| {
+        let poller = scope.spawn(|| {
+            let start = std::time::Instant::now();
+            while start.elapsed().as_secs() < 60 {
+                if progress.read().phase == Some(Phase::ADAPT) {
+                    progress.cancel();
+                    return true;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            false
+        });
+        let outcome = raps::parameterize_with_state(&mesh, Some(&settings), &progress);
+        assert!(poller.join().unwrap(), "the poller saw ADAPT");
+        outcome
+    });
+    assert_eq!(outcome.unwrap_err().status(), Status::CANCELLED);
+    assert_eq!(progress.read().phase, Some(Phase::ADAPT));
+}
