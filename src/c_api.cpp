@@ -69,12 +69,12 @@ struct raps_mesh {
     std::string last_error;
 };
 
-// The message is mutable: a failing getter or copy, which takes a const handle, still stores
-// its message in the handle, as the header promises for every failing call.
 struct raps_progress_state {
     raps::ProgressState state;
 };
 
+// The message is mutable: a failing getter or copy, which takes a const handle, still stores
+// its message in the handle, as the header promises for every failing call.
 struct raps_settings {
     raps::Settings settings;
     raps_progress_fn progress = nullptr;
@@ -863,8 +863,7 @@ raps_status raps_settings_set_progress(raps_settings* settings, raps_progress_fn
     return RAPS_OK;
 }
 
-raps_status raps_settings_set_progress_state(raps_settings* settings,
-                                            raps_progress_state* state) {
+raps_status raps_settings_set_progress_state(raps_settings* settings, raps_progress_state* state) {
     if (!settings) return RAPS_ERROR_INVALID_ARGUMENT;
     settings->progress_state = state;
     settings->last_error.clear();

@@ -49,8 +49,8 @@ except ImportError:  # plain sequences in, lists out
 
 __all__ = [
     "Boundary", "Chart", "Domain", "Error", "IterationMode", "Mesh", "MeshRange", "Monitor",
-    "Param", "ParamInfo", "Phase", "ProgressState", "Result", "Rotation", "Settings", "SphereMethod", "SphereUv",
-    "Stacking",
+    "Param", "ParamInfo", "Phase", "ProgressReading", "ProgressState", "Result", "Rotation",
+    "Settings", "SphereMethod", "SphereUv", "Stacking",
     "Stats", "Status", "Weights", "parameterize", "parameterize_scene", "version",
     "version_string", "library_path",
 ]
