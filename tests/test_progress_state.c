@@ -4,7 +4,8 @@
  * the state holds exactly the report the callback is about to see (phase, fraction, count);
  * a run with a state gives the same bits as one without; a cancel from a polling thread
  * (the way a Python or C# caller uses it) stops disk and atlas runs, stays until reset, and
- * a reset state serves the next run; bad arguments are refused. */
+ * a reset state serves the next run; one cancel stops every run sharing the state; bad
+ * arguments are refused. */
 #define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <pthread.h>
 #include <setjmp.h>
@@ -224,6 +225,104 @@ static void a_cancel_from_a_polling_thread_stops_an_atlas_run(void** state) {
     test_mesh_free(&mesh);
 }
 
+/* Two runs sharing one state, each held by its callback at its `hold_at`-th report until the
+ * main thread has cancelled the state: one cancel stops both. */
+typedef struct shared_run {
+    const test_mesh* mesh;
+    raps_settings* settings;
+    int64_t hold_at, callback_calls, calls_after_cancel;
+    raps_status status;
+    struct shared_hold* hold;
+} shared_run;
+
+typedef struct shared_hold {
+    pthread_mutex_t lock;
+    pthread_cond_t changed;
+    int held, cancelled;
+} shared_hold;
+
+static int32_t hold_until_shared_cancel(void* user, raps_phase phase, double fraction) {
+    (void)phase;
+    (void)fraction;
+    shared_run* run = user;
+    shared_hold* h = run->hold;
+    pthread_mutex_lock(&h->lock);
+    if (h->cancelled) ++run->calls_after_cancel;
+    if (++run->callback_calls == run->hold_at) {
+        ++h->held;
+        pthread_cond_broadcast(&h->changed);
+        while (!h->cancelled) pthread_cond_wait(&h->changed, &h->lock);
+    }
+    pthread_mutex_unlock(&h->lock);
+    return 1;
+}
+
+static void* run_shared(void* user) {
+    shared_run* run = user;
+    raps_mesh* m = to_raps_mesh(run->mesh);
+    raps_result* r = NULL;
+    if (raps_result_create(&r) == RAPS_OK) run->status = raps_parameterize(m, run->settings, r);
+    raps_result_destroy(r);
+    raps_mesh_destroy(m);
+    return NULL;
+}
+
+static void one_cancel_stops_every_run_sharing_the_state(void** state) {
+    (void)state;
+    test_mesh disk = make_flat_disk(40, 12, 0.2);
+    test_mesh bunny = load_shared_mesh("bunny.off");
+    raps_progress_state* p = NULL;
+    assert_status(raps_progress_state_create(&p), RAPS_OK);
+    shared_hold hold;
+    memset(&hold, 0, sizeof(hold));
+    pthread_mutex_init(&hold.lock, NULL);
+    pthread_cond_init(&hold.changed, NULL);
+    shared_run runs[2];
+    memset(runs, 0, sizeof(runs));
+    runs[0].mesh = &disk;
+    runs[0].settings = domain_settings(RAPS_DOMAIN_DISK, 1);
+    assert_status(raps_settings_set_int(runs[0].settings, RAPS_PARAM_ITERATIONS, 2), RAPS_OK);
+    runs[0].hold_at = 5;
+    runs[1].mesh = &bunny;
+    runs[1].settings = domain_settings(RAPS_DOMAIN_ATLAS, 2);
+    runs[1].hold_at = 40; /* among the charts' maps, reported from the worker threads */
+    pthread_t threads[2];
+    for (int k = 0; k < 2; ++k) {
+        runs[k].hold = &hold;
+        runs[k].status = RAPS_OK;
+        assert_status(raps_settings_set_progress_state(runs[k].settings, p), RAPS_OK);
+        assert_status(
+            raps_settings_set_progress(runs[k].settings, hold_until_shared_cancel, &runs[k]),
+            RAPS_OK);
+        assert_int_equal(pthread_create(&threads[k], NULL, run_shared, &runs[k]), 0);
+    }
+    pthread_mutex_lock(&hold.lock);
+    while (hold.held < 2) pthread_cond_wait(&hold.changed, &hold.lock);
+    int64_t reports = 0;
+    assert_status(raps_progress_state_read(p, NULL, NULL, &reports), RAPS_OK);
+    assert_int_equal(reports, runs[0].hold_at + runs[1].hold_at); /* both runs' reports */
+    assert_status(raps_progress_state_cancel(p), RAPS_OK);
+    hold.cancelled = 1;
+    pthread_cond_broadcast(&hold.changed);
+    pthread_mutex_unlock(&hold.lock);
+    for (int k = 0; k < 2; ++k) pthread_join(threads[k], NULL);
+
+    /* Each stopped at its report after the cancel, which its callback never saw. */
+    for (int k = 0; k < 2; ++k) {
+        assert_status(runs[k].status, RAPS_ERROR_CANCELLED);
+        assert_int_equal(runs[k].callback_calls, runs[k].hold_at);
+        assert_int_equal(runs[k].calls_after_cancel, 0);
+        raps_settings_destroy(runs[k].settings);
+    }
+    assert_status(raps_progress_state_read(p, NULL, NULL, &reports), RAPS_OK);
+    assert_int_equal(reports, runs[0].hold_at + runs[1].hold_at + 2);
+    pthread_cond_destroy(&hold.changed);
+    pthread_mutex_destroy(&hold.lock);
+    raps_progress_state_destroy(p);
+    test_mesh_free(&bunny);
+    test_mesh_free(&disk);
+}
+
 static void bad_arguments_are_refused_and_clones_share_the_state(void** state) {
     (void)state;
     assert_status(raps_progress_state_create(NULL), RAPS_ERROR_INVALID_ARGUMENT);
@@ -263,6 +362,7 @@ int main(void) {
         cmocka_unit_test(a_state_holds_each_report_the_callback_gets),
         cmocka_unit_test(a_cancel_from_a_polling_thread_stops_a_disk_run),
         cmocka_unit_test(a_cancel_from_a_polling_thread_stops_an_atlas_run),
+        cmocka_unit_test(one_cancel_stops_every_run_sharing_the_state),
         cmocka_unit_test(bad_arguments_are_refused_and_clones_share_the_state),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
