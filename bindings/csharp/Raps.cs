@@ -1118,6 +1118,28 @@ namespace Raps
         {
             if (meshes == null) throw new ArgumentNullException("meshes");
             if (settings == null) throw new ArgumentNullException("settings");
+            return SceneRun(meshes, settings);
+        }
+
+        /// <summary>Like ParameterizeScene, the run reporting into progress (read and cancelled
+        /// from other threads).</summary>
+        public static Result ParameterizeScene(Mesh[] meshes, Settings settings,
+                                               ProgressState progress)
+        {
+            if (meshes == null) throw new ArgumentNullException("meshes");
+            if (settings == null) throw new ArgumentNullException("settings");
+            if (progress == null) throw new ArgumentNullException("progress");
+            // On a private copy, so settings shared with other threads never report into it.
+            using (Settings run = settings.Clone())
+            {
+                Interop.Check(Native.raps_settings_set_progress_state(run.Handle,
+                                                                      progress.Handle));
+                return SceneRun(meshes, run);
+            }
+        }
+
+        private static Result SceneRun(Mesh[] meshes, Settings settings)
+        {
             var raw = new IntPtr[meshes.Length];
             for (int m = 0; m < meshes.Length; m++)
             {

@@ -933,6 +933,21 @@ static class RapsTests
             using (var disk = new Settings())
                 ExpectFailure(Status.InvalidArgument,
                               () => Library.ParameterizeScene(new[] { small }, disk).Dispose());
+            // A progress state follows the scene's phases and cancels it.
+            using (var progress = new ProgressState())
+            {
+                using (Library.ParameterizeScene(new[] { small, big }, settings, progress))
+                {
+                }
+                ProgressReading done = progress.Read();
+                Expect(done.Phase == Phase.Metrics && done.Fraction == 1,
+                       "the scene run ends at Metrics, fraction 1");
+                progress.Reset();
+                progress.Cancel();
+                ExpectFailure(Status.Cancelled, () => Library.ParameterizeScene(
+                    new[] { small, big }, settings, progress));
+                Expect(progress.Read().Reports == 1, "cancelled at its first report");
+            }
         }
     }
 

@@ -1512,3 +1512,20 @@ pub fn parameterize_with_state(
     parameterize_into(mesh, Some(&private), &mut out)?;
     Ok(out)
 }
+
+/// Like [`parameterize_scene`], the run writing its reports into `progress`, which other threads
+/// may read and cancel meanwhile. The state is set on a private copy of `settings`.
+pub fn parameterize_scene_with_state(
+    meshes: &[&Mesh],
+    settings: &Settings,
+    progress: &ProgressState,
+) -> Result<Parameterization> {
+    let private = settings.try_clone()?;
+    // SAFETY: live handles; `progress` is borrowed for this whole function, and `private`
+    // (which holds the pointer) is dropped at its end, after the run.
+    let status = unsafe {
+        sys::raps_settings_set_progress_state(private.raw.as_ptr(), progress.raw.as_ptr())
+    };
+    check(status, || private.last_error())?;
+    parameterize_scene(meshes, &private)
+}

@@ -1,7 +1,7 @@
 //! Several meshes in one atlas (parameterize_scene): each mesh's share reads as its own result,
 //! one texel density holds across them, pages never exceed the maximum, bad transforms are
 //! refused.
-use raps::{Domain, Mesh, Param, Rotation, Settings, Status};
+use raps::{Domain, Mesh, Param, Phase, Rotation, Settings, Status};
 
 /// A hexagonal cap: one vertex raised above the middle of six on the unit circle.
 fn cap() -> (Vec<f64>, Vec<u32>) {
@@ -170,4 +170,23 @@ fn a_repeated_mesh_shares_its_originals_texels() {
         let copied = uv[second.first_vertex as usize + indices[18 + corner] as usize];
         assert_eq!(own, copied);
     }
+}
+
+#[test]
+fn a_progress_state_follows_and_cancels_a_scene() {
+    let (small, big, _) = two_caps();
+    let settings = atlas_settings();
+    let progress = raps::ProgressState::new().unwrap();
+    raps::parameterize_scene_with_state(&[&small, &big], &settings, &progress).unwrap();
+    let done = progress.read();
+    assert_eq!((done.phase, done.fraction), (Some(Phase::METRICS), 1.0));
+    progress.reset();
+    progress.cancel();
+    let error =
+        raps::parameterize_scene_with_state(&[&small, &big], &settings, &progress).unwrap_err();
+    assert_eq!(error.status(), Status::CANCELLED);
+    assert_eq!(progress.read().reports, 1);
+    // The state was on a private copy: the settings themselves run without it.
+    raps::parameterize_scene(&[&small, &big], &settings).unwrap();
+    assert_eq!(progress.read().reports, 1);
 }
