@@ -1088,27 +1088,8 @@ namespace Raps
         /// other threads) instead of calling back.</summary>
         public static Result Parameterize(Mesh mesh, Settings settings, ProgressState progress)
         {
-            if (mesh == null) throw new ArgumentNullException("mesh");
-            if (progress == null) throw new ArgumentNullException("progress");
-            var result = new Result();
-            try
-            {
-                // On a private copy, so settings shared with other threads never report into it.
-                using (Settings run = settings != null ? settings.Clone() : new Settings())
-                {
-                    Interop.Check(Native.raps_settings_set_progress_state(run.Handle,
-                                                                          progress.Handle));
-                    Interop.Check(Native.raps_parameterize(mesh.Handle, run.Handle,
-                                                           result.Handle),
-                                  result.LastError);
-                }
-            }
-            catch
-            {
-                result.Dispose();
-                throw;
-            }
-            return result;
+            using (Settings run = ReportingInto(settings, progress))
+                return Parameterize(mesh, run);
         }
 
         /// <summary>Packs several meshes into one atlas at one texel density (settings must set
@@ -1118,28 +1099,6 @@ namespace Raps
         {
             if (meshes == null) throw new ArgumentNullException("meshes");
             if (settings == null) throw new ArgumentNullException("settings");
-            return SceneRun(meshes, settings);
-        }
-
-        /// <summary>Like ParameterizeScene, the run reporting into progress (read and cancelled
-        /// from other threads).</summary>
-        public static Result ParameterizeScene(Mesh[] meshes, Settings settings,
-                                               ProgressState progress)
-        {
-            if (meshes == null) throw new ArgumentNullException("meshes");
-            if (settings == null) throw new ArgumentNullException("settings");
-            if (progress == null) throw new ArgumentNullException("progress");
-            // On a private copy, so settings shared with other threads never report into it.
-            using (Settings run = settings.Clone())
-            {
-                Interop.Check(Native.raps_settings_set_progress_state(run.Handle,
-                                                                      progress.Handle));
-                return SceneRun(meshes, run);
-            }
-        }
-
-        private static Result SceneRun(Mesh[] meshes, Settings settings)
-        {
             var raw = new IntPtr[meshes.Length];
             for (int m = 0; m < meshes.Length; m++)
             {
@@ -1160,6 +1119,35 @@ namespace Raps
                 throw;
             }
             return result;
+        }
+
+        /// <summary>Like ParameterizeScene, the run reporting into progress (read and cancelled
+        /// from other threads).</summary>
+        public static Result ParameterizeScene(Mesh[] meshes, Settings settings,
+                                               ProgressState progress)
+        {
+            if (settings == null) throw new ArgumentNullException("settings");
+            using (Settings run = ReportingInto(settings, progress))
+                return ParameterizeScene(meshes, run);
+        }
+
+        // A private copy of settings (null: the defaults) that reports into progress, so that
+        // settings shared with other threads never do.
+        private static Settings ReportingInto(Settings settings, ProgressState progress)
+        {
+            if (progress == null) throw new ArgumentNullException("progress");
+            Settings run = settings != null ? settings.Clone() : new Settings();
+            try
+            {
+                Interop.Check(Native.raps_settings_set_progress_state(run.Handle,
+                                                                      progress.Handle));
+            }
+            catch
+            {
+                run.Dispose();
+                throw;
+            }
+            return run;
         }
 
         /// <summary>Like Parameterize, refilling result (which is empty after a

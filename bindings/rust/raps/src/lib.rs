@@ -1376,10 +1376,7 @@ pub fn parameterize_with_progress<F>(
 where
     F: FnMut(Phase, f64) -> bool + Send,
 {
-    let private = match settings {
-        Some(settings) => settings.try_clone()?,
-        None => Settings::new()?,
-    };
+    let private = private_copy(settings)?;
     let state = Mutex::new(Progress {
         callback: progress,
         panic: None,
@@ -1498,19 +1495,7 @@ pub fn parameterize_with_state(
     settings: Option<&Settings>,
     progress: &ProgressState,
 ) -> Result<Parameterization> {
-    let private = match settings {
-        Some(settings) => settings.try_clone()?,
-        None => Settings::new()?,
-    };
-    // SAFETY: live handles; `progress` is borrowed for this whole function, and `private`
-    // (which holds the pointer) is dropped at its end, after the run.
-    let status = unsafe {
-        sys::raps_settings_set_progress_state(private.raw.as_ptr(), progress.raw.as_ptr())
-    };
-    check(status, || private.last_error())?;
-    let mut out = Parameterization::new()?;
-    parameterize_into(mesh, Some(&private), &mut out)?;
-    Ok(out)
+    parameterize(mesh, Some(&reporting_into(settings, progress)?))
 }
 
 /// Like [`parameterize_scene`], the run writing its reports into `progress`, which other threads
@@ -1520,12 +1505,26 @@ pub fn parameterize_scene_with_state(
     settings: &Settings,
     progress: &ProgressState,
 ) -> Result<Parameterization> {
-    let private = settings.try_clone()?;
-    // SAFETY: live handles; `progress` is borrowed for this whole function, and `private`
-    // (which holds the pointer) is dropped at its end, after the run.
+    parameterize_scene(meshes, &reporting_into(Some(settings), progress)?)
+}
+
+/// A private copy of `settings` (`None`: the defaults), so that settings shared with other
+/// threads never see what a run adds to it.
+fn private_copy(settings: Option<&Settings>) -> Result<Settings> {
+    match settings {
+        Some(settings) => settings.try_clone(),
+        None => Settings::new(),
+    }
+}
+
+/// A private copy of `settings` that reports into `progress`. The copy holds a pointer to the
+/// state, so callers run it and drop it while `progress` is still borrowed.
+fn reporting_into(settings: Option<&Settings>, progress: &ProgressState) -> Result<Settings> {
+    let private = private_copy(settings)?;
+    // SAFETY: live handles; the settings keep the pointer, not the state (raps.h).
     let status = unsafe {
         sys::raps_settings_set_progress_state(private.raw.as_ptr(), progress.raw.as_ptr())
     };
     check(status, || private.last_error())?;
-    parameterize_scene(meshes, &private)
+    Ok(private)
 }
