@@ -328,6 +328,50 @@ static void several_meshes_share_one_atlas_without_overlap(void** state) {
     free_three_meshes(&t);
 }
 
+/* A flat 10:1 strip beside a sphere and a square (a third of the area): at the density at
+ * which the charts would fill 0.7 of the square, the strip is 1.5 times the square's side. Kept
+ * whole it lowers every chart's density (placed across the square, the atlas covered 0.516 of
+ * it); it is cut across instead, and the square is covered as compact meshes cover it. */
+static void a_long_mesh_among_compact_ones_is_cut_across(void** state) {
+    (void)state;
+    test_mesh strip = make_grid(100, 10, 10.0, 1.0);
+    test_mesh sphere = make_uv_sphere(16, 32);
+    test_mesh square = make_grid(12, 12, 3.0, 3.0);
+    scene sc;
+    sc.mesh_count = 3;
+    sc.meshes[0] = &strip;
+    sc.meshes[1] = &sphere;
+    sc.meshes[2] = &square;
+    set_identity(sc.transforms[0]);
+    set_scale_move(sc.transforms[1], 1.0, 0.0, 3.0, 0.0);
+    set_scale_move(sc.transforms[2], 1.0, 0.0, 6.0, 0.0);
+    raps_settings* s = atlas_settings(0, 2);
+    scene_atlas a = run_scene(&sc, s);
+    size_t strip_charts = 0;
+    double strip_area = 0, area = 0;
+    for (size_t c = 0; c < a.chart_count; ++c) {
+        area += a.charts[c].area_3d;
+        if (a.charts[c].mesh != 0) continue;
+        ++strip_charts;
+        strip_area += a.charts[c].area_3d;
+    }
+    print_message("%llu charts (%zu of the strip, %.2f of the area), utilization %.3f\n",
+                  (unsigned long long)a.stats.chart_count, strip_charts, strip_area / area,
+                  a.stats.utilization);
+    assert_true(strip_area / area < 0.5);
+    check_ranges(&sc, &a);
+    check_gaps(&a, 1, 1);
+    check_density(&a);
+    assert_int_equal(a.stats.flipped_triangles, 0);
+    assert_true(strip_charts >= 2);
+    assert_true(a.stats.utilization > 0.6);
+    scene_atlas_free(&a);
+    raps_settings_destroy(s);
+    test_mesh_free(&strip);
+    test_mesh_free(&sphere);
+    test_mesh_free(&square);
+}
+
 /* One mesh twice, the second scaled by 2: it gets four times the texels. */
 static void a_scaled_mesh_gets_texels_in_proportion(void** state) {
     (void)state;
@@ -803,6 +847,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(several_meshes_share_one_atlas_without_overlap),
         cmocka_unit_test(a_scaled_mesh_gets_texels_in_proportion),
+        cmocka_unit_test(a_long_mesh_among_compact_ones_is_cut_across),
         cmocka_unit_test(scene_output_is_identical_for_any_thread_count),
         cmocka_unit_test(a_one_mesh_atlas_has_records_and_fits_its_resolution),
         cmocka_unit_test(bad_scenes_are_refused_with_their_status),

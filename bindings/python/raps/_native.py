@@ -281,9 +281,12 @@ RAPS_DOMAIN_SPHERE = 1
 #   triangle repeated over the same (welded) vertices in the same winding takes its first
 #   copy's uvs, corner for corner (one surface, one set of texels); wound the other way it is
 #   the back of a two-sided surface and gets charts of its own. At a resolution, a chart
-#   more than twice as long as the square at the density the charts' area allows is cut
-#   across into pieces that keep its map (a 5.7:1 chart alone covered 0.086 of the square,
-#   its 4 pieces 0.676): the seams grow, the stretch does not. uvs are
+#   too long for the square at the density the charts' area allows is cut across into
+#   pieces that keep its map: the seams grow, the stretch does not. Too long is more than
+#   twice the square's side for a chart holding half the charts' area or more (a 5.7:1
+#   chart alone covered 0.086 of the square, its 4 pieces 0.676), 1.25 times it for a
+#   smaller one (one long mesh in a scene held the others' density down: the 19 shared
+#   meshes covered 0.33 of the square, 0.73 with it cut in two). uvs are
 #   texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
 #   as a texture of that size maps them: at a resolution the atlas is a square of
 #   RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density
