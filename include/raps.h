@@ -381,7 +381,8 @@ enum {
     /* int. Texels on each side of the square atlas, 16..16384. Default 1024. */
     RAPS_PARAM_ATLAS_RESOLUTION = 32,
     /* int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
-     * charts, more keeps mip levels apart too. Default 1. */
+     * charts, more keeps mip levels apart too. Default 1. At a resolution, 2 x padding + 3
+     * must not exceed it (a texel for a chart): RAPS_ERROR_INVALID_ARGUMENT otherwise. */
     RAPS_PARAM_ATLAS_PADDING = 33,
     /* float. Vertices closer than this (in position units) are welded before charts are made,
      * >= 0; 0 welds identical positions only. Default 0. */

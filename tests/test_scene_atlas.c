@@ -815,6 +815,41 @@ static void bad_scenes_are_refused_with_their_status(void** state) {
     assert_int_equal(raps_settings_set_int(cramped, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), RAPS_OK);
     expect_refused(pair, 2, cramped, RAPS_ERROR_INVALID_ARGUMENT, "inside its margin");
     raps_settings_destroy(cramped);
+    /* At a resolution, a padding that leaves no texel for a chart (it overran the packer's
+     * buffers): one mesh or a scene, refused by the run. 2 x 6 + 3 <= 16 still packs. */
+    const int64_t paddings[] = {6, 7, 8, 64};
+    for (size_t k = 0; k < sizeof(paddings) / sizeof(paddings[0]); ++k) {
+        const int64_t padding = paddings[k];
+        cramped = atlas_settings(1, padding);
+        assert_int_equal(raps_settings_set_int(cramped, RAPS_PARAM_ATLAS_RESOLUTION, 16), RAPS_OK);
+        raps_result* one = NULL;
+        assert_int_equal(raps_result_create(&one), RAPS_OK);
+        const raps_status status = raps_parameterize(good, cramped, one);
+        if (padding == 6) {
+            assert_int_equal(status, RAPS_OK);
+        } else {
+            assert_int_equal(status, RAPS_ERROR_INVALID_ARGUMENT);
+            assert_non_null(strstr(raps_result_last_error(one), "leaves no texel for the chart"));
+            expect_refused(pair, 2, cramped, RAPS_ERROR_INVALID_ARGUMENT, "leaves no texel");
+        }
+        raps_result_destroy(one);
+        raps_settings_destroy(cramped);
+    }
+    /* A mesh far below a texel at the density asked for (a scene in the wrong units): refused
+     * naming the density and the chart's size, not blamed on double precision. */
+    test_mesh fine = make_grid(20, 20, 1.0, 1.0);
+    raps_mesh* speck = to_raps_mesh(&fine);
+    double tiny[12];
+    set_scale_move(tiny, 1e-8, 0.0, 0.0, 0.0);
+    assert_int_equal(raps_mesh_set_transform(speck, tiny), RAPS_OK);
+    pair[1] = speck;
+    raps_settings* at_density = density_settings(1, 1, 64.0, 256, 256);
+    expect_refused(pair + 1, 1, at_density, RAPS_ERROR_ZERO_AREA_TRIANGLE,
+                   "at 64 texels per unit the largest chart is");
+    raps_settings_destroy(at_density);
+    raps_mesh_destroy(speck);
+    test_mesh_free(&fine);
+    pair[1] = good;
 
     /* Reading: a mesh range or chart beyond the result's, a chart of a disk map. */
     raps_result* r = NULL;

@@ -503,7 +503,8 @@ namespace Raps
         public const int RAPS_PARAM_ATLAS_RESOLUTION = 32;
         /// <summary>
         /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
-        /// charts, more keeps mip levels apart too. Default 1.
+        /// charts, more keeps mip levels apart too. Default 1. At a resolution, 2 x padding + 3
+        /// must not exceed it (a texel for a chart): RAPS_ERROR_INVALID_ARGUMENT otherwise.
         /// </summary>
         public const int RAPS_PARAM_ATLAS_PADDING = 33;
         /// <summary>

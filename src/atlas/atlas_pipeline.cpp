@@ -11,12 +11,13 @@
 
 #include "atlas/atlas_charts.h"
 #include "atlas/atlas_surface.h"
+#include "atlas/chart_box.h"
 #include "atlas/chart_packing.h"
 #include "atlas/chart_segmentation.h"
 #include "atlas/chart_stacking.h"
-#include "atlas/long_chart_split.h"
 #include "atlas/corner_sources.h"
 #include "atlas/instanced_parts.h"
+#include "atlas/long_chart_split.h"
 #include "atlas/page_packing.h"
 #include "atlas/polygon_units.h"
 #include "atlas/user_seams.h"
@@ -59,6 +60,22 @@ void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
             const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
             if (std::abs(a.x() * b.y() - a.y() * b.x()) > 2e-14) return;
         }
+    }
+    // Either the charts are far below a texel at the density asked for (a mesh in the wrong
+    // units), or one texel density cannot hold the mesh's extent and its triangles at once.
+    double longest = 0;  // texels
+    for (const AtlasChart& chart : charts) {
+        longest = std::max(longest, turned_box(chart.map.uv, chart.box.rotation).extent.maxCoeff() *
+                                        packed.texels_per_unit);
+    }
+    if (longest < 1) {
+        char figures[96];
+        std::snprintf(figures, sizeof(figures), "at %g texels per unit the largest chart is %.3g",
+                      packed.texels_per_unit, longest);
+        throw Error(ErrorCode::kZeroAreaTriangle,
+                    std::string("every triangle of the atlas has zero uv area: ") + figures +
+                        " texels across, far below the texel the charts are placed on (raise "
+                        "RAPS_PARAM_ATLAS_TEXELS_PER_UNIT or scale the mesh up)");
     }
     throw Error(ErrorCode::kZeroAreaTriangle,
                 "every triangle of the atlas has zero uv area: the mesh's extent is too large "
@@ -389,8 +406,7 @@ PackResult pack(const std::vector<PackInput>& inputs, const Settings& settings, 
         PageSettings square = page_settings(settings);
         square.margin = 0;  // the lightmap settings are the whole-texel atlas's, not this one's
         square.block_align = false;
-        return as_square(pack_one_page(inputs, square, pool, progress),
-                         settings.atlas_resolution);
+        return as_square(pack_one_page(inputs, square, pool, progress), settings.atlas_resolution);
     }
     PackSettings pack_settings;
     pack_settings.resolution = settings.atlas_resolution;
@@ -444,9 +460,22 @@ PackResult pack_places(const std::vector<AtlasChart>& charts, const std::vector<
     return all;
 }
 
-// A page must keep room for a chart inside its margin: refused before any work is done.
+// A page must keep room for a chart inside its margin: refused before any work is done. At a
+// resolution, the square must keep a texel for a chart inside the padding on both of its sides
+// and a texel that its conservative raster may touch on each (pack_charts's density bound).
 void check_page_settings(const Settings& settings) {
-    if (settings.atlas_texels_per_unit <= 0 && !settings.atlas_whole_texels) return;
+    if (settings.atlas_texels_per_unit <= 0 && !settings.atlas_whole_texels) {
+        const int64_t resolution = settings.atlas_resolution, padding = settings.atlas_padding;
+        if (resolution - 2 * padding - 2 < 1) {
+            throw Error(ErrorCode::kInvalidArgument,
+                        "an atlas of " + std::to_string(resolution) + " x " +
+                            std::to_string(resolution) + " texels with a padding of " +
+                            std::to_string(padding) +
+                            " texels on each side of a chart leaves no texel for the chart: "
+                            "raise RAPS_PARAM_ATLAS_RESOLUTION or lower RAPS_PARAM_ATLAS_PADDING");
+        }
+        return;
+    }
     const PageSettings pages = page_settings(settings);
     const int32_t block = pages.block_align ? 4 : 1;
     const int32_t margin = (pages.margin + block - 1) / block * block;

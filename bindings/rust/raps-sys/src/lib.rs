@@ -143,7 +143,8 @@ pub const RAPS_PARAM_MAX_MEMORY_MB: i32 = 16;
 /// int. Texels on each side of the square atlas, 16..16384. Default 1024.
 pub const RAPS_PARAM_ATLAS_RESOLUTION: i32 = 32;
 /// int. Texels kept free between charts, 0..64: 1 keeps bilinear filtering from mixing
-/// charts, more keeps mip levels apart too. Default 1.
+/// charts, more keeps mip levels apart too. Default 1. At a resolution, 2 x padding + 3
+/// must not exceed it (a texel for a chart): RAPS_ERROR_INVALID_ARGUMENT otherwise.
 pub const RAPS_PARAM_ATLAS_PADDING: i32 = 33;
 /// float. Vertices closer than this (in position units) are welded before charts are made,
 /// >= 0; 0 welds identical positions only. Default 0.
