@@ -250,7 +250,7 @@ PolygonMesh read_off(const std::string& path, const std::string& text) {
     auto count = [&](const char* what) {
         const auto token = next(what);
         const long long value = parse_integer(token.first, path, token.second);
-        if (value < 0) fail(path, token.second, std::string("negative ") + what);
+        if (value < 0) fail(path, token.second, what + std::string(" is negative"));
         return static_cast<size_t>(value);
     };
     const size_t vertex_count = count("the vertex count");
@@ -433,6 +433,9 @@ PolygonMesh read_mesh(const std::string& path) {
     }
     std::string text = read_all(path);
     if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // a UTF-8 byte order mark
+    // Lines ended by a carriage return alone (classic Mac OS exporters): one line otherwise.
+    if (ext != "ply" && text.find('\n') == std::string::npos)
+        std::replace(text.begin(), text.end(), '\r', '\n');
     if (ext == "ply") return read_ply(path, text);
     return ext == "obj" ? read_obj(path, text) : read_off(path, text);
 }

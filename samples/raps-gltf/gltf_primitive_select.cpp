@@ -240,7 +240,8 @@ Selection select_primitives(const Asset& asset, const BakeOptions& options,
             for (size_t p = 0; p < primitives.size(); ++p) {
                 skipped->push_back({int(m), int(p),
                                     "the default scene does not draw this mesh, or only under "
-                                    "transforms that flatten it (a zero scale): left as it is"});
+                                    "transforms that flatten it (a zero scale) or overflow "
+                                    "doubles (a scale near 1e308): left as it is"});
             }
             continue;
         }

@@ -403,8 +403,9 @@ void load_input(const std::string& path, const Options& options, bool polygons,
     std::vector<uint32_t> triangles = library.triangles();
     if (used_vertices_only) drop_unused_vertices(library, triangles, input.vertex_of);
     check(raps_mesh_create(&input.mesh), [] { return "cannot create a mesh"; });
-    if (library.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no vertices");
+    // No faces first: without them the disk and sphere domains keep no vertex either.
     if (triangles.empty()) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no faces");
+    if (library.vertex_count() == 0) throw Failure(RAPS_ERROR_EMPTY_MESH, path + ": no vertices");
     check(raps_mesh_set_positions_f64(input.mesh, library.positions.data(), library.vertex_count(),
                                       0),
           [&] { return path + ": " + raps_mesh_last_error(input.mesh); });

@@ -339,13 +339,28 @@ class RapsParamTest(unittest.TestCase):
         rc, out, err = run(os.path.join(self.dir.name, 'missing.obj'), '-o', self.out)
         self.assertEqual(rc, 1)
         self.assertIn('cannot open', err)
+        # Vertices without faces: named as such in every domain (the disk keeps no vertex
+        # that no face uses, which once made it "no vertices").
+        with open(src, 'w') as fh:
+            fh.write('v 0 0 0\nv 1 0 0\nv 0 1 0\n')
+        for domain in ([], ['--atlas'], ['--sphere']):
+            rc, out, err = run(src, '-o', self.out, *domain)
+            self.assertEqual(rc, 1)
+            self.assertIn('broken.obj: no faces', json.loads(out)['error']['message'])
+        src = os.path.join(self.dir.name, 'negative.off')
+        with open(src, 'w') as fh:
+            fh.write('OFF\n-3 1 0\n')
+        rc, out, err = run(src, '-o', self.out)
+        self.assertEqual(rc, 1)
+        self.assertIn('negative.off:2: the vertex count is negative', err)
         self.assertFalse(os.path.exists(self.out))
 
     def test_obj_and_off_as_exporters_write_them(self):
         """The forms real files take read as the plain file does: a byte order mark, comments
-        after a face, line continuations, CRLF, tabs, no final newline, relative indices, vt/vn
-        corners; Geomview's COFF and NOFF (numbers after x y z), and ModelNet's header with the
-        vertex count run into it. 4D and binary OFF are refused by name."""
+        after a face, line continuations, CRLF, lines ended by CR alone (classic Mac OS), tabs, no
+        final newline, relative indices, vt/vn corners; Geomview's COFF and NOFF (numbers after
+        x y z), and ModelNet's header with the vertex count run into it. 4D and binary OFF are
+        refused by name."""
         points = ['0 0 0', '1 0 0', '1 1 0.2', '0 1 0', '0.5 0.5 0.1']
         faces = [(1, 2, 5), (2, 3, 5), (3, 4, 5), (4, 1, 5)]
         plain = ''.join('v %s\n' % p for p in points) + ''.join('f %d %d %d\n' % f for f in faces)
@@ -354,6 +369,7 @@ class RapsParamTest(unittest.TestCase):
             'comments': plain.replace('f 2 3 5', 'f 2 3 5 # quad half').replace('v 1 0 0', 'v 1 0 0 1'),
             'continuation': plain.replace('f 3 4 5', 'f 3 \\\n 4 \\\r\n5'),
             'crlf_tabs': plain.replace('\n', '\r\n').replace(' ', '\t').rstrip(),
+            'cr': plain.replace('\n', '\r'),
             'relative': ''.join('v %s\n' % p for p in points) +
                         ''.join('f %d/%d/1 %d//1 -1\n' % (a - 6, a, b) for a, b, _ in faces) +
                         'vn 0 0 1\n',
@@ -365,6 +381,7 @@ class RapsParamTest(unittest.TestCase):
             'noff': 'NOFF\n' + '\n'.join(off[:1] + [p + ' 0 0 1' for p in points] + off[6:]),
             'modelnet': 'OFF' + '\n'.join(off) + '\n',
             'crlf': 'OFF\r\n' + '\r\n'.join(off),
+            'cr': '# exported\rOFF\r' + '\r'.join(off),
         }
         expected = None
         for name, text in [('plain.obj', plain)] + [(k + '.obj', v) for k, v in obj_forms.items()] + \
