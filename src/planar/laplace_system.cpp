@@ -141,7 +141,9 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
             if (!(std::abs(diagonal) > 0.0) || !std::isfinite(diagonal)) {
                 throw Error(ErrorCode::kSolverFailed,
                             "the weights around vertex " + std::to_string(v) +
-                                " sum to zero, so its row of the Laplace system is singular");
+                                " sum to zero or are not finite (a triangle around it is "
+                                "a needle or a cap, with an angle of nearly 0 or 180 degrees), "
+                                "so its row of the Laplace system is singular");
             }
             // Rows scaled to a unit diagonal: the solution is unchanged, and pivots become
             // comparable across rows whose weights differ by orders of magnitude.
