@@ -372,6 +372,42 @@ static void a_long_mesh_among_compact_ones_is_cut_across(void** state) {
     test_mesh_free(&square);
 }
 
+/* A flat 7:1 strip beside a sphere and a square (0.3 of the area) is 1.2 times the square's side
+ * at the density that would fill 0.7 of it: cut or whole may pack better, so both are packed.
+ * On whole texels, where no chart lies across the square, the cut packs denser and is kept. */
+static void a_chart_a_little_too_long_is_cut_where_that_packs_denser(void** state) {
+    (void)state;
+    test_mesh strip = make_grid(70, 10, 7.0, 1.0);
+    test_mesh sphere = make_uv_sphere(16, 32);
+    test_mesh square = make_grid(12, 12, 1.9, 1.9);
+    scene sc;
+    sc.mesh_count = 3;
+    sc.meshes[0] = &strip;
+    sc.meshes[1] = &sphere;
+    sc.meshes[2] = &square;
+    set_identity(sc.transforms[0]);
+    set_scale_move(sc.transforms[1], 1.0, 0.0, 3.0, 0.0);
+    set_scale_move(sc.transforms[2], 1.0, 0.0, 6.0, 0.0);
+    raps_settings* s = atlas_settings(0, 2);
+    assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), RAPS_OK);
+    scene_atlas a = run_scene(&sc, s);
+    size_t strip_charts = 0;
+    for (size_t c = 0; c < a.chart_count; ++c) strip_charts += a.charts[c].mesh == 0;
+    print_message("%llu charts (%zu of the strip), utilization %.3f\n",
+                  (unsigned long long)a.stats.chart_count, strip_charts, a.stats.utilization);
+    check_ranges(&sc, &a);
+    check_gaps(&a, 2, 1);
+    check_density(&a);
+    assert_int_equal(a.stats.flipped_triangles, 0);
+    assert_true(strip_charts >= 2);
+    assert_true(a.stats.utilization > 0.6);
+    scene_atlas_free(&a);
+    raps_settings_destroy(s);
+    test_mesh_free(&strip);
+    test_mesh_free(&sphere);
+    test_mesh_free(&square);
+}
+
 /* One mesh twice, the second scaled by 2: it gets four times the texels. */
 static void a_scaled_mesh_gets_texels_in_proportion(void** state) {
     (void)state;
@@ -883,6 +919,7 @@ int main(void) {
         cmocka_unit_test(several_meshes_share_one_atlas_without_overlap),
         cmocka_unit_test(a_scaled_mesh_gets_texels_in_proportion),
         cmocka_unit_test(a_long_mesh_among_compact_ones_is_cut_across),
+        cmocka_unit_test(a_chart_a_little_too_long_is_cut_where_that_packs_denser),
         cmocka_unit_test(scene_output_is_identical_for_any_thread_count),
         cmocka_unit_test(a_one_mesh_atlas_has_records_and_fits_its_resolution),
         cmocka_unit_test(bad_scenes_are_refused_with_their_status),

@@ -698,7 +698,9 @@ namespace Raps
         /// twice the square's side for a chart holding half the charts' area or more (a 5.7:1
         /// chart alone covered 0.086 of the square, its 4 pieces 0.676), 1.25 times it for a
         /// smaller one (one long mesh in a scene held the others' density down: the 19 shared
-        /// meshes covered 0.33 of the square, 0.73 with it cut in two). uvs are
+        /// meshes covered 0.33 of the square, 0.73 with it cut in two); between once and 1.25
+        /// times the side the atlas is packed both ways and the cut kept only where it is denser
+        /// (the packing phase then takes about twice as long). uvs are
         /// texel positions over the atlas's width x height texels (raps_stats.atlas_width/height),
         /// as a texture of that size maps them: at a resolution the atlas is a square of
         /// RAPS_PARAM_ATLAS_RESOLUTION texels, so u and v have the same scale; pages at a density

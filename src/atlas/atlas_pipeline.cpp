@@ -497,7 +497,8 @@ struct ChartSet {
     std::vector<int32_t> part;  // per chart
     // Mapped charts: what their corner sources are found from (corner_sources_of).
     std::vector<int32_t> welded;
-    AtlasSurface surface;  // only its maps to the input: mapped_charts empties the rest
+    AtlasSurface surface;       // only its maps to the input: mapped_charts empties the rest
+    LongChartCuts cuts_to_try;  // charts that may pack better cut (long_chart_split.h)
 };
 
 // Steps 2-4: the surface, grown into charts, each cut to a disk and mapped (their corner
@@ -532,7 +533,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     limits.max_stretch_linf = settings.atlas_max_linf;
     set.charts =
         build_charts(surface, std::move(chart_of_surface), seam, settings, limits, progress, pool);
-    split_long_charts(surface, settings, set.charts);
+    set.cuts_to_try = split_long_charts(surface, settings, set.charts);
     chart_timer.finish();
     // The charts hold their own meshes now: what is left to do (corner sources, packing,
     // output) reads only the surface's maps back to the input, so its mesh, twins and angles
@@ -586,6 +587,42 @@ ChartSet repacked_charts(const TriangleMesh& mesh, const AtlasParts& parts,
     return set;
 }
 
+// A chart set packed: each chart's place (stacking, chart_places) and the layout.
+struct PackedCharts {
+    std::vector<int32_t> place;
+    PackResult layout;
+};
+
+PackedCharts pack_chart_set(const TriangleMesh& mesh, const AtlasParts& parts,
+                            const Settings& settings, ChartSet& set, ThreadPool& pool,
+                            const ProgressSpan& progress) {
+    if (!settings.atlas_repack)
+        corner_sources_of(mesh, parts, settings, set, progress.part(0.0, 1.0 / 7.0));
+    PackedCharts packed;
+    packed.place = chart_places(set.charts, set.part, settings);
+    packed.layout = pack_places(set.charts, set.part, packed.place, settings, pool,
+                                progress.part(1.0 / 7.0, 1.0));
+    return packed;
+}
+
+// The set packed as it is and, where some charts may pack better cut, with them cut: the denser
+// of the two (`set` becomes the cut one when that is kept).
+PackedCharts pack_whole_or_cut(const TriangleMesh& mesh, const AtlasParts& parts,
+                               const Settings& settings, ChartSet& set, ThreadPool& pool,
+                               const ProgressSpan& progress) {
+    if (set.cuts_to_try.pieces.empty())
+        return pack_chart_set(mesh, parts, settings, set, pool, progress);
+    ChartSet cut = set;
+    cut.charts = with_cuts(set.charts, set.cuts_to_try);
+    set.cuts_to_try = cut.cuts_to_try = LongChartCuts();
+    PackedCharts whole = pack_chart_set(mesh, parts, settings, set, pool, progress.part(0.0, 0.5));
+    PackedCharts pieces = pack_chart_set(mesh, parts, settings, cut, pool, progress.part(0.5, 1.0));
+    if (!(pieces.layout.texels_per_unit > kCutPacksDenser * whole.layout.texels_per_unit))
+        return whole;
+    set = std::move(cut);
+    return pieces;
+}
+
 }  // namespace
 
 int32_t AtlasParts::part_of_triangle(int32_t triangle) const {
@@ -616,12 +653,11 @@ AtlasOutput build_atlas(const TriangleMesh& mesh, const AtlasParts& parts, const
                        : mapped_charts(mesh, parts, settings, progress, times, pool);
 
     PhaseTimer pack_timer(Phase::kPack, progress, times);
-    // Progress: where each corner comes from, the packing, the output's vertices and records.
-    if (!settings.atlas_repack)
-        corner_sources_of(mesh, parts, settings, set, pack_timer.span(0.0, 0.1));
-    const std::vector<int32_t> place = chart_places(set.charts, set.part, settings);
-    const PackResult packed =
-        pack_places(set.charts, set.part, place, settings, pool, pack_timer.span(0.1, 0.7));
+    // Progress: where each corner comes from and the packing, the output's vertices and records.
+    const PackedCharts packed_set =
+        pack_whole_or_cut(mesh, parts, settings, set, pool, pack_timer.span(0.0, 0.7));
+    const std::vector<int32_t>& place = packed_set.place;
+    const PackResult& packed = packed_set.layout;
     refuse_collapsed_atlas(mesh, settings.weld_tolerance, set.charts, packed);
 
     AtlasOutput out;
