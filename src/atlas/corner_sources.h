@@ -6,6 +6,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "atlas/atlas_pipeline.h"
+#include "atlas/atlas_surface.h"
+#include "atlas/chart_mapping.h"
+#include "core/progress.h"
+#include "core/triangle_mesh.h"
+
 namespace raps {
 
 // A chart per input triangle (its index; the point charts of degenerate triangles with no chart
@@ -19,5 +25,13 @@ struct CornerSources {
     // uvs); its texels are its original's and count once. Empty: no copies.
     std::vector<char> copy;
 };
+
+// The corner sources of mapped charts: each triangle a chart holds takes its chart vertices;
+// each triangle the surface set aside (atlas_surface.h) takes its primary's corners (an exact
+// copy), or goes on the chart of its polygon, or of one of its vertices, or else on a point
+// chart of its part. `welded`: the welded vertex of each input vertex.
+CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
+                             const std::vector<int32_t>& welded, const AtlasSurface& surface,
+                             const std::vector<AtlasChart>& charts, const ProgressSpan& progress);
 
 }  // namespace raps
