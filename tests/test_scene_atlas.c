@@ -871,6 +871,15 @@ static void bad_scenes_are_refused_with_their_status(void** state) {
         raps_result_destroy(one);
         raps_settings_destroy(cramped);
     }
+    /* Within that bound but too many charts for it: two meshes, each chart with 5 texels of
+     * padding on every side, cannot share 16 x 16 texels at any density (the search once ended
+     * at a negative density and overran the rasters). */
+    cramped = atlas_settings(1, 5);
+    assert_int_equal(raps_settings_set_int(cramped, RAPS_PARAM_ATLAS_RESOLUTION, 16), RAPS_OK);
+    pair[1] = good;
+    expect_refused(pair, 2, cramped, RAPS_ERROR_INVALID_ARGUMENT,
+                   "do not fit an atlas of 16 x 16 texels at any density");
+    raps_settings_destroy(cramped);
     /* A mesh far below a texel at the density asked for (a scene in the wrong units): refused
      * naming the density and the chart's size, not blamed on double precision. */
     test_mesh fine = make_grid(20, 20, 1.0, 1.0);
@@ -885,6 +894,16 @@ static void bad_scenes_are_refused_with_their_status(void** state) {
     raps_settings_destroy(at_density);
     raps_mesh_destroy(speck);
     test_mesh_free(&fine);
+    /* A curved mesh at 1e-83: its triangles' squared areas underflow, so every one looks
+     * degenerate; refused, where it once came out as one point chart with exit status 0. */
+    test_mesh ball = make_uv_sphere(8, 16);
+    raps_mesh* dust = to_raps_mesh(&ball);
+    set_scale_move(tiny, 1e-83, 0.0, 0.0, 0.0);
+    assert_int_equal(raps_mesh_set_transform(dust, tiny), RAPS_OK);
+    pair[1] = dust;
+    expect_refused(pair + 1, 1, atlas, RAPS_ERROR_ZERO_AREA_TRIANGLE, "below what doubles resolve");
+    raps_mesh_destroy(dust);
+    test_mesh_free(&ball);
     pair[1] = good;
 
     /* Reading: a mesh range or chart beyond the result's, a chart of a disk map. */

@@ -38,9 +38,13 @@ namespace {
 void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
                             const std::vector<AtlasChart>& charts, const PackResult& packed) {
     if (charts.empty()) {
+        bool underflows = false;  // areas whose squares doubles cannot hold (a mesh at 1e-80)
         for (const Triangle& t : mesh.triangles) {
             const Eigen::Vector3d& a = mesh.positions[t[0]];
-            if ((mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).squaredNorm() > 0) {
+            const Eigen::Vector3d normal =
+                (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+            underflows = underflows || normal.cwiseAbs().maxCoeff() > 0;
+            if (normal.squaredNorm() > 0) {
                 char tolerance[32];
                 std::snprintf(tolerance, sizeof(tolerance), "%g", weld_tolerance);
                 throw Error(
@@ -48,6 +52,11 @@ void refuse_collapsed_atlas(const TriangleMesh& mesh, double weld_tolerance,
                     std::string("welding vertices closer than RAPS_PARAM_WELD_TOLERANCE = ") +
                         tolerance + " leaves every triangle with zero area: no chart to map");
             }
+        }
+        if (underflows) {
+            throw Error(ErrorCode::kZeroAreaTriangle,
+                        "every triangle's area is below what doubles resolve: the mesh is too "
+                        "small (its triangles' squared areas underflow); scale it up");
         }
         return;  // the input has no area either: every triangle maps to one point
     }

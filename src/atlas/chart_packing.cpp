@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
 
 #include "atlas/chart_raster.h"
 #include "atlas/skyline_packing.h"
@@ -98,8 +99,7 @@ class ChartPacker {
         fit_density();
         add_orientations();
         Found found;
-        if (!best_layout(found))
-            throw Error(ErrorCode::kInternal, "no chart layout fits the atlas");
+        if (!best_layout(found)) throw no_room();
         refit(found);
         return to_uvs(found.layout);
     }
@@ -259,6 +259,17 @@ class ChartPacker {
         }
     }
 
+    // Each chart keeps `padding` texels on every side, however small the density makes it: a
+    // few charts can need more room than the square has at any density.
+    Error no_room() const {
+        return Error(ErrorCode::kInvalidArgument,
+                     "the " + std::to_string(count_) + " charts do not fit an atlas of " +
+                         std::to_string(limit_) + " x " + std::to_string(limit_) +
+                         " texels at any density with a padding of " + std::to_string(padding_) +
+                         " texels around each: raise RAPS_PARAM_ATLAS_RESOLUTION or lower "
+                         "RAPS_PARAM_ATLAS_PADDING");
+    }
+
     // The side of the square as large as the charts' padded boxes together, in cells.
     int32_t square_side() const {
         double area_cells = 0;
@@ -300,6 +311,7 @@ class ChartPacker {
             if (room < 1.02 || attempt >= 3) break;
             scale *= std::min(room, 1.5) * 0.995;
         }
+        if (fitted < 0) throw no_room();
         if (fitted != scale) rasterise_first(fitted);
         scale_ = fitted;
     }

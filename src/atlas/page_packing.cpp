@@ -246,8 +246,17 @@ void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& 
             for (int attempt = 0;
                  !place_all_on(layout.pages.back(), set.prepared, members, grid, layout);
                  ++attempt) {
-                if (attempt == 100)
-                    throw Error(ErrorCode::kInternal, "a mesh's charts fit no page");
+                if (attempt == 100) {
+                    // Each chart keeps its padding however far it shrinks: enough charts
+                    // need more cells than the page has at any scale.
+                    throw Error(ErrorCode::kInvalidArgument,
+                                "mesh " + std::to_string(part) + "'s " +
+                                    std::to_string(members.size()) +
+                                    " charts fit no page of the maximum size at any scale with "
+                                    "their padding and margin (one page per mesh): raise "
+                                    "RAPS_PARAM_ATLAS_MAX_WIDTH and _MAX_HEIGHT or lower the "
+                                    "padding or the margin");
+                }
                 for (size_t c : members) set.scale[c] *= 0.9;
                 parallel_for_each(pool, members.size(), [&](size_t k) {
                     const size_t c = members[k];
