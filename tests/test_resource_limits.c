@@ -202,10 +202,11 @@ static void memory_cap_refuses_before_any_work(void** state) {
     test_mesh_free(&disk);
 }
 
-/* The estimate grows with the triangle count in every domain, and with the atlas resolution:
+/* The estimate grows with the triangle count in every domain, and with the atlas's texels:
  * four times the triangles need between 3 and 6 times the cap (linear plus the n log n fill
- * term, over a fixed part), and the atlas at 16384 texels needs at least 256 MiB more for its
- * texel grids (measured: 1.2 to 1.5 bytes per texel). */
+ * term, over a fixed part; the atlas at 256 texels, whose grids are then small), the atlas at
+ * 16384 texels needs at least 2 GiB more (its packer's rasters: measured 7 to 11 bytes per
+ * texel at 8192), and at a density the charts' texels count (2 bytes each measured). */
 static void memory_estimate_scales_with_the_work(void** state) {
     (void)state;
     const int32_t domains[] = {RAPS_DOMAIN_DISK, RAPS_DOMAIN_SPHERE, RAPS_DOMAIN_ATLAS};
@@ -218,6 +219,8 @@ static void memory_estimate_scales_with_the_work(void** state) {
         assert_status(raps_settings_create(&s), RAPS_OK);
         assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, domains[d]), RAPS_OK);
         assert_status(raps_settings_set_int(s, RAPS_PARAM_SPHERE_MAX_SWEEPS, 3), RAPS_OK);
+        if (domains[d] == RAPS_DOMAIN_ATLAS)
+            assert_status(raps_settings_set_int(s, RAPS_PARAM_ATLAS_RESOLUTION, 256), RAPS_OK);
         raps_mesh* m_small = to_raps_mesh(small[d]);
         raps_mesh* m_large = to_raps_mesh(large[d]);
         assert_int_equal(raps_mesh_triangle_count(m_large), 4 * raps_mesh_triangle_count(m_small));
@@ -232,7 +235,13 @@ static void memory_estimate_scales_with_the_work(void** state) {
             assert_status(raps_settings_set_int(s, RAPS_PARAM_ATLAS_RESOLUTION, 16384), RAPS_OK);
             const int64_t cap_texels = smallest_passing_cap(m_small, s);
             print_message("  at 16384 texels: from %lld MiB\n", (long long)cap_texels);
-            assert_true(cap_texels >= cap_small + 256);
+            assert_true(cap_texels >= cap_small + 2048);
+            /* About 1e8 texels of charts (the disk's area times the density squared). */
+            assert_status(raps_settings_set_float(s, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 6000.0),
+                          RAPS_OK);
+            const int64_t cap_density = smallest_passing_cap(m_small, s);
+            print_message("  at 6000 texels per unit: from %lld MiB\n", (long long)cap_density);
+            assert_true(cap_density >= cap_small + 200);
         }
         raps_mesh_destroy(m_small);
         raps_mesh_destroy(m_large);

@@ -16,7 +16,12 @@ namespace raps {
 //   disk   (alligator, camelhead, face; 6K to 3.3M triangles): 483 to 860
 //   sphere (spot, bunny; 5.9K to 446K): 681 to 869
 //   atlas  (fandisk, bunny; 7K to 829K): 531 to 2342 (fandisk's many charts)
-// and the atlas's texel grids 1.2 to 1.5 bytes per texel (at 4096 and 16384 texels).
+// and the atlas's texel grids 1.2 to 1.5 bytes per texel (at 4096 and 16384 texels). Measured
+// again 2026-12-07 (`/usr/bin/time raps-param --atlas MESH --resolution 8192`, peak resident
+// set): the packer rasterises its 32 largest charts in 24 orientations at the final density,
+// and a resolution's texels cost cow 10.7 bytes each, lion 8.3, fandisk 7.1 (10.5 for cow at
+// 4096); at a density (`--texels-per-unit 1e4` and `3e4 --max-size 16384`) cow's peak was 2.2
+// and 1.9 bytes per texel of its charts' area, plus the open pages' cells.
 // docs/bench-memory.md (bench-report: --subdivide 2, atlas resolution 1024) sets the current
 // peaks beside the estimate (its sphere rows reach 892 bytes per triangle, above the range
 // measured then); that table is the one to check after changing anything here.
@@ -31,7 +36,18 @@ struct PerTriangle {
 constexpr PerTriangle kDisk{510.0, 25.0};
 constexpr PerTriangle kSphere{590.0, 25.0};
 constexpr PerTriangle kAtlas{2000.0, 40.0};
-constexpr double kAtlasBytesPerTexel = 1.75;
+constexpr double kAtlasBytesPerTexel = 12.0;        // of the square at a resolution
+constexpr double kDensityBytesPerChartTexel = 2.5;  // of the charts' area at a density
+constexpr double kOpenPages = 8.0;                  // page_packing.cpp, a bit per cell each
+
+double surface_area(const TriangleMesh& mesh) {
+    double area = 0;
+    for (const Triangle& t : mesh.triangles) {
+        const Eigen::Vector3d& a = mesh.positions[t[0]];
+        area += 0.5 * (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).norm();
+    }
+    return area;
+}
 
 }  // namespace
 
@@ -42,7 +58,13 @@ double estimated_peak_bytes(const TriangleMesh& mesh, const Settings& settings) 
                             : settings.domain == Domain::kAtlas ? kAtlas
                                                                 : kDisk;
     double bytes = kFixed + triangles * (per.a + per.b * log_triangles);
-    if (settings.domain == Domain::kAtlas) {
+    if (settings.domain == Domain::kAtlas && settings.atlas_texels_per_unit > 0) {
+        const double density = settings.atlas_texels_per_unit;
+        const double page =
+            static_cast<double>(settings.atlas_max_width) * settings.atlas_max_height;
+        bytes += kDensityBytesPerChartTexel * surface_area(mesh) * density * density +
+                 kOpenPages * page / 8.0;
+    } else if (settings.domain == Domain::kAtlas) {
         const double side = static_cast<double>(settings.atlas_resolution);
         bytes += kAtlasBytesPerTexel * side * side;
     }
