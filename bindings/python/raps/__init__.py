@@ -234,6 +234,17 @@ def _is_ndarray(value):
     return numpy is not None and isinstance(value, numpy.ndarray)
 
 
+def _integer(value, what, low=-(1 << 63), high=(1 << 63) - 1):
+    """value as a Python int in [low, high]: ctypes would wrap a larger one silently (2**64 + 5
+    became 5) and truncate a fraction."""
+    if isinstance(value, float) and not value.is_integer():
+        raise TypeError("raps: %s takes an integer, not %r" % (what, value))
+    number = int(value)
+    if not low <= number <= high:
+        raise ValueError("raps: %s is outside [%d, %d]: %d" % (what, low, high, number))
+    return number
+
+
 def _uint32_array(values, what):
     """values (None, a sequence or a numpy array of integers) as a flat uint32 buffer: a numpy
     array without a copy per element where numpy is there, else a ctypes array."""
@@ -241,10 +252,12 @@ def _uint32_array(values, what):
         values = []
     if _is_ndarray(values):
         flat = values.reshape(-1)
+        if flat.dtype.kind not in "iu":  # 1.5 and 1.7 would both become 1
+            raise TypeError("raps: %s must be an integer, not %s" % (what, flat.dtype))
         if flat.size and (flat.min() < 0 or flat.max() > 0xFFFFFFFF):
             raise ValueError("raps: %s is outside [0, 2^32)" % what)
         return numpy.ascontiguousarray(flat, dtype=numpy.uint32)
-    flat = [int(v) for v in values]
+    flat = [_integer(v, what) for v in values]
     if any(v < 0 or v > 0xFFFFFFFF for v in flat):
         raise ValueError("raps: %s is outside [0, 2^32)" % what)
     return (ctypes.c_uint32 * len(flat))(*flat)
@@ -490,13 +503,12 @@ class Settings(_Handle):
 
     def set(self, param, value):
         """Sets a parameter; float parameters take numbers, the others integers."""
-        if self.param_info(param).is_float:
+        info = self.param_info(param)
+        if info.is_float:
             status = _lib.raps_settings_set_float(self._ptr(), int(param), float(value))
         else:
-            if isinstance(value, float) and not value.is_integer():
-                raise TypeError("raps: parameter %s takes an integer, not %r"
-                                % (_known(Param, param), value))
-            status = _lib.raps_settings_set_int(self._ptr(), int(param), int(value))
+            what = "parameter %s" % info.name
+            status = _lib.raps_settings_set_int(self._ptr(), int(param), _integer(value, what))
         _check(status, _lib.raps_settings_last_error, self._pointer)
 
     def get(self, param):
@@ -650,7 +662,7 @@ class Result(_Handle):
 
     def phase_ms(self, phase):
         """Wall-clock milliseconds spent in a Phase by the run that filled this result."""
-        return _lib.raps_result_phase_ms(self._ptr(), int(phase))
+        return _lib.raps_result_phase_ms(self._ptr(), _integer(phase, "a phase", 0, 0x7FFFFFFF))
 
     @property
     def mesh_count(self):
@@ -662,6 +674,7 @@ class Result(_Handle):
         """MeshRange of input mesh `mesh`: its output vertices and indices (its indices number
         its own output vertices from 0, its remap its own input vertices)."""
         values = [ctypes.c_uint64() for _ in range(4)]
+        mesh = _integer(mesh, "a mesh index", 0, (1 << 64) - 1)
         _check(_lib.raps_result_mesh_range(self._ptr(), mesh, *map(ctypes.byref, values)),
                _lib.raps_result_last_error, self._pointer)
         return MeshRange(*(value.value for value in values))

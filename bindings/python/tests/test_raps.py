@@ -906,8 +906,27 @@ class Errors(unittest.TestCase):
             with self.assertRaises(raps.Error):
                 settings.iterations = 0
             self.assertEqual(settings.iterations, 1)
+            # Past 64 bits ctypes would wrap: 2**64 + 5 became 5, silently.
+            for value in (2**64 + 5, -2**63 - 1):
+                with self.assertRaises(ValueError) as caught:
+                    settings.iterations = value
+                self.assertIn("iterations", str(caught.exception))
+            self.assertEqual(settings.iterations, 1)
         with self.assertRaises(TypeError):
             raps.Settings(no_such_parameter=1)
+
+    def test_ids_and_indices_are_integers_in_range(self):
+        mesh = raps.Mesh([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)])
+        fractions = [[1.5]] + ([numpy.full(1, 1.5)] if numpy is not None else [])
+        for groups in fractions:  # 1.5 and 1.7 would be one group
+            with self.assertRaises(TypeError):
+                mesh.set_triangle_groups(groups)
+        mesh.set_triangle_groups([7] if numpy is None else numpy.array([7], dtype=numpy.int64))
+        with raps.Result() as result:
+            with self.assertRaises(ValueError):
+                result.mesh_range(2**64)  # once read as mesh 0
+            with self.assertRaises(ValueError):
+                result.phase_ms(2**32 + 2)  # once read as phase 2
 
     def test_empty_result_cannot_be_read(self):
         with raps.Result() as result:
