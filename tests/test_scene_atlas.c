@@ -328,25 +328,35 @@ static void several_meshes_share_one_atlas_without_overlap(void** state) {
     free_three_meshes(&t);
 }
 
-/* A flat 10:1 strip beside a sphere and a square (a third of the area): at the density at
- * which the charts would fill 0.7 of the square, the strip is 1.5 times the square's side. Kept
- * whole it lowers every chart's density (placed across the square, the atlas covered 0.516 of
- * it); it is cut across instead, and the square is covered as compact meshes cover it. */
-static void a_long_mesh_among_compact_ones_is_cut_across(void** state) {
-    (void)state;
-    test_mesh strip = make_grid(100, 10, 10.0, 1.0);
-    test_mesh sphere = make_uv_sphere(16, 32);
-    test_mesh square = make_grid(12, 12, 3.0, 3.0);
+/* A flat strip `length` x 1 beside a unit sphere and a flat square `side` x `side`. */
+typedef struct strip_scene {
+    test_mesh strip, sphere, square;
     scene sc;
-    sc.mesh_count = 3;
-    sc.meshes[0] = &strip;
-    sc.meshes[1] = &sphere;
-    sc.meshes[2] = &square;
-    set_identity(sc.transforms[0]);
-    set_scale_move(sc.transforms[1], 1.0, 0.0, 3.0, 0.0);
-    set_scale_move(sc.transforms[2], 1.0, 0.0, 6.0, 0.0);
-    raps_settings* s = atlas_settings(0, 2);
-    scene_atlas a = run_scene(&sc, s);
+} strip_scene;
+
+static void make_strip_scene(strip_scene* t, int length, double side) {
+    t->strip = make_grid(10 * length, 10, length, 1.0);
+    t->sphere = make_uv_sphere(16, 32);
+    t->square = make_grid(12, 12, side, side);
+    t->sc.mesh_count = 3;
+    t->sc.meshes[0] = &t->strip;
+    t->sc.meshes[1] = &t->sphere;
+    t->sc.meshes[2] = &t->square;
+    set_identity(t->sc.transforms[0]);
+    set_scale_move(t->sc.transforms[1], 1.0, 0.0, 3.0, 0.0);
+    set_scale_move(t->sc.transforms[2], 1.0, 0.0, 6.0, 0.0);
+}
+
+static void free_strip_scene(strip_scene* t) {
+    test_mesh_free(&t->strip);
+    test_mesh_free(&t->sphere);
+    test_mesh_free(&t->square);
+}
+
+/* Runs the scene and checks that the strip, under half of the area, was cut (2 charts or more)
+ * and that the atlas covers more than 0.6 of the square, with `reach` texels of padding. */
+static void expect_strip_cut(const strip_scene* t, const raps_settings* s, int reach) {
+    scene_atlas a = run_scene(&t->sc, s);
     size_t strip_charts = 0;
     double strip_area = 0, area = 0;
     for (size_t c = 0; c < a.chart_count; ++c) {
@@ -359,17 +369,27 @@ static void a_long_mesh_among_compact_ones_is_cut_across(void** state) {
                   (unsigned long long)a.stats.chart_count, strip_charts, strip_area / area,
                   a.stats.utilization);
     assert_true(strip_area / area < 0.5);
-    check_ranges(&sc, &a);
-    check_gaps(&a, 1, 1);
+    check_ranges(&t->sc, &a);
+    check_gaps(&a, reach, 1);
     check_density(&a);
     assert_int_equal(a.stats.flipped_triangles, 0);
     assert_true(strip_charts >= 2);
     assert_true(a.stats.utilization > 0.6);
     scene_atlas_free(&a);
+}
+
+/* A flat 10:1 strip beside a sphere and a square (a third of the area): at the density at
+ * which the charts would fill 0.7 of the square, the strip is 1.5 times the square's side. Kept
+ * whole it lowers every chart's density (placed across the square, the atlas covered 0.516 of
+ * it); it is cut across instead, and the square is covered as compact meshes cover it. */
+static void a_long_mesh_among_compact_ones_is_cut_across(void** state) {
+    (void)state;
+    strip_scene t;
+    make_strip_scene(&t, 10, 3.0);
+    raps_settings* s = atlas_settings(0, 2);
+    expect_strip_cut(&t, s, 1);
     raps_settings_destroy(s);
-    test_mesh_free(&strip);
-    test_mesh_free(&sphere);
-    test_mesh_free(&square);
+    free_strip_scene(&t);
 }
 
 /* A flat 7:1 strip beside a sphere and a square (0.3 of the area) is 1.2 times the square's side
@@ -377,35 +397,13 @@ static void a_long_mesh_among_compact_ones_is_cut_across(void** state) {
  * On whole texels, where no chart lies across the square, the cut packs denser and is kept. */
 static void a_chart_a_little_too_long_is_cut_where_that_packs_denser(void** state) {
     (void)state;
-    test_mesh strip = make_grid(70, 10, 7.0, 1.0);
-    test_mesh sphere = make_uv_sphere(16, 32);
-    test_mesh square = make_grid(12, 12, 1.9, 1.9);
-    scene sc;
-    sc.mesh_count = 3;
-    sc.meshes[0] = &strip;
-    sc.meshes[1] = &sphere;
-    sc.meshes[2] = &square;
-    set_identity(sc.transforms[0]);
-    set_scale_move(sc.transforms[1], 1.0, 0.0, 3.0, 0.0);
-    set_scale_move(sc.transforms[2], 1.0, 0.0, 6.0, 0.0);
+    strip_scene t;
+    make_strip_scene(&t, 7, 1.9);
     raps_settings* s = atlas_settings(0, 2);
     assert_int_equal(raps_settings_set_int(s, RAPS_PARAM_ATLAS_WHOLE_TEXELS, 1), RAPS_OK);
-    scene_atlas a = run_scene(&sc, s);
-    size_t strip_charts = 0;
-    for (size_t c = 0; c < a.chart_count; ++c) strip_charts += a.charts[c].mesh == 0;
-    print_message("%llu charts (%zu of the strip), utilization %.3f\n",
-                  (unsigned long long)a.stats.chart_count, strip_charts, a.stats.utilization);
-    check_ranges(&sc, &a);
-    check_gaps(&a, 2, 1);
-    check_density(&a);
-    assert_int_equal(a.stats.flipped_triangles, 0);
-    assert_true(strip_charts >= 2);
-    assert_true(a.stats.utilization > 0.6);
-    scene_atlas_free(&a);
+    expect_strip_cut(&t, s, 2);
     raps_settings_destroy(s);
-    test_mesh_free(&strip);
-    test_mesh_free(&sphere);
-    test_mesh_free(&square);
+    free_strip_scene(&t);
 }
 
 /* One mesh twice, the second scaled by 2: it gets four times the texels. */
