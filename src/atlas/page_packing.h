@@ -5,7 +5,8 @@
 // whole 4x4 blocks), so what the packer keeps apart stays apart in the texture: at least
 // `padding` texels between the texels any two charts touch, at least `margin` between them and
 // the page's border. Charts whose area one page holds are first tried on one page as
-// pack_one_page tries them (its size orders, two scoring rules). Otherwise charts are placed
+// pack_one_page tries them (its size orders, two scoring rules, then those orders repaired
+// where none fits: page_packing.cpp's repair_orders). Otherwise charts are placed
 // largest first, each on the first of the last 8 pages where the skyline search (skyline_packing.h)
 // finds it room; a chart that fits none opens the next page (and closes the oldest open one).
 // With part_per_page, all charts of one mesh of a scene go on one page, as a lightmap needs. A
@@ -41,7 +42,8 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
 // (within 1%, settings.texels_per_unit ignored) at which every chart fits it unshrunk: a
 // search from the density at which the charts' area would fill the page, down by a fifth
 // until they fit, then up by halving the gap or, up to 100 charts, to where the last fitting
-// layout's rows would fill the page. part_per_page is moot on one page. Throws
+// layout's rows would fill the page; a density within 1% of one that fits is also tried with
+// the orders repaired. part_per_page is moot on one page. Throws
 // kInvalidArgument when no density fits them (too many charts for the page with their padding).
 PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
                          ThreadPool& pool, const ProgressSpan& progress = {});
