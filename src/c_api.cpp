@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <string>
@@ -250,16 +251,23 @@ constexpr ParamInfo kParams[] = {
                                                   "atlas_stack_tolerance", 0.0, 0.1),
 };
 
-// "(0, 100]" or "[1e-12, 1]": a float parameter's bounds for a message (a lower bound of the
-// smallest normal double means "positive").
-std::string float_bounds(const ParamInfo& info) {
-    char text[64];
-    if (info.min <= 2.2250738585072014e-308) {
-        std::snprintf(text, sizeof(text), "(0, %g]", info.max);
-    } else {
-        std::snprintf(text, sizeof(text), "[%g, %g]", info.min, info.max);
+// A float as it was given, in as few digits as read back to the same double: %g's six digits
+// printed 0.9999999 as "1" next to the bound [1, 10], and std::to_string -1e-9 as "-0.000000".
+std::string exact_text(double value) {
+    char text[32];
+    for (int digits = 6; digits <= 17; ++digits) {
+        std::snprintf(text, sizeof(text), "%.*g", digits, value);
+        if (std::strtod(text, nullptr) == value) break;
     }
     return text;
+}
+
+// "(0, 100]" or "[0, 1e+15]": a float parameter's bounds for a message (a lower bound of the
+// smallest normal double means "positive"; a lower bound of 0 is accepted, so it is closed).
+std::string float_bounds(const ParamInfo& info) {
+    if (info.min > 0 && info.min <= 2.2250738585072014e-308)
+        return "(0, " + exact_text(info.max) + "]";
+    return "[" + exact_text(info.min) + ", " + exact_text(info.max) + "]";
 }
 
 const ParamInfo* find_param(raps_param id) {
@@ -519,7 +527,12 @@ Eigen::Matrix<double, 3, 4> checked_transform(const double* m) {
         }
         transform(i / 4, i % 4) = m[i];
     }
-    const Eigen::Matrix3d linear = transform.leftCols<3>();
+    // Measured on the 3x3 part scaled to coefficients of at most 1: a scale of 1e120 cubed
+    // overflowed the determinant and the bound alike (inf > inf is false) and read as singular.
+    // Positions the transform takes past 1e30 are refused with the mesh (scene_mesh.cpp).
+    const double largest = transform.leftCols<3>().cwiseAbs().maxCoeff();
+    const Eigen::Matrix3d linear =
+        largest > 0 ? Eigen::Matrix3d(transform.leftCols<3>() / largest) : Eigen::Matrix3d::Zero();
     const double rows = linear.row(0).norm() * linear.row(1).norm() * linear.row(2).norm();
     if (!(std::abs(linear.determinant()) > 1e-12 * rows)) {
         throw Error(ErrorCode::kInvalidTransform,
@@ -819,7 +832,7 @@ raps_status raps_settings_set_float(raps_settings* settings, raps_param param, d
         require(settings != nullptr, "settings is NULL");
         const ParamInfo& info = checked_param(param, true);
         if (!(value >= info.min && value <= info.max)) {  // also refuses NaN
-            throw Error(ErrorCode::kInvalidArgument, std::string("value ") + std::to_string(value) +
+            throw Error(ErrorCode::kInvalidArgument, "value " + exact_text(value) +
                                                          " of parameter " + info.name +
                                                          " is outside " + float_bounds(info));
         }

@@ -254,6 +254,20 @@ static void settings_refuse_bad_keys_types_and_values(void** state) {
     assert_status(raps_settings_set_float(s, RAPS_PARAM_ALPHA, NAN), RAPS_ERROR_INVALID_ARGUMENT);
     assert_status(raps_settings_set_float(s, RAPS_PARAM_ALPHA, INFINITY),
                   RAPS_ERROR_INVALID_ARGUMENT);
+    /* The message gives the value as it was given and the bounds as they are: closed where the
+     * bound is accepted (a density of 0 means "fill the resolution"). */
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_ALPHA, -1e-9), RAPS_ERROR_INVALID_ARGUMENT);
+    assert_string_equal(raps_settings_last_error(s),
+                        "value -1e-09 of parameter alpha is outside (0, 100]");
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_ATLAS_MAX_L2_STRETCH, 0.9999999),
+                  RAPS_ERROR_INVALID_ARGUMENT);
+    assert_string_equal(raps_settings_last_error(s),
+                        "value 0.9999999 of parameter atlas_max_l2_stretch is outside [1, 10]");
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, -0.5),
+                  RAPS_ERROR_INVALID_ARGUMENT);
+    assert_string_equal(raps_settings_last_error(s),
+                        "value -0.5 of parameter atlas_texels_per_unit is outside [0, 1e+15]");
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_ATLAS_TEXELS_PER_UNIT, 0.0), RAPS_OK);
     assert_status(raps_settings_set_int(NULL, RAPS_PARAM_MONITOR, 1), RAPS_ERROR_INVALID_ARGUMENT);
     /* A refused value leaves the settings unchanged. */
     int64_t monitor = -1;

@@ -861,6 +861,11 @@ static void bad_scenes_are_refused_with_their_status(void** state) {
     assert_int_equal(raps_mesh_set_indices_u32(beyond, grid.indices, grid.index_count), RAPS_OK);
     pair[1] = beyond;
     expect_refused(pair, 2, atlas, RAPS_ERROR_NON_FINITE_POSITION, "mesh 1: vertex");
+    /* A scale of 1e120 is not singular (its determinant, 1e360, overflowed doubles and read as
+     * one): the setter takes it, the run refuses the vertices it carries past 1e30. */
+    set_scale_move(m, 1e120, 0, 0, 0);
+    assert_int_equal(raps_mesh_set_transform(beyond, m), RAPS_OK);
+    expect_refused(pair, 2, atlas, RAPS_ERROR_NON_FINITE_POSITION, "mesh 1: vertex");
     assert_int_equal(raps_mesh_set_transform(beyond, NULL), RAPS_OK); /* back to identity */
 
     /* Pages: a density of NaN or below 0, an unknown rotation policy, block alignment other
