@@ -52,6 +52,32 @@ static void expect_mesh_refusal(const test_mesh* mesh, raps_status expected, con
                    fragment);
 }
 
+/* A steep adaptive step (alpha 50, five steps) on camelhead raises the error monitor past what
+ * doubles hold: weights underflow to 0 and the system is singular. The message says so and
+ * names alpha (it blamed cotangent weights on obtuse triangles, which this run does not use). */
+static void adaptive_weights_past_doubles_name_alpha(void** state) {
+    (void)state;
+    test_mesh mesh = load_shared_mesh("camelhead.off");
+    raps_mesh* m = to_raps_mesh(&mesh);
+    raps_settings* s = NULL;
+    raps_result* r = NULL;
+    assert_status(raps_settings_create(&s), RAPS_OK);
+    assert_status(raps_result_create(&r), RAPS_OK);
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_ALPHA, 50.0), RAPS_OK);
+    assert_status(raps_settings_set_int(s, RAPS_PARAM_ITERATIONS, 5), RAPS_OK);
+    assert_status(raps_parameterize(m, s, r), RAPS_ERROR_SOLVER_FAILED);
+    const char* message = raps_result_last_error(r);
+    if (!strstr(message, "alpha 50") || !strstr(message, "underflow") ||
+        strstr(message, "cotangent"))
+        fail_msg("message '%s' does not name alpha's overflow", message);
+    assert_status(raps_settings_set_float(s, RAPS_PARAM_ALPHA, 1.0), RAPS_OK);
+    assert_status(raps_parameterize(m, s, r), RAPS_OK);
+    raps_result_destroy(r);
+    raps_settings_destroy(s);
+    raps_mesh_destroy(m);
+    test_mesh_free(&mesh);
+}
+
 static void null_pointers_are_refused(void** state) {
     (void)state;
     raps_mesh* m = NULL;
@@ -348,6 +374,7 @@ int main(void) {
         cmocka_unit_test(triangle_limit_is_enforced_before_any_work),
         cmocka_unit_test(failed_setters_leave_the_mesh_as_it_was),
         cmocka_unit_test(a_failed_run_clears_the_previous_result),
+        cmocka_unit_test(adaptive_weights_past_doubles_name_alpha),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
