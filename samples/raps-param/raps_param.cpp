@@ -246,6 +246,19 @@ struct Options {
 bool parse_arguments(int argc, char** argv, raps_settings* settings, Options& options) {
     bool lightmap = false;
     for (int i = 1; i < argc; ++i) lightmap = lightmap || std::strcmp(argv[i], "--lightmap") == 0;
+    // The domain flags: the last one would win in silence (`--sphere --lightmap` mapped a sphere
+    // with the lightmap's settings unused).
+    const char* sphere_flag = nullptr;
+    const char* atlas_flag = nullptr;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--sphere") sphere_flag = argv[i];
+        if (arg == "--atlas" || arg == "--lightmap" || arg == "--repack") atlas_flag = argv[i];
+    }
+    if (sphere_flag && atlas_flag) {
+        throw UsageError(std::string(sphere_flag) + " and " + atlas_flag +
+                         " choose different domains (the sphere, an atlas): give one");
+    }
     if (lightmap) {
         const std::string error = raps_samples::apply_lightmap_preset(settings);
         if (!error.empty()) throw Failure(RAPS_ERROR_INTERNAL, error);

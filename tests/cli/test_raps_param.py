@@ -560,6 +560,13 @@ class RapsParamTest(unittest.TestCase):
             self.assertEqual(rc, 2, args)
             self.assertIn('error', json.loads(out))
             self.assertFalse(os.path.exists(self.out))
+        # Two domains asked for: the last flag won in silence.
+        for flags in (['--sphere', '--atlas'], ['--atlas', '--sphere'], ['--sphere', '--lightmap'],
+                      ['--repack', '--sphere']):
+            rc, out, err = run(*flags, self.mesh('spot.obj'), '-o', self.out)
+            self.assertEqual(rc, 2, flags)
+            self.assertIn('choose different domains', err, flags)
+            self.assertFalse(os.path.exists(self.out))
 
     def objects(self, path):
         """The OBJ's objects in order: (name, v, vt, f) with v and vt indices made 0-based and
