@@ -208,33 +208,72 @@ PageLayout empty_page_layout(size_t count) {
     return layout;
 }
 
-// The charts of `order` placed one after another on a fresh page until one does not fit:
-// how many were placed (order.size(): all).
-size_t place_until_full(const std::vector<PreparedChart>& prepared,
-                        const std::vector<size_t>& order, const PageGrid& grid, bool count_waste,
-                        PageLayout& layout) {
-    layout.count_waste = count_waste;
-    layout.open_page(grid);
-    for (size_t k = 0; k < order.size(); ++k) {
+// The charts of `order` from `from` on placed one after another on the layout's (one) page
+// until one does not fit: the index of that one (order.size(): all fit).
+size_t place_from(const std::vector<PreparedChart>& prepared, const std::vector<size_t>& order,
+                  size_t from, const PageGrid& grid, PageLayout& layout) {
+    for (size_t k = from; k < order.size(); ++k) {
         if (!place_on(*layout.pages[0], prepared[order[k]], grid.rows, layout.place[order[k]]))
             return k;
     }
     return order.size();
 }
 
-// `order` with the chart at `from` moved to each of up to `most` earlier places, evenly spread.
-std::vector<std::vector<size_t>> promoted(const std::vector<size_t>& order, size_t from,
-                                          size_t most) {
-    std::vector<std::vector<size_t>> variants;
-    const size_t places = std::min(from, most);
-    for (size_t k = 0; k < places; ++k) {
-        const size_t to = from * k / places;
-        std::vector<size_t> variant = order;
-        variant.erase(variant.begin() + static_cast<std::ptrdiff_t>(from));
-        variant.insert(variant.begin() + static_cast<std::ptrdiff_t>(to), order[from]);
-        variants.push_back(std::move(variant));
+// The same on a fresh page from the first chart: how many were placed.
+size_t place_until_full(const std::vector<PreparedChart>& prepared,
+                        const std::vector<size_t>& order, const PageGrid& grid, bool count_waste,
+                        PageLayout& layout) {
+    layout.count_waste = count_waste;
+    layout.open_page(grid);
+    return place_from(prepared, order, 0, grid, layout);
+}
+
+// Up to `most` places before `from`, evenly spread, ascending.
+std::vector<size_t> earlier_places(size_t from, size_t most) {
+    std::vector<size_t> places;
+    const size_t count = std::min(from, most);
+    for (size_t k = 0; k < count; ++k) places.push_back(from * k / count);
+    return places;
+}
+
+// `order` with the chart at `from` moved to `to`.
+std::vector<size_t> moved(const std::vector<size_t>& order, size_t from, size_t to) {
+    std::vector<size_t> variant = order;
+    variant.erase(variant.begin() + static_cast<std::ptrdiff_t>(from));
+    variant.insert(variant.begin() + static_cast<std::ptrdiff_t>(to), order[from]);
+    return variant;
+}
+
+// A variant moved to `to` places the same charts as its order before `to`: each variant starts
+// from a copy of the order's layout at that point, made in one pass, where the copies together
+// hold at most this much (a page of 16384 x 16384 cells holds 32 MiB).
+constexpr double kRepairCopyBytes = 64.0 * 1024 * 1024;
+
+std::vector<PageLayout> prefix_layouts(const std::vector<PreparedChart>& prepared,
+                                       const std::vector<size_t>& order,
+                                       const std::vector<size_t>& places, const PageGrid& grid,
+                                       bool count_waste) {
+    const double page_bytes = 8.0 * grid.rows * ((grid.strip + 63) / 64 + 1);
+    std::vector<PageLayout> copies;
+    if (page_bytes * static_cast<double>(places.size()) > kRepairCopyBytes) return copies;
+    PageLayout layout = empty_page_layout(prepared.size());
+    layout.count_waste = count_waste;
+    layout.open_page(grid);
+    size_t placed = 0;
+    for (size_t to : places) {
+        for (; placed < to; ++placed) {
+            const size_t c = order[placed];
+            if (!place_on(*layout.pages[0], prepared[c], grid.rows, layout.place[c]))
+                throw Error(ErrorCode::kInternal, "a repaired order's prefix no longer fits");
+        }
+        PageLayout copy;
+        copy.pages.push_back(std::make_unique<SkylineStrip>(*layout.pages[0]));
+        copy.page = layout.page;
+        copy.place = layout.place;
+        copy.count_waste = count_waste;
+        copies.push_back(std::move(copy));
     }
-    return variants;
+    return copies;
 }
 
 // The first repaired order that fits one page (see kRepairRounds), if any, from the orders
@@ -255,28 +294,35 @@ bool repair_orders(const std::vector<PreparedChart>& prepared,
             const int64_t affordable = placements_left / static_cast<int64_t>(placed_most + 1);
             if (affordable <= 0) return false;
             progress.report(0.5);
-            const std::vector<std::vector<size_t>> variants =
-                promoted(order, placed_most,
-                         static_cast<size_t>(std::min<int64_t>(affordable, kRepairPlaces)));
+            const std::vector<size_t> places = earlier_places(
+                placed_most, static_cast<size_t>(std::min<int64_t>(affordable, kRepairPlaces)));
+            std::vector<PageLayout> starts =
+                prefix_layouts(prepared, order, places, grid, count_waste);
             // Only the counts are kept (a layout holds the page's cells): the one that fits is
             // packed again.
-            std::vector<size_t> placed(variants.size());
-            parallel_for_each(pool, variants.size(), [&](size_t k) {
-                PageLayout layout = empty_page_layout(count);
-                placed[k] = place_until_full(prepared, variants[k], grid, count_waste, layout);
+            std::vector<size_t> placed(places.size());
+            parallel_for_each(pool, places.size(), [&](size_t k) {
+                const std::vector<size_t> variant = moved(order, placed_most, places[k]);
+                if (starts.empty()) {
+                    PageLayout layout = empty_page_layout(count);
+                    placed[k] = place_until_full(prepared, variant, grid, count_waste, layout);
+                } else {
+                    placed[k] = place_from(prepared, variant, places[k], grid, starts[k]);
+                    starts[k] = PageLayout();  // its cells, freed as soon as they are done with
+                }
             });
             size_t best = 0;
-            for (size_t k = 0; k < variants.size(); ++k) {
+            for (size_t k = 0; k < places.size(); ++k) {
                 placements_left -= static_cast<int64_t>(placed[k]) + 1;
                 if (placed[k] > placed[best]) best = k;
             }
-            if (variants.empty() || placed[best] <= placed_most) break;
+            if (places.empty() || placed[best] <= placed_most) break;
+            order = moved(order, placed_most, places[best]);
             if (placed[best] == count) {
                 fitted = empty_page_layout(count);
-                place_until_full(prepared, variants[best], grid, count_waste, fitted);
+                place_until_full(prepared, order, grid, count_waste, fitted);
                 return true;
             }
-            order = variants[best];
             placed_most = placed[best];
         }
     }
