@@ -234,11 +234,28 @@ def _is_ndarray(value):
     return numpy is not None and isinstance(value, numpy.ndarray)
 
 
+def _real(value, what):
+    """value, refused when complex: ctypes and float() took a numpy complex number's real part
+    with only a warning."""
+    if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
+        raise TypeError("raps: %s must be real, not %r" % (what, value))
+    return value
+
+
+def _real_array(array, what):
+    """array, refused when complex: astype(float64) drops the imaginary part with only a
+    warning."""
+    if array.dtype.kind == "c":
+        raise TypeError("raps: %s must be real, not %s" % (what, array.dtype))
+    return array
+
+
 def _integer(value, what, low=-(1 << 63), high=(1 << 63) - 1):
     """value as a Python int in [low, high]: ctypes would wrap a larger one silently (2**64 + 5
-    became 5) and truncate a fraction."""
+    became 5) and truncate a fraction (or take a complex number's real part)."""
     if isinstance(value, float) and not value.is_integer():
         raise TypeError("raps: %s takes an integer, not %r" % (what, value))
+    _real(value, what)
     number = int(value)
     if not low <= number <= high:
         raise ValueError("raps: %s is outside [%d, %d]: %d" % (what, low, high, number))
@@ -307,7 +324,7 @@ class Mesh(_Handle):
         strided, e.g. a view into an interleaved vertex buffer; other dtypes are converted to
         float64), or n (x, y, z) sequences, or 3n numbers."""
         if _is_ndarray(positions):
-            array = positions
+            array = _real_array(positions, "positions")
             if array.dtype not in (numpy.float32, numpy.float64):
                 array = array.astype(numpy.float64)
             if array.ndim == 1:
@@ -328,7 +345,7 @@ class Mesh(_Handle):
             status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)),
                             array.shape[0], array.strides[0])
         else:
-            flat = _flatten(positions, 3, "positions")
+            flat = [_real(value, "positions") for value in _flatten(positions, 3, "positions")]
             buffer = (ctypes.c_double * len(flat))(*flat)
             status = _lib.raps_mesh_set_positions_f64(self._ptr(), buffer, len(flat) // 3, 0)
         _check(status, _lib.raps_mesh_last_error, self._pointer)
@@ -338,6 +355,10 @@ class Mesh(_Handle):
         shape (t, 3) or (3t,) (uint16 and uint32 are passed as they are, other integer types
         are converted), or t (a, b, c) sequences, or 3t integers."""
         if _is_ndarray(indices):
+            # reshape(-1) alone read a (t, 4) array as 4t/3 triangles.
+            if indices.ndim not in (1, 2) or indices.ndim == 2 and indices.shape[1] != 3:
+                raise ValueError("raps: indices must have shape (t, 3) or (3t,), not %s"
+                                 % (indices.shape,))
             array = indices.reshape(-1)
             if array.dtype.kind not in "iu":
                 raise TypeError("raps: indices must be integers, not %s" % array.dtype)
@@ -353,7 +374,8 @@ class Mesh(_Handle):
             status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)), array.size)
         else:
             # A count that is not a multiple of 3 is the library's to report (INDEX_COUNT).
-            flat = [int(i) for i in _flatten(indices, 3, "triangles", check_count=False)]
+            flat = [_integer(i, "an index")
+                    for i in _flatten(indices, 3, "triangles", check_count=False)]
             if any(i < 0 or i > 0xFFFFFFFF for i in flat):
                 raise ValueError("raps: an index is outside [0, 2^32)")
             buffer = (ctypes.c_uint32 * len(flat))(*flat)
@@ -371,7 +393,7 @@ class Mesh(_Handle):
                 else [list(matrix[4 * r:4 * r + 4]) for r in range(3)]
             if len(rows) not in (3, 4) or any(len(row) != 4 for row in rows[:3]):
                 raise ValueError("raps: a transform is 3x4 (or 4x4), row-major")
-            flat = [float(value) for row in rows[:3] for value in row]
+            flat = [float(_real(value, "a transform")) for row in rows[:3] for value in row]
             status = _lib.raps_mesh_set_transform(self._ptr(), (ctypes.c_double * 12)(*flat))
         _check(status, _lib.raps_mesh_last_error, self._pointer)
 
@@ -400,6 +422,9 @@ class Mesh(_Handle):
         Error(Status.SEAM_NOT_AN_EDGE), one beyond the vertices Error(Status.INDEX_OUT_OF_RANGE),
         when the mesh is used."""
         if _is_ndarray(pairs):
+            if pairs.ndim > 2 or pairs.ndim == 2 and pairs.shape[1] != 2:
+                raise ValueError("raps: seam edges must have shape (n, 2) or (2n,), not %s"
+                                 % (pairs.shape,))
             if pairs.size % 2:
                 raise ValueError("raps: %d seam edges values are not a multiple of 2"
                                  % pairs.size)
@@ -420,7 +445,7 @@ class Mesh(_Handle):
         if uvs is None:
             status = _lib.raps_mesh_set_corner_uvs_f64(self._ptr(), None, 0, 0)
         elif _is_ndarray(uvs):
-            array = uvs
+            array = _real_array(uvs, "corner uvs")
             if array.dtype not in (numpy.float32, numpy.float64):
                 array = array.astype(numpy.float64)
             if array.ndim == 1:
@@ -440,7 +465,7 @@ class Mesh(_Handle):
             status = setter(self._ptr(), array.ctypes.data_as(ctypes.POINTER(ctype)),
                             array.shape[0], array.strides[0])
         else:
-            flat = [float(value) for value in _flatten(uvs, 2, "corner uvs")]
+            flat = [float(_real(value, "corner uvs")) for value in _flatten(uvs, 2, "corner uvs")]
             buffer = (ctypes.c_double * len(flat))(*flat) if flat else None
             status = _lib.raps_mesh_set_corner_uvs_f64(self._ptr(), buffer, len(flat) // 2, 0)
         _check(status, _lib.raps_mesh_last_error, self._pointer)
@@ -457,6 +482,11 @@ class Mesh(_Handle):
 ParamInfo = collections.namedtuple("ParamInfo", "name is_float min max default")
 
 
+def _param_id(param):
+    """param as an int: raps_param is 32 bits, which ctypes would wrap (2**32 + 2 was 2)."""
+    return _integer(param, "a parameter id", -(1 << 31), (1 << 31) - 1)
+
+
 def _param_property(param):
     value_enum = _PARAM_VALUES.get(param)
 
@@ -465,8 +495,6 @@ def _param_property(param):
         return _known(value_enum, value) if value_enum else value
 
     def setter(self, value):
-        if value_enum and isinstance(value, str):
-            value = value_enum[value.upper()]
         self.set(param, value)
 
     return property(getter, setter, doc="The parameter RAPS_PARAM_%s." % param.name)
@@ -495,30 +523,46 @@ class Settings(_Handle):
         name = ctypes.c_char_p()
         is_float = ctypes.c_int32()
         low, high, default = ctypes.c_double(), ctypes.c_double(), ctypes.c_double()
-        _check(_lib.raps_param_info(int(param), ctypes.byref(name), ctypes.byref(is_float),
-                                    ctypes.byref(low), ctypes.byref(high),
-                                    ctypes.byref(default)))
+        param = _param_id(param)
+        status = _lib.raps_param_info(param, ctypes.byref(name), ctypes.byref(is_float),
+                                      ctypes.byref(low), ctypes.byref(high),
+                                      ctypes.byref(default))
+        if status != _native.RAPS_OK:
+            # raps_param_info stores no message, and the id is all it can refuse here.
+            raise Error(status, "unknown parameter id %d (raps.Param names the known ones)"
+                        % param)
         return ParamInfo(name.value.decode("utf-8"), bool(is_float.value), low.value,
                          high.value, default.value)
 
     def set(self, param, value):
-        """Sets a parameter; float parameters take numbers, the others integers."""
+        """Sets a parameter; float parameters take numbers, the others integers, enumerated
+        ones also their member's name ("atlas")."""
+        param = _param_id(param)
         info = self.param_info(param)
+        what = "parameter %s" % info.name
+        value_enum = _PARAM_VALUES.get(param)
+        if value_enum and isinstance(value, str):
+            if value.upper() not in value_enum.__members__:
+                raise ValueError("raps: %s takes one of %s (or a raps.%s), not %r"
+                                 % (what, ", ".join(repr(name.lower())
+                                                    for name in value_enum.__members__),
+                                    value_enum.__name__, value))
+            value = value_enum[value.upper()]
         if info.is_float:
-            status = _lib.raps_settings_set_float(self._ptr(), int(param), float(value))
+            status = _lib.raps_settings_set_float(self._ptr(), param, float(_real(value, what)))
         else:
-            what = "parameter %s" % info.name
-            status = _lib.raps_settings_set_int(self._ptr(), int(param), _integer(value, what))
+            status = _lib.raps_settings_set_int(self._ptr(), param, _integer(value, what))
         _check(status, _lib.raps_settings_last_error, self._pointer)
 
     def get(self, param):
         """Reads a parameter: a float for float parameters, an int otherwise."""
+        param = _param_id(param)
         if self.param_info(param).is_float:
             value = ctypes.c_double()
-            _check(_lib.raps_settings_get_float(self._ptr(), int(param), ctypes.byref(value)))
+            _check(_lib.raps_settings_get_float(self._ptr(), param, ctypes.byref(value)))
         else:
             value = ctypes.c_int64()
-            _check(_lib.raps_settings_get_int(self._ptr(), int(param), ctypes.byref(value)))
+            _check(_lib.raps_settings_get_int(self._ptr(), param, ctypes.byref(value)))
         return value.value
 
     def clone(self):
@@ -560,9 +604,16 @@ _NO_UVS = ("the result holds no uvs: a sphere map has them only with "
 _NO_SPHERE_POINTS = "the result holds no sphere points (only Domain.SPHERE has them)"
 
 
-def _is_single(dtype):
-    return str(dtype) in ("float32", "f4", "<f4") or dtype is ctypes.c_float or \
-        (numpy is not None and dtype is numpy.float32)
+def _float_ctype(dtype, what):
+    """The ctypes type of a float32 or float64 dtype; another raises, where "int32" once
+    returned float64 values."""
+    if str(dtype) in ("float32", "f4", "<f4") or dtype is ctypes.c_float or \
+            (numpy is not None and dtype is numpy.float32):
+        return ctypes.c_float
+    if str(dtype) in ("float64", "f8", "<f8") or dtype is float or dtype is ctypes.c_double or \
+            (numpy is not None and dtype is numpy.float64):
+        return ctypes.c_double
+    raise ValueError("raps: %s takes dtype float32 or float64, not %r" % (what, dtype))
 
 
 class Result(_Handle):
@@ -603,11 +654,11 @@ class Result(_Handle):
         _check(status)
         return values
 
-    def _points(self, copy_f32, copy_f64, width, dtype, missing):
+    def _points(self, copy_f32, copy_f64, width, dtype, missing, what):
         """Per output vertex `width` coordinates: an (n, width) numpy array or a list of
         tuples."""
-        single = _is_single(dtype)
-        ctype = ctypes.c_float if single else ctypes.c_double
+        ctype = _float_ctype(dtype, what)
+        single = ctype is ctypes.c_float
         n = self.vertex_count
         values = self._copy(copy_f32 if single else copy_f64, ctype, width * n, n, 0,
                             missing=missing)
@@ -616,18 +667,19 @@ class Result(_Handle):
         return [tuple(values[width * i:width * i + width]) for i in range(n)]
 
     def uvs(self, dtype="float64"):
-        """The uvs: an (n, 2) numpy array of dtype float64 or float32, or a list of (u, v).
-        A sphere map has them only with sphere_uv=SphereUv.OCTAHEDRAL."""
+        """The uvs: an (n, 2) numpy array of dtype float64 or float32 (another dtype raises
+        ValueError), or a list of (u, v). A sphere map has them only with
+        sphere_uv=SphereUv.OCTAHEDRAL."""
         return self._points(_lib.raps_result_copy_uvs_f32, _lib.raps_result_copy_uvs_f64, 2,
-                            dtype, _NO_UVS)
+                            dtype, _NO_UVS, "uvs()")
 
     def sphere_points(self, dtype="float64"):
         """Sphere domain: the point on the unit sphere of each output vertex, an (n, 3) numpy
-        array of dtype float64 or float32, or a list of (x, y, z). With the octahedral unfold a
-        duplicated vertex has its input vertex's point."""
+        array of dtype float64 or float32 (as uvs()), or a list of (x, y, z). With the
+        octahedral unfold a duplicated vertex has its input vertex's point."""
         return self._points(_lib.raps_result_copy_sphere_points_f32,
                             _lib.raps_result_copy_sphere_points_f64, 3, dtype,
-                            _NO_SPHERE_POINTS)
+                            _NO_SPHERE_POINTS, "sphere_points()")
 
     def indices(self):
         """The output triangles: a (t, 3) uint32 numpy array, or a list of (a, b, c)."""

@@ -7,6 +7,7 @@ RAPS_TEST_INSTALLED=1 tests the raps installed in this Python (with the library 
 package, no RAPS_LIBRARY) instead of the source tree's.
 """
 
+import ctypes
 import gc
 import math
 import os
@@ -850,8 +851,9 @@ class Sphere(unittest.TestCase):
                     setattr(settings, name, bad)
                 self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
                 self.assertIn(name, caught.exception.message)
-            with self.assertRaises(KeyError):
+            with self.assertRaises(ValueError) as caught:
                 settings.sphere_uv = "cube"  # not a member's name
+            self.assertIn("'octahedral'", str(caught.exception))
             # A failed setter changes nothing.
             self.assertEqual(settings.sphere_method, raps.SphereMethod.LITERAL)
             self.assertEqual(settings.sphere_damping, 0.5)
@@ -927,6 +929,125 @@ class Errors(unittest.TestCase):
                 result.mesh_range(2**64)  # once read as mesh 0
             with self.assertRaises(ValueError):
                 result.phase_ms(2**32 + 2)  # once read as phase 2
+
+    def test_index_arrays_are_rows_of_three(self):
+        # A (t, 4) array was read as 4t/3 triangles, and 1.5 as index 1.
+        with raps.Mesh([(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)], [(0, 1, 2)]) as mesh:
+            quads = [(0, 1, 3, 2), (0, 1, 3, 2), (0, 1, 3, 2)]
+            cases = [(quads, ValueError, "3 values"), ([0, 1.5, 2], TypeError, "an index")]
+            if numpy is not None:
+                cases = [(numpy.array(quads), ValueError, "indices must have shape (t, 3)"),
+                         (numpy.array([[0, 1], [2, 1], [3, 2]]), ValueError, "(3, 2)"),
+                         (numpy.zeros((1, 3, 1), dtype=numpy.int32), ValueError, "(t, 3)")] + cases
+            for indices, error, words in cases:
+                with self.assertRaises(error) as caught:
+                    mesh.set_indices(indices)
+                self.assertIn(words, str(caught.exception))
+                self.assertEqual(mesh.triangle_count, 1)  # unchanged
+            pairs = [[(0, 1, 2), (2, 3, 1)], [0, 1, 2]]  # so were seam edges of three columns
+            if numpy is not None:
+                pairs += [numpy.array(pairs[0]), numpy.array(pairs[1])]
+            for edges in pairs:
+                with self.assertRaises(ValueError) as caught:
+                    mesh.set_seam_edges(edges)
+                self.assertIn("seam edges", str(caught.exception))
+            # Flat and (t, 3) input stay accepted; a flat count not a multiple of 3 stays the
+            # library's INDEX_COUNT (test_setter_errors_carry_the_mesh_message).
+            flat = [0, 1, 3, 0, 3, 2]
+            for indices in [flat, [flat[:3], flat[3:]]] + (
+                    [numpy.array(flat), numpy.array(flat, dtype=numpy.uint16).reshape(2, 3)]
+                    if numpy is not None else []):
+                mesh.set_indices(indices)
+                self.assertEqual(mesh.triangle_count, 2)
+                mesh.set_indices([0, 1, 2])
+
+    def test_result_dtypes_are_float32_or_float64(self):
+        with raps.Mesh(*fan_disk()) as cap, raps.parameterize(cap) as result:
+            # Any other dtype returned float64 under its name.
+            bad = ["int32", "float16", "single", ctypes.c_int]
+            if numpy is not None:
+                bad += [numpy.int32, numpy.dtype("float16")]
+            for dtype in bad:
+                for read in (result.uvs, result.sphere_points):
+                    with self.assertRaises(ValueError) as caught:
+                        read(dtype=dtype)
+                    self.assertIn("dtype", str(caught.exception))
+                    self.assertIn("float32 or float64", str(caught.exception))
+            single = ["float32", ctypes.c_float] + (
+                [numpy.float32, numpy.dtype("float32")] if numpy is not None else [])
+            double = ["float64", float, ctypes.c_double] + (
+                [numpy.float64, numpy.dtype("float64")] if numpy is not None else [])
+            for dtypes, expected in ((single, "float32"), (double, "float64")):
+                for dtype in dtypes:
+                    uvs = result.uvs(dtype=dtype)
+                    self.assertEqual(len(uvs), 7)
+                    if numpy is not None:
+                        self.assertEqual(uvs.dtype, numpy.dtype(expected))
+
+    def test_complex_numbers_are_refused(self):
+        # numpy and ctypes took a complex number's real part, with at most a warning.
+        with raps.Mesh(*fan_disk()) as cap, raps.Settings(alpha=2.0) as settings:
+            positions = [(0.0, 0.0, 1j), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+            calls = [(lambda: cap.set_positions(positions), "positions"),
+                     (lambda: cap.set_positions([c for p in positions for c in p]), "positions"),
+                     (lambda: cap.set_corner_uvs([(0.0, 1j)] * 18), "corner uvs"),
+                     (lambda: cap.set_transform([[1j, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]),
+                      "transform"),
+                     (lambda: settings.set(raps.Param.ALPHA, 1j), "alpha"),
+                     (lambda: settings.set(raps.Param.ITERATIONS, 3j), "iterations")]
+            if numpy is not None:
+                calls += [
+                    (lambda: cap.set_positions(numpy.array(positions)), "positions"),
+                    (lambda: cap.set_positions([numpy.complex64(2 + 1j), 0.0, 0.0]), "positions"),
+                    (lambda: cap.set_corner_uvs(numpy.zeros((18, 2), dtype=numpy.complex64)),
+                     "corner uvs"),
+                    (lambda: cap.set_transform(numpy.eye(4, dtype=complex)), "transform"),
+                    (lambda: settings.set(raps.Param.ALPHA, numpy.complex128(3 + 1j)), "alpha"),
+                    (lambda: settings.set(raps.Param.ITERATIONS, numpy.complex128(3)),
+                     "iterations")]
+            for call, words in calls:
+                with self.assertRaises(TypeError) as caught:
+                    call()
+                self.assertIn(words, str(caught.exception))
+                self.assertIn("real", str(caught.exception))
+            self.assertEqual(cap.vertex_count, 7)  # unchanged
+            self.assertEqual((settings.alpha, settings.iterations), (2.0, 1))
+
+    def test_unknown_parameter_ids_are_named(self):
+        with raps.Settings(iterations=3) as settings:
+            before = settings.as_dict()
+            for call in (lambda: settings.set(999, 1), lambda: settings.get(999),
+                         lambda: raps.Settings.param_info(999)):
+                with self.assertRaises(raps.Error) as caught:
+                    call()
+                self.assertEqual(caught.exception.status, raps.Status.INVALID_ARGUMENT)
+                self.assertIn("unknown parameter id 999", str(caught.exception))
+            # ctypes wrapped 2**32 + 2 to parameter 2 and truncated 1.5 to parameter 1.
+            with self.assertRaises(ValueError) as caught:
+                settings.set(2**32 + int(raps.Param.ITERATIONS), 5)
+            self.assertIn("parameter id", str(caught.exception))
+            with self.assertRaises(TypeError) as caught:
+                settings.set(int(raps.Param.ITERATIONS) + 0.5, 5)
+            self.assertIn("parameter id", str(caught.exception))
+            self.assertEqual(settings.as_dict(), before)
+
+    def test_unknown_enumerated_names_list_the_known_ones(self):
+        with self.assertRaises(ValueError) as caught:
+            raps.Settings(domain="bogus")
+        for words in ("domain", "'bogus'", "'disk'", "'sphere'", "'atlas'"):
+            self.assertIn(words, str(caught.exception))
+        with raps.Settings(monitor="angle") as settings:
+            for name, value in (("monitor", "bogus"), ("atlas_stack", "stacked")):
+                with self.assertRaises(ValueError) as caught:
+                    setattr(settings, name, value)
+                self.assertIn(name, str(caught.exception))
+                self.assertIn("'none'", str(caught.exception))
+            with self.assertRaises(ValueError) as caught:
+                settings.set(raps.Param.MONITOR, "bogus")  # was int("bogus")'s message
+            self.assertIn("'area'", str(caught.exception))
+            self.assertEqual(settings.monitor, raps.Monitor.ANGLE)  # unchanged
+            settings.set(raps.Param.DOMAIN, "atlas")  # names work here too, as in properties
+            self.assertEqual(settings.domain, raps.Domain.ATLAS)
 
     def test_empty_result_cannot_be_read(self):
         with raps.Result() as result:
