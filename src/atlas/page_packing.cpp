@@ -192,12 +192,19 @@ bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<Prepare
 // repaired for up to kRepairRounds rounds until a variant fits, while the charts placed stay
 // under kRepairPlacements per chart at the density. pack_one_page repairs a density within
 // kRepairWithin of one that fits (the last steps of its search, which fail by a chart or two),
-// pack_pages its one-page attempt. Never a lower density. Measured (docs/square-atlas.md,
-// "Orders repaired"): the ten-mesh scene of issue 23 at 2048 0.716 -> 0.726 (373 -> 505 ms);
-// the 19 shared meshes' lightmaps, median coverage 0.653 -> 0.663, 11 of 19 denser, pack 14 ->
-// 26 ms; 13 of 29 held-out meshes and scenes denser, by 0.006 to 0.028, none less.
+// pack_pages its one-page attempt (kRepairFillAtMost). Never a lower density. Measured
+// (docs/square-atlas.md, "Orders repaired"): the ten-mesh scene of issue 23 at 2048 0.716 -> 0.726
+// (373 -> 505 ms); the 19 shared meshes' lightmaps, median coverage 0.653 -> 0.663, 11 of 19
+// denser, pack 14 -> 26 ms; 13 of 29 held-out meshes and scenes denser, by 0.006 to 0.028, none
+// less.
 constexpr int kRepairRounds = 3;
 constexpr double kRepairWithin = 1.01;
+// pack_pages's one-page attempt at a given density is repaired only where the charts' area
+// fills at most this share of the page: fuller pages are beyond what the repaired orders
+// reach (the fullest whole-texel page measured, 0.834, was a scene of 400 small noisy
+// charts), and their repair found nothing for 5 to 7 times the packing (the ten noisy meshes
+// at 228 to 240 texels per unit on pages of 2048, 400 charts: 87-116 -> 528-755 ms).
+constexpr double kRepairFillAtMost = 0.8;
 constexpr int64_t kRepairPlaces = 32;
 constexpr int64_t kRepairPlacements = 32;
 
@@ -545,12 +552,15 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
     // Charts whose area one page holds are first tried on one page the way pack_one_page
     // packs them: at the density it finds, the first-fit order alone could spill onto a
     // second page. Without part_per_page the first order is tried first, so a layout it fits
-    // on one page is unchanged.
-    const double page_area = static_cast<double>(settings.max_width) * settings.max_height;
+    // on one page is unchanged. The orders are repaired only where the charts fill at most
+    // kRepairFillAtMost of the page.
+    const double fill = charts_uv_area(charts) * settings.texels_per_unit *
+                        settings.texels_per_unit /
+                        (static_cast<double>(settings.max_width) * settings.max_height);
     PackResult one_page;
     int32_t rows_used = 0;
-    if (charts_uv_area(charts) * settings.texels_per_unit * settings.texels_per_unit <= page_area &&
-        layout_on_one_page(charts, settings, grid, set, pool, true, progress, one_page, rows_used))
+    if (fill <= 1 && layout_on_one_page(charts, settings, grid, set, pool,
+                                        fill <= kRepairFillAtMost, progress, one_page, rows_used))
         return one_page;
     PageLayout layout;
     layout.page.assign(charts.size(), 0);
