@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/error.h"
-
 #include "weights/adaptive_weights.h"
 #include "weights/error_monitors.h"
 
@@ -24,12 +23,6 @@ int32_t vertex_with_vanished_weight(const VertexAdjacency& adjacency,
         }
     }
     return -1;
-}
-
-std::string exact_number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", value);
-    return text;
 }
 
 }  // namespace
@@ -59,16 +52,16 @@ int64_t adapt_map(const TriangleMesh& mesh, const VertexAdjacency& adjacency, La
             if (error.code() != ErrorCode::kSolverFailed) throw;
             const int32_t vertex = vertex_with_vanished_weight(adjacency, base_weights, weights);
             if (vertex < 0) throw;
+            char alpha[32];
+            std::snprintf(alpha, sizeof(alpha), "%g", settings.alpha);
             throw Error(ErrorCode::kSolverFailed,
                         "adaptive step " + std::to_string(step + 1) + " of " +
                             std::to_string(settings.iterations) +
-                            ": the error monitor raised to "
-                            "alpha " +
-                            exact_number(settings.alpha) +
+                            ": the error monitor raised to alpha " + alpha +
                             " spans more than doubles hold, so weights around vertex " +
                             std::to_string(vertex) +
-                            " underflow to 0 and the system is singular: lower alpha or the "
-                            "iterations");
+                            " underflow to 0 and the system is singular: "
+                            "lower alpha or the iterations");
         }
     }
     return settings.iterations;
