@@ -191,6 +191,7 @@ class ChartPacker {
     // Every chart turned to its smallest box (or not at all, by the rotation policy); the
     // largest ones also the further ways of kOrientations.
     void orient() {
+        outlines_ = chart_outlines(charts_, pool_);
         orientations_.resize(count_);
         total_area_ = 0;
         for (size_t c = 0; c < count_; ++c) {
@@ -232,7 +233,7 @@ class ChartPacker {
             points[v] = (turned(way.rotation, (*charts_[c].uv)[v]) - way.origin) * scale +
                         Eigen::Vector2d(padding_, padding_);
         }
-        rasterise(points, *charts_[c].triangles, raster);
+        rasterise_chart(points, *charts_[c].triangles, outlines_[c], raster);
         for (int q = 0; q < 4; ++q) {
             BitImage turned = q < 3 ? rotate_quarter(raster) : BitImage();
             prepared_[c].profiles[4 * o + q] = make_profile(std::move(raster), padding_);
@@ -568,6 +569,7 @@ class ChartPacker {
     const int32_t padding_;
     const double resolution_;
     const int32_t limit_;
+    std::vector<ChartOutline> outlines_;
     std::vector<std::vector<Orientation>> orientations_;  // per chart, its ways to turn
     std::vector<PreparedChart> prepared_;
     std::vector<std::vector<size_t>> orders_;
@@ -577,6 +579,14 @@ class ChartPacker {
 };
 
 }  // namespace
+
+std::vector<ChartOutline> chart_outlines(const std::vector<PackInput>& charts, ThreadPool& pool) {
+    std::vector<ChartOutline> outlines(charts.size());
+    parallel_for_each(pool, charts.size(), [&](size_t c) {
+        outlines[c] = chart_outline(*charts[c].uv, *charts[c].triangles);
+    });
+    return outlines;
+}
 
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,
                        ThreadPool& pool, const ProgressSpan& progress) {

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "atlas/chart_box.h"
+#include "atlas/chart_raster.h"
 #include "core/progress.h"
 #include "core/settings.h"
 #include "core/triangle_mesh.h"
@@ -49,6 +50,9 @@ struct PackResult {
     int32_t page_count = 1;
     double texels_per_unit = 0;  // texels per unit of the charts' uvs (3D units)
 };
+
+// Each chart's outline for rasterising (chart_raster.h), measured on `pool`.
+std::vector<ChartOutline> chart_outlines(const std::vector<PackInput>& charts, ThreadPool& pool);
 
 // Charts are rasterised, and layouts tried, on `pool`; the result does not depend on its size.
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,

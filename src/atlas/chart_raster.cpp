@@ -41,44 +41,149 @@ int32_t longest_run_begin(const Profile& p, int32_t row) {
 
 }  // namespace
 
+namespace {
+
+// The cells one triangle touches (rasterise, for one; a segment as a triangle with a repeated
+// corner).
+void rasterise_triangle(Eigen::Vector2d p0, Eigen::Vector2d p1, Eigen::Vector2d p2,
+                        BitImage& image) {
+    Eigen::Vector2d p[3] = {p0, p1, p2};
+    if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
+    if (p[2].y() < p[1].y()) std::swap(p[1], p[2]);
+    if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
+    const double y0 = p[0].y(), y1 = p[1].y(), y2 = p[2].y();
+    const int32_t row_lo = std::max(0, floor_cell(y0));
+    const int32_t row_hi = std::min(image.height - 1, floor_cell(y2));
+    const double long_slope = y2 > y0 ? (p[2].x() - p[0].x()) / (y2 - y0) : 0.0;
+    const double low_slope = y1 > y0 ? (p[1].x() - p[0].x()) / (y1 - y0) : 0.0;
+    const double high_slope = y2 > y1 ? (p[2].x() - p[1].x()) / (y2 - y1) : 0.0;
+    double x_lo = 0, x_hi = 0;
+    auto add = [&](double x) {
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x);
+    };
+    // The section at height y (y0 <= y <= y2); the corners exactly at their own heights.
+    auto add_section = [&](double y) {
+        if (y == y0) add(p[0].x());
+        if (y == y1) add(p[1].x());
+        if (y == y2) add(p[2].x());
+        if (y == y0 || y == y2) return;
+        add(p[0].x() + (y - y0) * long_slope);
+        add(y < y1 ? p[0].x() + (y - y0) * low_slope : p[1].x() + (y - y1) * high_slope);
+    };
+    for (int32_t row = row_lo; row <= row_hi; ++row) {
+        const double band_lo = std::max(static_cast<double>(row), y0);
+        const double band_hi = std::min(row + 1.0, y2);
+        x_lo = 1e300;
+        x_hi = -1e300;
+        add_section(band_lo);
+        add_section(band_hi);
+        if (y1 > band_lo && y1 < band_hi) add(p[1].x());
+        const int32_t c_lo = std::max(0, floor_cell(x_lo));
+        const int32_t c_hi = std::min(image.width - 1, floor_cell(x_hi));
+        image.set_span(row, c_lo, c_hi);
+    }
+}
+
+// ceil(x) for the raster's coordinates, as floor_cell.
+int32_t ceil_cell(double x) {
+    return -floor_cell(-x);
+}
+
+}  // namespace
+
 void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<Triangle>& triangles,
                BitImage& image) {
+    for (const Triangle& t : triangles)
+        rasterise_triangle(points[t[0]], points[t[1]], points[t[2]], image);
+}
+
+ChartOutline chart_outline(const std::vector<Eigen::Vector2d>& uv,
+                           const std::vector<Triangle>& triangles) {
+    ChartOutline outline;
+    bool positive = false, negative = false;
+    std::vector<std::array<int32_t, 3>> edges;  // (low, high, +1 when directed low to high)
+    edges.reserve(3 * triangles.size());
     for (const Triangle& t : triangles) {
-        Eigen::Vector2d p[3] = {points[t[0]], points[t[1]], points[t[2]]};
-        if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
-        if (p[2].y() < p[1].y()) std::swap(p[1], p[2]);
-        if (p[1].y() < p[0].y()) std::swap(p[0], p[1]);
-        const double y0 = p[0].y(), y1 = p[1].y(), y2 = p[2].y();
-        const int32_t row_lo = std::max(0, floor_cell(y0));
-        const int32_t row_hi = std::min(image.height - 1, floor_cell(y2));
-        const double long_slope = y2 > y0 ? (p[2].x() - p[0].x()) / (y2 - y0) : 0.0;
-        const double low_slope = y1 > y0 ? (p[1].x() - p[0].x()) / (y1 - y0) : 0.0;
-        const double high_slope = y2 > y1 ? (p[2].x() - p[1].x()) / (y2 - y1) : 0.0;
-        double x_lo = 0, x_hi = 0;
-        auto add = [&](double x) {
-            x_lo = std::min(x_lo, x);
-            x_hi = std::max(x_hi, x);
-        };
-        // The section at height y (y0 <= y <= y2); the corners exactly at their own heights.
-        auto add_section = [&](double y) {
-            if (y == y0) add(p[0].x());
-            if (y == y1) add(p[1].x());
-            if (y == y2) add(p[2].x());
-            if (y == y0 || y == y2) return;
-            add(p[0].x() + (y - y0) * long_slope);
-            add(y < y1 ? p[0].x() + (y - y0) * low_slope : p[1].x() + (y - y1) * high_slope);
-        };
-        for (int32_t row = row_lo; row <= row_hi; ++row) {
-            const double band_lo = std::max(static_cast<double>(row), y0);
-            const double band_hi = std::min(row + 1.0, y2);
-            x_lo = 1e300;
-            x_hi = -1e300;
-            add_section(band_lo);
-            add_section(band_hi);
-            if (y1 > band_lo && y1 < band_hi) add(p[1].x());
-            const int32_t c_lo = std::max(0, floor_cell(x_lo));
-            const int32_t c_hi = std::min(image.width - 1, floor_cell(x_hi));
-            image.set_span(row, c_lo, c_hi);
+        const Eigen::Vector2d a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+        const double area = a.x() * b.y() - a.y() * b.x();
+        positive = positive || area > 0;
+        negative = negative || area < 0;
+        for (int k = 0; k < 3; ++k) {
+            const int32_t from = t[k], to = t[(k + 1) % 3];
+            edges.push_back({std::min(from, to), std::max(from, to), from < to ? 1 : -1});
+        }
+    }
+    // Triangles turned both ways fold the chart over itself: where they overlap, the outline's
+    // winding cancels, though the triangles cover the cells.
+    if (positive && negative) return outline;
+    std::sort(edges.begin(), edges.end());
+    for (size_t k = 0; k < edges.size();) {
+        size_t end = k + 1;
+        while (end < edges.size() && edges[end][0] == edges[k][0] && edges[end][1] == edges[k][1])
+            ++end;
+        if (end - k > 2) return outline;  // an edge of three triangles or more
+        if (end - k == 2 && edges[k][2] == edges[k + 1][2]) return outline;  // turned one way twice
+        if (end - k == 1) {
+            const auto& e = edges[k];
+            outline.edges.push_back(e[2] > 0 ? std::array<int32_t, 2>{e[0], e[1]}
+                                             : std::array<int32_t, 2>{e[1], e[0]});
+        }
+        k = end;
+    }
+    outline.usable = true;
+    return outline;
+}
+
+void rasterise_chart(const std::vector<Eigen::Vector2d>& points,
+                     const std::vector<Triangle>& triangles, const ChartOutline& outline,
+                     BitImage& image) {
+    if (!outline.usable) {
+        rasterise(points, triangles, image);
+        return;
+    }
+    // The cells the outline touches: every cell a triangle touches but does not hold whole.
+    for (const auto& e : outline.edges)
+        rasterise_triangle(points[e[0]], points[e[1]], points[e[1]], image);
+    // The cells held whole: their centres, which the outline winds around. Per row, where the
+    // edges cross its centre line (each edge counts where y_a <= y < y_b, so a corner on the line
+    // counts once), sorted, then the spans of nonzero winding.
+    const int32_t rows = image.height;
+    std::vector<int32_t> first(static_cast<size_t>(rows) + 1, 0);
+    auto row_range = [&](const std::array<int32_t, 2>& e, int32_t& lo, int32_t& hi) {
+        const double ya = points[e[0]].y(), yb = points[e[1]].y();
+        // Rows r with r + 0.5 in [min, max).
+        lo = std::max(0, ceil_cell(std::min(ya, yb) - 0.5));
+        hi = std::min(rows, ceil_cell(std::max(ya, yb) - 0.5));
+    };
+    for (const auto& e : outline.edges) {
+        int32_t lo, hi;
+        row_range(e, lo, hi);
+        for (int32_t r = lo; r < hi; ++r) ++first[r + 1];
+    }
+    for (int32_t r = 0; r < rows; ++r) first[r + 1] += first[r];
+    std::vector<std::pair<double, int>> crossings(static_cast<size_t>(first[rows]));
+    std::vector<int32_t> fill = first;
+    for (const auto& e : outline.edges) {
+        int32_t lo, hi;
+        row_range(e, lo, hi);
+        const Eigen::Vector2d& a = points[e[0]];
+        const Eigen::Vector2d& b = points[e[1]];
+        const double slope = (b.x() - a.x()) / (b.y() - a.y());
+        for (int32_t r = lo; r < hi; ++r)
+            crossings[fill[r]++] = {a.x() + (r + 0.5 - a.y()) * slope, b.y() > a.y() ? 1 : -1};
+    }
+    for (int32_t r = 0; r < rows; ++r) {
+        const auto begin = crossings.begin() + first[r], end = crossings.begin() + first[r + 1];
+        std::sort(begin, end);
+        int winding = 0;
+        for (auto c = begin; c != end; ++c) {
+            winding += c->second;
+            if (winding == 0 || c + 1 == end) continue;
+            // Cells whose centre x + 0.5 lies in [c.x, next.x).
+            const int32_t lo = std::max(0, ceil_cell(c->first - 0.5));
+            const int32_t hi = std::min(image.width, ceil_cell((c + 1)->first - 0.5));
+            image.set_span(r, lo, hi - 1);
         }
     }
 }

@@ -106,15 +106,15 @@ Eigen::Vector2d raster_point(const OrientedChart& o, double scale, const PageGri
     return (turned(o.rotation, p) - o.origin) * scale + Eigen::Vector2d(pad, pad);
 }
 
-void prepare(const PackInput& input, const OrientedChart& o, double scale, const PageGrid& grid,
-             PreparedChart& prepared) {
+void prepare(const PackInput& input, const ChartOutline& outline, const OrientedChart& o,
+             double scale, const PageGrid& grid, PreparedChart& prepared) {
     const Eigen::Vector2i size = raster_cells(o, scale, grid);
     BitImage raster;
     raster.resize(size.x() * grid.cell, size.y() * grid.cell);
     std::vector<Eigen::Vector2d> points(input.uv->size());
     for (size_t v = 0; v < points.size(); ++v)
         points[v] = raster_point(o, scale, grid, (*input.uv)[v]);
-    rasterise(points, *input.triangles, raster);
+    rasterise_chart(points, *input.triangles, outline, raster);
     BitImage cells = grid.cell == 1 ? std::move(raster) : to_cells(raster, grid.cell);
     prepared.rotation = o.rotation;
     prepared.origin = o.origin;
@@ -347,6 +347,7 @@ constexpr size_t kFurtherOrdersAbove = 100, kFurtherOrdersUpTo = 1000;
 // The charts turned, at their densities (the atlas's, or less for one larger than a page),
 // rasterised, and the orders they may be placed in.
 struct PreparedCharts {
+    const std::vector<ChartOutline>* outlines;  // per chart, measured once per packing
     std::vector<OrientedChart> oriented;
     std::vector<double> scale;
     std::vector<PreparedChart> prepared;
@@ -355,10 +356,13 @@ struct PreparedCharts {
     std::vector<std::vector<size_t>> orders;
 };
 
-PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSettings& settings,
-                              const PageGrid& grid, ThreadPool& pool) {
+PreparedCharts prepare_charts(const std::vector<PackInput>& charts,
+                              const std::vector<ChartOutline>& outlines,
+                              const PageSettings& settings, const PageGrid& grid,
+                              ThreadPool& pool) {
     const size_t count = charts.size();
     PreparedCharts set;
+    set.outlines = &outlines;
     set.oriented.resize(count);
     set.scale.resize(count);
     for (size_t c = 0; c < count; ++c) {
@@ -367,7 +371,7 @@ PreparedCharts prepare_charts(const std::vector<PackInput>& charts, const PageSe
     }
     set.prepared.resize(count);
     parallel_for_each(pool, count, [&](size_t c) {
-        prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
+        prepare(charts[c], outlines[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
     });
     std::vector<Eigen::Vector2d> extents(count);
     for (size_t c = 0; c < count; ++c) extents[c] = set.oriented[c].extent * set.scale[c];
@@ -410,7 +414,8 @@ void place_parts_per_page(const std::vector<PackInput>& charts, const PageGrid& 
                 for (size_t c : members) set.scale[c] *= 0.9;
                 parallel_for_each(pool, members.size(), [&](size_t k) {
                     const size_t c = members[k];
-                    prepare(charts[c], set.oriented[c], set.scale[c], grid, set.prepared[c]);
+                    prepare(charts[c], (*set.outlines)[c], set.oriented[c], set.scale[c], grid,
+                            set.prepared[c]);
                 });
             }
         }
@@ -522,11 +527,13 @@ bool layout_on_one_page(const std::vector<PackInput>& charts, const PageSettings
 
 // The same with the charts prepared at settings.texels_per_unit; rows_used: the rows of the
 // page the layout reaches, in cells, when one fits.
-bool pack_on_one_page(const std::vector<PackInput>& charts, const PageSettings& settings,
+bool pack_on_one_page(const std::vector<PackInput>& charts,
+                      const std::vector<ChartOutline>& outlines, const PageSettings& settings,
                       const PageGrid& grid, ThreadPool& pool, bool repair,
                       const ProgressSpan& progress, PackResult& result, int32_t& rows_used) {
-    return layout_on_one_page(charts, settings, grid, prepare_charts(charts, settings, grid, pool),
-                              pool, repair, progress, result, rows_used);
+    return layout_on_one_page(charts, settings, grid,
+                              prepare_charts(charts, outlines, settings, grid, pool), pool, repair,
+                              progress, result, rows_used);
 }
 
 // The charts' area in uv units (3D units), summed triangle by triangle across the charts.
@@ -547,7 +554,8 @@ double charts_uv_area(const std::vector<PackInput>& charts) {
 PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
                       ThreadPool& pool, const ProgressSpan& progress) {
     const PageGrid grid = checked_grid(settings);
-    PreparedCharts set = prepare_charts(charts, settings, grid, pool);
+    const std::vector<ChartOutline> outlines = chart_outlines(charts, pool);
+    PreparedCharts set = prepare_charts(charts, outlines, settings, grid, pool);
     progress.report(0.5);
     // Charts whose area one page holds are first tried on one page the way pack_one_page
     // packs them: at the density it finds, the first-fit order alone could spill onto a
@@ -576,6 +584,7 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
 PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
                          ThreadPool& pool, const ProgressSpan& progress) {
     const PageGrid grid = checked_grid(settings);
+    const std::vector<ChartOutline> outlines = chart_outlines(charts, pool);
     // Above this density the charts' area alone overflows the page, or the longest chart its
     // longer side.
     const double area = charts_uv_area(charts);
@@ -602,7 +611,9 @@ PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings sett
         low *= 0.8;
         settings.texels_per_unit = low;
         progress.report(0.0);  // each attempt packs every chart again
-        if (pack_on_one_page(charts, settings, grid, pool, false, progress, best, rows_used)) break;
+        if (pack_on_one_page(charts, outlines, settings, grid, pool, false, progress, best,
+                             rows_used))
+            break;
         high = low;
         if (attempt == 60) {
             throw Error(ErrorCode::kInvalidArgument,
@@ -625,7 +636,8 @@ PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings sett
         PackResult tried;
         progress.report(0.5);
         const bool repair = next <= kRepairWithin * low;
-        if (pack_on_one_page(charts, settings, grid, pool, repair, progress, tried, rows_used)) {
+        if (pack_on_one_page(charts, outlines, settings, grid, pool, repair, progress, tried,
+                             rows_used)) {
             low = settings.texels_per_unit;
             best = std::move(tried);
             next = after_fit();
