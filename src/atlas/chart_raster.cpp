@@ -39,10 +39,6 @@ int32_t longest_run_begin(const Profile& p, int32_t row) {
     return best;
 }
 
-}  // namespace
-
-namespace {
-
 // The cells one triangle touches (rasterise, for one; a segment as a triangle with a repeated
 // corner).
 void rasterise_triangle(Eigen::Vector2d p0, Eigen::Vector2d p1, Eigen::Vector2d p2,
