@@ -195,7 +195,7 @@ bool place_all_on(std::unique_ptr<SkylineStrip>& page, const std::vector<Prepare
 // pack_pages its one-page attempt (kRepairFillAtMost). Never a lower density. Measured
 // (docs/square-atlas.md, "Orders repaired"): the ten-mesh scene of issue 23 at 2048 0.716 -> 0.726
 // (373 -> 505 ms); the 19 shared meshes' lightmaps, median coverage 0.653 -> 0.663, 11 of 19
-// denser, pack 14 -> 26 ms; 13 of 29 held-out meshes and scenes denser, by 0.006 to 0.028, none
+// denser, pack 14 -> 26 ms; 12 of 25 held-out meshes and scenes denser, by 0.007 to 0.027, none
 // less.
 constexpr int kRepairRounds = 3;
 constexpr double kRepairWithin = 1.01;
