@@ -532,9 +532,12 @@ PackedCharts pack_whole_or_cut(const TriangleMesh& mesh, const AtlasParts& parts
                                const ProgressSpan& progress) {
     if (set.cuts_to_try.pieces.empty())
         return pack_chart_set(mesh, parts, settings, set, pool, progress);
-    ChartSet cut = set;
+    // Before corner_sources_of: what the cut set needs is its charts and the maps to the input.
+    ChartSet cut;
     cut.charts = with_cuts(set.charts, set.cuts_to_try);
-    set.cuts_to_try = cut.cuts_to_try = LongChartCuts();
+    cut.welded = set.welded;
+    cut.surface = set.surface;
+    set.cuts_to_try = LongChartCuts();
     PackedCharts whole = pack_chart_set(mesh, parts, settings, set, pool, progress.part(0.0, 0.5));
     PackedCharts pieces = pack_chart_set(mesh, parts, settings, cut, pool, progress.part(0.5, 1.0));
     if (!(pieces.layout.texels_per_unit > kCutPacksDenser * whole.layout.texels_per_unit))

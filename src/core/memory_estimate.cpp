@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/portable_math.h"
+#include "mesh/mesh_validation.h"
 
 namespace raps {
 
@@ -42,10 +43,7 @@ constexpr double kOpenPages = 8.0;                  // page_packing.cpp, a bit p
 
 double surface_area(const TriangleMesh& mesh) {
     double area = 0;
-    for (const Triangle& t : mesh.triangles) {
-        const Eigen::Vector3d& a = mesh.positions[t[0]];
-        area += 0.5 * (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).norm();
-    }
+    for (int32_t t = 0; t < mesh.triangle_count(); ++t) area += triangle_area(mesh, t);
     return area;
 }
 
