@@ -11,6 +11,7 @@
 
 // Before cmocka.h, whose fail() and skip() macros would rename the standard library's.
 #include "atlas/chart_raster.h"
+#include "support/split_mix.h"
 
 extern "C" {
 #include <setjmp.h>
@@ -21,19 +22,6 @@ extern "C" {
 }
 
 namespace {
-
-struct Random {  // SplitMix64: the same charts on every run
-    uint64_t state;
-    uint64_t next() {
-        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    double uniform(double lo, double hi) {
-        return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1p-53;
-    }
-};
 
 struct Chart {
     std::vector<Eigen::Vector2d> uv;
