@@ -191,7 +191,7 @@ class ChartPacker {
     // Every chart turned to its smallest box (or not at all, by the rotation policy); the
     // largest ones also the further ways of kOrientations.
     void orient() {
-        outlines_ = chart_outlines(charts_, pool_);
+        outlines_ = chart_outlines(charts_, pool_, beat_);
         orientations_.resize(count_);
         total_area_ = 0;
         for (size_t c = 0; c < count_; ++c) {
@@ -580,10 +580,11 @@ class ChartPacker {
 
 }  // namespace
 
-std::vector<ChartOutline> chart_outlines(const std::vector<PackInput>& charts, ThreadPool& pool) {
+std::vector<ChartOutline> chart_outlines(const std::vector<PackInput>& charts, ThreadPool& pool,
+                                         const ProgressSpan& beat) {
     std::vector<ChartOutline> outlines(charts.size());
     parallel_for_each(pool, charts.size(), [&](size_t c) {
-        outlines[c] = chart_outline(*charts[c].uv, *charts[c].triangles);
+        outlines[c] = chart_outline(*charts[c].uv, *charts[c].triangles, beat.part(0.0, 0.0));
     });
     return outlines;
 }

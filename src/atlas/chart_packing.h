@@ -51,8 +51,10 @@ struct PackResult {
     double texels_per_unit = 0;  // texels per unit of the charts' uvs (3D units)
 };
 
-// Each chart's outline for rasterising (chart_raster.h), measured on `pool`.
-std::vector<ChartOutline> chart_outlines(const std::vector<PackInput>& charts, ThreadPool& pool);
+// Each chart's outline for rasterising (chart_raster.h), measured on `pool`; `beat` is told
+// its start fraction (report(0)) every kItemsPerReport triangles.
+std::vector<ChartOutline> chart_outlines(const std::vector<PackInput>& charts, ThreadPool& pool,
+                                         const ProgressSpan& beat);
 
 // Charts are rasterised, and layouts tried, on `pool`; the result does not depend on its size.
 PackResult pack_charts(const std::vector<PackInput>& charts, const PackSettings& settings,

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "core/triangle_mesh.h"
 
 namespace raps {
@@ -71,8 +72,10 @@ struct ChartOutline {
     std::vector<std::array<int32_t, 2>> edges;
     bool usable = false;
 };
+// Linear in the triangles; `progress` is told its fraction every kItemsPerReport of them.
 ChartOutline chart_outline(const std::vector<Eigen::Vector2d>& uv,
-                           const std::vector<Triangle>& triangles);
+                           const std::vector<Triangle>& triangles,
+                           const ProgressSpan& progress = {});
 
 // The cells rasterise() marks, from the outline when it is usable: the cells its edges touch
 // (every cell a triangle touches but does not hold whole) and the cells whose centre it winds

@@ -554,7 +554,8 @@ double charts_uv_area(const std::vector<PackInput>& charts) {
 PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& settings,
                       ThreadPool& pool, const ProgressSpan& progress) {
     const PageGrid grid = checked_grid(settings);
-    const std::vector<ChartOutline> outlines = chart_outlines(charts, pool);
+    const std::vector<ChartOutline> outlines =
+        chart_outlines(charts, pool, progress.part(0.0, 0.0));
     PreparedCharts set = prepare_charts(charts, outlines, settings, grid, pool);
     progress.report(0.5);
     // Charts whose area one page holds are first tried on one page the way pack_one_page
@@ -584,7 +585,8 @@ PackResult pack_pages(const std::vector<PackInput>& charts, const PageSettings& 
 PackResult pack_one_page(const std::vector<PackInput>& charts, PageSettings settings,
                          ThreadPool& pool, const ProgressSpan& progress) {
     const PageGrid grid = checked_grid(settings);
-    const std::vector<ChartOutline> outlines = chart_outlines(charts, pool);
+    const std::vector<ChartOutline> outlines =
+        chart_outlines(charts, pool, progress.part(0.0, 0.0));
     // Above this density the charts' area alone overflows the page, or the longest chart its
     // longer side.
     const double area = charts_uv_area(charts);
