@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "atlas/chart_merging.h"
 #include "atlas/chart_segmentation.h"
@@ -193,19 +194,24 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface, std::vector<in
                                      const std::vector<char>& seam, const Settings& settings,
                                      const ChartLimits& limits, const Progress& progress,
                                      ThreadPool& pool) {
+    ChartWork work{surface, seam, settings, limits, progress, pool,
+                   ProgressSpan(progress, Phase::kInitialMap, 0.0, 0.0)};
+    const int64_t triangle_count = static_cast<int64_t>(chart_of.size());
     int32_t count = 0;
     for (int32_t c : chart_of) count = std::max(count, c + 1);
     // Each chart's triangles, reserved to their count (no doubling's slack); chart_of goes as
     // soon as they are listed, before the first maps (where large meshes peak).
     std::vector<size_t> size(count, 0);
-    for (int32_t c : chart_of) ++size[c];
+    work.beat.in_runs(triangle_count, [&](int64_t begin, int64_t end) {
+        for (int64_t t = begin; t < end; ++t) ++size[chart_of[t]];
+    });
     std::vector<std::vector<int32_t>> pending(count);
     for (int32_t c = 0; c < count; ++c) pending[c].reserve(size[c]);
-    for (size_t t = 0; t < chart_of.size(); ++t)
-        pending[chart_of[t]].push_back(static_cast<int32_t>(t));
+    work.beat.in_runs(triangle_count, [&](int64_t begin, int64_t end) {
+        for (int64_t t = begin; t < end; ++t)
+            pending[chart_of[t]].push_back(static_cast<int32_t>(t));
+    });
     std::vector<int32_t>().swap(chart_of);
-    ChartWork work{surface, seam, settings, limits, progress, pool,
-                   ProgressSpan(progress, Phase::kInitialMap, 0.0, 0.0)};
     MappedCharts mapped;
     map_in_rounds(work, std::move(pending), mapped);
     double target = 0;
@@ -215,11 +221,19 @@ std::vector<AtlasChart> build_charts(const AtlasSurface& surface, std::vector<in
     std::vector<AtlasChart> charts = std::move(mapped.charts);
     merge_charts(surface, seam, settings, limits, target, charts, area, progress, kMapped,
                  work.beat, pool);
-    std::sort(charts.begin(), charts.end(), [](const AtlasChart& x, const AtlasChart& y) {
-        return *std::min_element(x.disk.surface_triangle.begin(), x.disk.surface_triangle.end()) <
-               *std::min_element(y.disk.surface_triangle.begin(), y.disk.surface_triangle.end());
-    });
-    return charts;
+    // In order of their first triangles (each found once: found in every comparison, they were
+    // 40 ms without a progress call at 3.3M triangles).
+    std::vector<std::pair<int32_t, size_t>> first(charts.size());
+    for (size_t c = 0; c < charts.size(); ++c) {
+        const std::vector<int32_t>& triangles = charts[c].disk.surface_triangle;
+        first[c] = {*std::min_element(triangles.begin(), triangles.end()), c};
+        work.beat.report(0.0);
+    }
+    std::sort(first.begin(), first.end());
+    std::vector<AtlasChart> ordered;
+    ordered.reserve(charts.size());
+    for (const auto& [triangle, c] : first) ordered.push_back(std::move(charts[c]));
+    return ordered;
 }
 
 }  // namespace raps

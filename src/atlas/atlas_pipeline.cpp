@@ -453,7 +453,7 @@ ChartSet mapped_charts(const TriangleMesh& mesh, const AtlasParts& parts, const 
     limits.max_stretch_linf = settings.atlas_max_linf;
     set.charts =
         build_charts(surface, std::move(chart_of_surface), seam, settings, limits, progress, pool);
-    set.cuts_to_try = split_long_charts(surface, settings, set.charts);
+    set.cuts_to_try = split_long_charts(surface, settings, set.charts, chart_timer.span(1.0, 1.0));
     chart_timer.finish();
     // The charts hold their own meshes now: what is left to do (corner sources, packing,
     // output) reads only the surface's maps back to the input, so its mesh, twins and angles

@@ -16,10 +16,13 @@ namespace {
 
 // Scales uv about its centroid so that its area equals the chart's 3D area, and fills in the
 // stretch figures.
-void normalise(const ChartDisk& disk, ChartMap& map) {
+// Both report to `beat` as they go: each is a pass or two over the chart's triangles.
+void normalise(const ChartDisk& disk, ChartMap& map, const ProgressSpan& beat) {
     double uv_area = 0, area = 0;
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-    for (const Triangle& t : disk.mesh.triangles) {
+    for (size_t i = 0; i < disk.mesh.triangles.size(); ++i) {
+        beat.at(static_cast<int64_t>(i), disk.mesh.triangle_count());
+        const Triangle& t = disk.mesh.triangles[i];
         const Eigen::Vector2d a = map.uv[t[1]] - map.uv[t[0]], b = map.uv[t[2]] - map.uv[t[0]];
         uv_area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
         area += 0.5 * (disk.mesh.positions[t[1]] - disk.mesh.positions[t[0]])
@@ -30,16 +33,19 @@ void normalise(const ChartDisk& disk, ChartMap& map) {
     centroid /= static_cast<double>(map.uv.size());
     const double scale = uv_area > 0 ? std::sqrt(area / uv_area) : 1.0;
     for (Eigen::Vector2d& p : map.uv) p = (p - centroid) * scale;
-    const Stretch stretch = measure_stretch(disk.mesh.positions, map.uv, disk.mesh.triangles);
+    beat.report(0.0);
+    const Stretch stretch = measure_stretch(disk.mesh.positions, map.uv, disk.mesh.triangles, beat);
     map.stretch_l2 = stretch.l2;
     map.stretch_linf = stretch.linf;
 }
 
-bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv) {
+bool injective(const ChartDisk& disk, const std::vector<Eigen::Vector2d>& uv,
+               const ProgressSpan& beat) {
     for (const Eigen::Vector2d& p : uv) {
         if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return false;
     }
-    return count_flipped_or_degenerate(disk.mesh, uv) == 0 &&
+    beat.report(0.0);
+    return count_flipped_or_degenerate(disk.mesh, uv, beat) == 0 &&
            !boundary_self_intersects(uv, disk.boundary_loop);
 }
 
@@ -59,7 +65,7 @@ bool adapted(const ChartDisk& disk, const Settings& settings,
         return false;
     }
     progress.report(0.0);
-    out.injective = injective(disk, out.uv);
+    out.injective = injective(disk, out.uv, progress.part(0.0, 0.0));
     return out.injective;
 }
 
@@ -83,8 +89,9 @@ ChartMap circle_chart_map(const ChartDisk& disk, const Settings& settings, Lapla
     const std::vector<double> base =
         laplacian_weights(disk.mesh, disk.adjacency, WeightScheme::kMeanValue);
     system.solve(base, circle.uv, progress);
-    circle.injective = injective(disk, circle.uv);
-    normalise(disk, circle);
+    const ProgressSpan beat = progress.part(0.0, 0.0);
+    circle.injective = injective(disk, circle.uv, beat);
+    normalise(disk, circle, beat);
     adapt_chart_map(disk, settings, 1e300, circle, system, progress);
     return circle;
 }
@@ -98,18 +105,18 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, d
         const double give_up_linf = 1.05 * max_linf;
         ConformalPrediction predicted;
         map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.angle_sum,
-                                             disk.boundary_loop, system,
-                                             {give_up_linf, give_up_l2}, predicted, progress);
+                                             disk.boundary_loop, system, {give_up_linf, give_up_l2},
+                                             predicted, progress);
         map.predicted_l2 = predicted.l2;
         map.over_l2 = predicted.l2 > give_up_l2 && !(predicted.linf > give_up_linf);
         progress.report(0.0);
-        map.injective = !map.uv.empty() && injective(disk, map.uv);
+        map.injective = !map.uv.empty() && injective(disk, map.uv, progress.part(0.0, 0.0));
     } catch (const Error& error) {
         if (error.code() != ErrorCode::kSolverFailed) throw;
         map.injective = false;
     }
     progress.report(0.0);
-    if (map.injective) normalise(disk, map);
+    if (map.injective) normalise(disk, map, progress.part(0.0, 0.0));
     return map;
 }
 
@@ -124,7 +131,7 @@ void adapt_chart_map(const ChartDisk& disk, const Settings& settings, double max
     if (map.method == ChartMethod::kCircle) chosen.weights = WeightScheme::kMeanValue;
     if (!adapted(disk, chosen, map.uv, candidate, system, progress)) return;
     progress.report(0.0);
-    normalise(disk, candidate);
+    normalise(disk, candidate, progress.part(0.0, 0.0));
     // Equalising area can stretch a few triangles more: keep the Linf limit.
     if (candidate.stretch_l2 < map.stretch_l2 &&
         candidate.stretch_linf <= std::max(max_linf, map.stretch_linf)) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
 #include "planar/laplace_system.h"
 #include "solver/sparse_solver.h"
@@ -11,36 +12,38 @@
 
 namespace raps {
 
-std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
-                                                         const VertexAdjacency& adjacency,
-                                                         const std::vector<double>& angle_sum,
-                                                         const std::vector<int32_t>& boundary_loop,
-                                                         LaplaceSystem& system,
-                                                         const ConformalGiveUp& give_up,
-                                                         ConformalPrediction& predicted,
-                                                         const ProgressSpan& progress) {
+std::vector<Eigen::Vector2d> free_boundary_conformal_map(
+    const TriangleMesh& mesh, const VertexAdjacency& adjacency,
+    const std::vector<double>& angle_sum, const std::vector<int32_t>& boundary_loop,
+    LaplaceSystem& system, const ConformalGiveUp& give_up, ConformalPrediction& predicted,
+    const ProgressSpan& progress) {
     const int32_t n = mesh.vertex_count();
+    // Each pass reports to `beat` as it goes (at a million triangles, the passes between the
+    // solves were up to 80 ms without a progress call); the solves report to `progress`.
+    const ProgressSpan beat = progress.part(0.0, 0.0);
     // Angle defects: 2 pi - angle sum inside, the turning angle pi - angle sum on the boundary.
     std::vector<char> on_boundary(n, 0);
     for (int32_t v : boundary_loop) on_boundary[v] = 1;
     // The cotangent Laplacian L (the Dirichlet energy's matrix, positive definite on the
     // interior vertices) with the boundary held: Cholesky, on the system's pattern.
     const std::vector<double> cotangent =
-        laplacian_weights(mesh, adjacency, WeightScheme::kCotangent);
+        laplacian_weights(mesh, adjacency, WeightScheme::kCotangent, beat);
     SparseSolver& solver = system.solver();
     const std::vector<int32_t>& vertex_of = system.vertex_of_unknown();
     const std::vector<int32_t>& value_of_slot = system.value_of_slot();
     const int32_t unknowns = system.unknown_count();
-    std::vector<double> values(solver.pattern().columns.size(), 0.0);
-    for (int32_t row = 0; row < unknowns; ++row) {
-        const int32_t v = vertex_of[row];
-        double diagonal = 0;
-        for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
-            diagonal += cotangent[s];
-            if (value_of_slot[s] >= 0) values[value_of_slot[s]] = -cotangent[s];
+    std::vector<double> values = filled_in_runs(solver.pattern().columns.size(), 0.0, beat);
+    beat.in_runs(unknowns, [&](int64_t begin, int64_t end) {
+        for (int64_t row = begin; row < end; ++row) {
+            const int32_t v = vertex_of[row];
+            double diagonal = 0;
+            for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
+                diagonal += cotangent[s];
+                if (value_of_slot[s] >= 0) values[value_of_slot[s]] = -cotangent[s];
+            }
+            values[system.diagonal_of_unknown()[row]] = diagonal;
         }
-        values[system.diagonal_of_unknown()[row]] = diagonal;
-    }
+    });
 
     // The log scale factor u that flattens the interior while keeping the boundary's lengths
     // (u = 0 there: the conformal flattening of least area distortion). A conformal change of
@@ -59,7 +62,9 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
     {
         double area = 0, scaled_area = 0, shrunk_area = 0;
         double smallest_scale = std::numeric_limits<double>::max();
-        for (const Triangle& t : mesh.triangles) {
+        for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+            beat.at(static_cast<int64_t>(i), mesh.triangle_count());
+            const Triangle& t = mesh.triangles[i];
             const double a = 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]])
                                        .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
                                        .norm();
@@ -114,6 +119,7 @@ std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mes
     if (unknowns > 0) {
         std::vector<double> rhs(2 * static_cast<size_t>(unknowns), 0.0);
         for (int32_t row = 0; row < unknowns; ++row) {
+            beat.at(row, unknowns);
             const int32_t v = vertex_of[row];
             for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
                 const int32_t j = adjacency.neighbors[s];

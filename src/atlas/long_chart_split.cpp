@@ -61,14 +61,16 @@ void keep_polygons_whole(const AtlasSurface& surface, const AtlasChart& chart,
 
 // The chart's triangles in `pieces` pieces by where they lie along the chart's longer side (in
 // its smallest box), each polygon with its first triangle, each piece a chart of its own.
-std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart& chart,
-                                   int pieces) {
+std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart& chart, int pieces,
+                                   const ProgressSpan& beat) {
     const std::vector<Triangle>& triangles = chart.disk.mesh.triangles;
     const TurnedBox box = box_of(chart);
     const Eigen::Vector2d &low = box.origin, &size = box.extent;
     const int axis = size.x() >= size.y() ? 0 : 1;
+    const int64_t count = static_cast<int64_t>(triangles.size());
     std::vector<int32_t> piece_of(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
+        beat.at(static_cast<int64_t>(t), count);
         const Triangle& v = triangles[t];
         const Eigen::Vector2d centre =
             (chart.map.uv[v[0]] + chart.map.uv[v[1]] + chart.map.uv[v[2]]) / 3.0;
@@ -77,15 +79,18 @@ std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart
         piece_of[t] = std::clamp(static_cast<int32_t>(along * pieces), 0, pieces - 1);
     }
     keep_polygons_whole(surface, chart, piece_of);
+    beat.report(0.0);
     std::vector<std::vector<int32_t>> members(pieces);  // each piece's triangles, ascending
     for (size_t t = 0; t < triangles.size(); ++t)
         members[piece_of[t]].push_back(static_cast<int32_t>(t));
+    beat.report(0.0);
     std::vector<AtlasChart> out;
     std::vector<int32_t> vertex_of(chart.map.uv.size(), -1);
     for (const std::vector<int32_t>& piece : members) {
         if (piece.empty()) continue;
         AtlasChart part;
         for (int32_t t : piece) {
+            beat.at(t, count);
             Triangle local;
             for (int k = 0; k < 3; ++k) {
                 int32_t& v = vertex_of[triangles[t][k]];
@@ -104,7 +109,7 @@ std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart
             for (int32_t v : triangles[t]) vertex_of[v] = -1;
         }
         const Stretch stretch =
-            measure_stretch(part.disk.mesh.positions, part.map.uv, part.disk.mesh.triangles);
+            measure_stretch(part.disk.mesh.positions, part.map.uv, part.disk.mesh.triangles, beat);
         part.map.stretch_l2 = stretch.l2;
         part.map.stretch_linf = stretch.linf;
         part.map.method = chart.map.method;
@@ -113,6 +118,7 @@ std::vector<AtlasChart> cut_across(const AtlasSurface& surface, const AtlasChart
         std::vector<int32_t> every(part.map.uv.size());
         std::iota(every.begin(), every.end(), 0);
         part.box = smallest_bounding_box(part.map.uv, part.disk.mesh.triangles, every);
+        beat.report(0.0);
         out.push_back(std::move(part));
     }
     return out;
@@ -127,12 +133,15 @@ int pieces_of(double longest, double side, const AtlasChart& chart) {
 }  // namespace
 
 LongChartCuts split_long_charts(const AtlasSurface& surface, const Settings& settings,
-                                std::vector<AtlasChart>& charts) {
+                                std::vector<AtlasChart>& charts, const ProgressSpan& beat) {
     LongChartCuts to_try;
     if (settings.atlas_texels_per_unit > 0 || settings.atlas_repack || charts.empty())
         return to_try;
     double area = 0;
-    for (const AtlasChart& chart : charts) area += uv_area(chart.map.uv, chart.disk.mesh.triangles);
+    for (const AtlasChart& chart : charts) {
+        area += uv_area(chart.map.uv, chart.disk.mesh.triangles);
+        beat.report(0.0);
+    }
     if (!(area > 0)) return to_try;
     const double side = settings.atlas_resolution;
     const double density = std::sqrt(kExpectedFill * side * side / area);  // texels per unit
@@ -141,16 +150,18 @@ LongChartCuts split_long_charts(const AtlasSurface& surface, const Settings& set
     for (AtlasChart& chart : charts) {
         const double longest = box_of(chart).extent.maxCoeff() * density;  // texels
         const double share = uv_area(chart.map.uv, chart.disk.mesh.triangles) / area;
+        beat.report(0.0);
         const bool most = share >= kMostOfTheArea;
         const double too_long = most ? kTooLong : kTooLongBesideOthers;
         if (longest > too_long * side) {
-            for (AtlasChart& part : cut_across(surface, chart, pieces_of(longest, side, chart)))
+            for (AtlasChart& part :
+                 cut_across(surface, chart, pieces_of(longest, side, chart), beat))
                 out.push_back(std::move(part));
             continue;
         }
         if (!most && longest > kMayBeTooLong * side)
-            to_try.pieces.emplace_back(out.size(),
-                                       cut_across(surface, chart, pieces_of(longest, side, chart)));
+            to_try.pieces.emplace_back(
+                out.size(), cut_across(surface, chart, pieces_of(longest, side, chart), beat));
         out.push_back(std::move(chart));
     }
     charts = std::move(out);

@@ -25,9 +25,10 @@ struct LongChartCuts {
 // follow it in order. Triangles of one input polygon stay in one piece. Returns the charts that
 // may or may not be too long, left whole, with their pieces. Does nothing with a density (pages
 // are cropped to their charts, and a chart larger than a page is shrunk and reported) or when
-// repacking (the input's islands are kept as they are).
+// repacking (the input's islands are kept as they are). `beat` is told its start fraction as
+// the charts are measured and cut.
 LongChartCuts split_long_charts(const AtlasSurface& surface, const Settings& settings,
-                                std::vector<AtlasChart>& charts);
+                                std::vector<AtlasChart>& charts, const ProgressSpan& beat);
 
 // The atlas with them cut is kept when it packs at a density this much higher: the density
 // search ends within 1%, so less is the search's own spread, not worth a seam.

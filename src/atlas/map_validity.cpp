@@ -31,10 +31,12 @@ bool segments_intersect(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
 }  // namespace
 
 int64_t count_flipped_or_degenerate(const TriangleMesh& mesh,
-                                    const std::vector<Eigen::Vector2d>& uv) {
+                                    const std::vector<Eigen::Vector2d>& uv,
+                                    const ProgressSpan& progress) {
     std::vector<double> area(mesh.triangles.size());
     double total = 0;
     for (size_t t = 0; t < area.size(); ++t) {
+        progress.at(static_cast<int64_t>(t), static_cast<int64_t>(area.size()));
         const Triangle& v = mesh.triangles[t];
         area[t] = 0.5 * cross(uv[v[1]] - uv[v[0]], uv[v[2]] - uv[v[0]]);
         total += std::abs(area[t]);

@@ -45,10 +45,12 @@ std::pair<double, double> uv_singular_values(const Eigen::Vector3d& e1, const Ei
 
 Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
                         const std::vector<Eigen::Vector2d>& uv,
-                        const std::vector<Triangle>& triangles) {
+                        const std::vector<Triangle>& triangles, const ProgressSpan& progress) {
     double total_3d = 0, total_uv = 0;
+    const int64_t count = static_cast<int64_t>(triangles.size());
     std::vector<double> area(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
+        progress.at(static_cast<int64_t>(t), count, 0.0, 0.5);
         const Triangle& v = triangles[t];
         area[t] =
             0.5 *
@@ -63,6 +65,7 @@ Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
     double sum = 0;
     stretch.linf = 0;
     for (size_t t = 0; t < triangles.size(); ++t) {
+        progress.at(static_cast<int64_t>(t), count, 0.5, 1.0);
         if (!(area[t] >= degenerate && area[t] > 0)) continue;
         const Triangle& v = triangles[t];
         const auto [big, small] =

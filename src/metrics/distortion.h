@@ -38,7 +38,7 @@ struct Stretch {
 };
 Stretch measure_stretch(const std::vector<Eigen::Vector3d>& positions,
                         const std::vector<Eigen::Vector2d>& uv,
-                        const std::vector<Triangle>& triangles);
+                        const std::vector<Triangle>& triangles, const ProgressSpan& progress = {});
 
 // Statistics of the map of `triangles` (indices into positions and the map alike), on the pool's
 // threads: the same bits for any thread count.

@@ -8,11 +8,13 @@
 namespace raps {
 
 std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
-                                              const VertexAdjacency& adjacency) {
+                                              const VertexAdjacency& adjacency,
+                                              const ProgressSpan& progress) {
     SparsePattern pattern;  // the vertex graph with its diagonal, rows sorted
     pattern.size = mesh.vertex_count();
     pattern.columns.reserve(adjacency.neighbors.size() + mesh.positions.size());
     for (int32_t v = 0; v < pattern.size; ++v) {
+        progress.at(v, pattern.size, 0.0, 0.1);
         bool diagonal_placed = false;
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
             if (!diagonal_placed && adjacency.neighbors[s] > v) {
@@ -24,7 +26,7 @@ std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
         if (!diagonal_placed) pattern.columns.push_back(v);
         pattern.row_offsets.push_back(static_cast<int32_t>(pattern.columns.size()));
     }
-    return fill_reducing_order(pattern, mesh.positions);
+    return fill_reducing_order(pattern, mesh.positions, progress.part(0.1, 1.0));
 }
 
 namespace {

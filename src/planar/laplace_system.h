@@ -22,7 +22,8 @@ namespace raps {
 // k-th). Systems on the same mesh can share it: restricted to their unknowns it stays a good
 // order (eliminating a subgraph in the induced order fills no more than the whole graph does).
 std::vector<int32_t> vertex_elimination_order(const TriangleMesh& mesh,
-                                              const VertexAdjacency& adjacency);
+                                              const VertexAdjacency& adjacency,
+                                              const ProgressSpan& progress = {});
 
 class LaplaceSystem {
   public:
