@@ -105,8 +105,8 @@ ChartMap free_boundary_chart_map(const ChartDisk& disk, LaplaceSystem& system, d
         const double give_up_linf = 1.05 * max_linf;
         ConformalPrediction predicted;
         map.uv = free_boundary_conformal_map(disk.mesh, disk.adjacency, disk.angle_sum,
-                                             disk.boundary_loop, system, {give_up_linf, give_up_l2},
-                                             predicted, progress);
+                                             disk.boundary_loop, system,
+                                             {give_up_linf, give_up_l2}, predicted, progress);
         map.predicted_l2 = predicted.l2;
         map.over_l2 = predicted.l2 > give_up_l2 && !(predicted.linf > give_up_linf);
         progress.report(0.0);

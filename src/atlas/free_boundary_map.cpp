@@ -12,11 +12,14 @@
 
 namespace raps {
 
-std::vector<Eigen::Vector2d> free_boundary_conformal_map(
-    const TriangleMesh& mesh, const VertexAdjacency& adjacency,
-    const std::vector<double>& angle_sum, const std::vector<int32_t>& boundary_loop,
-    LaplaceSystem& system, const ConformalGiveUp& give_up, ConformalPrediction& predicted,
-    const ProgressSpan& progress) {
+std::vector<Eigen::Vector2d> free_boundary_conformal_map(const TriangleMesh& mesh,
+                                                         const VertexAdjacency& adjacency,
+                                                         const std::vector<double>& angle_sum,
+                                                         const std::vector<int32_t>& boundary_loop,
+                                                         LaplaceSystem& system,
+                                                         const ConformalGiveUp& give_up,
+                                                         ConformalPrediction& predicted,
+                                                         const ProgressSpan& progress) {
     const int32_t n = mesh.vertex_count();
     // Each pass reports to `beat` as it goes (at a million triangles, the passes between the
     // solves were up to 80 ms without a progress call); the solves report to `progress`.
