@@ -284,6 +284,11 @@ std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& half
     for (int32_t h = 0; h < static_cast<int32_t>(halfedges.twin.size()) && start < 0; ++h) {
         if (halfedge_origin(mesh, h) == v) start = h;
     }
+    return vertex_ring_from(mesh, halfedges, start);
+}
+
+std::vector<int32_t> vertex_ring_from(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                      int32_t start) {
     std::vector<int32_t> ring;
     if (start < 0) return ring;
     int32_t h = start;
@@ -292,6 +297,18 @@ std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& half
         h = halfedges.twin[Halfedges::prev(h)];  // the next triangle around v
     } while (h >= 0 && h != start);
     return ring;
+}
+
+std::vector<int32_t> first_outgoing_halfedges(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                              const ProgressSpan& progress) {
+    std::vector<int32_t> first(mesh.positions.size(), -1);
+    progress.in_runs(static_cast<int64_t>(halfedges.twin.size()), [&](int64_t begin, int64_t end) {
+        for (int32_t h = static_cast<int32_t>(begin); h < end; ++h) {
+            int32_t& out = first[halfedge_origin(mesh, h)];
+            if (out < 0) out = h;
+        }
+    });
+    return first;
 }
 
 VertexTriangles build_vertex_triangles(const TriangleMesh& mesh, const ProgressSpan& progress) {

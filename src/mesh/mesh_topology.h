@@ -112,6 +112,16 @@ void check_closed_genus_zero(const TriangleMesh& mesh, const Halfedges& halfedge
 // at v.
 std::vector<int32_t> vertex_ring(const TriangleMesh& mesh, const Halfedges& halfedges, int32_t v);
 
+// The same from the half-edge `start` (from v), without vertex_ring's search for one (a pass over
+// the mesh): for the rings of many vertices, with starts from first_outgoing_halfedges.
+std::vector<int32_t> vertex_ring_from(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                      int32_t start);
+
+// Per vertex, the first half-edge (the lowest index) that starts there, or -1: the start that
+// vertex_ring finds.
+std::vector<int32_t> first_outgoing_halfedges(const TriangleMesh& mesh, const Halfedges& halfedges,
+                                              const ProgressSpan& progress = {});
+
 // The triangles around each vertex, as the two other vertices in the triangle's order: for the
 // entries e in [offsets[v], offsets[v + 1]), (v, first[e], second[e]) is triangle triangle[e] of
 // the mesh with its orientation. Used to check that moving v folds none of its triangles.

@@ -24,13 +24,14 @@ struct Totals {
 }  // namespace
 
 SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& u,
-                                ThreadPool& pool) {
+                                ThreadPool& pool, const ProgressSpan& beat) {
     const TriangleMesh& mesh = problem.mesh;
     const int64_t count = mesh.triangle_count();
     std::vector<double> area_3d(count), area_map(count);
     const Totals totals = parallel_sum<Totals>(pool, count, [&](int64_t begin, int64_t end) {
         Totals sum;
         for (int64_t t = begin; t < end; ++t) {
+            beat.at(t, count);
             const Triangle& v = mesh.triangles[t];
             area_3d[t] = triangle_area(mesh, static_cast<int32_t>(t));
             area_map[t] = spherical_triangle_area(u[v[0]], u[v[1]], u[v[2]]);
@@ -46,6 +47,7 @@ SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<
     score.area_log = parallel_sum<double>(pool, count, [&](int64_t begin, int64_t end) {
         double sum = 0.0;
         for (int64_t t = begin; t < end; ++t) {
+            beat.at(t, count);
             const double weight = area_3d[t] / totals.area_3d;
             const double r = std::abs(area_map[t]) / totals.area_map / weight;
             sum += weight * std::abs(portable::log(r));

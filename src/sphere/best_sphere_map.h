@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "parallel/thread_pool.h"
 #include "sphere/sphere_problem.h"
 
@@ -29,8 +30,9 @@ struct SphereMapScore {
     double area_log = 0;  // 3D-area-weighted mean |log r|, as raps_stats.area_log_mean
 };
 
+// `beat` is told its start fraction as the triangles are measured.
 SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& u,
-                                ThreadPool& pool);
+                                ThreadPool& pool, const ProgressSpan& beat = {});
 
 // Whether `candidate`, a later map than `best`, is to be returned instead of it (the order
 // above); `by_area` for the area monitor.

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/portable_math.h"
+#include "core/sort_in_runs.h"
 #include "mesh/mesh_topology.h"
 #include "planar/laplace_system.h"
 #include "sphere/mobius_centring.h"
@@ -31,7 +32,7 @@ constexpr double kAreaFloor = 0.1;
 
 // Dijkstra over 3D edge lengths from `from`; returns the farthest vertex (the lowest index among
 // equals).
-int32_t farthest_vertex(const SphereProblem& problem, int32_t from) {
+int32_t farthest_vertex(const SphereProblem& problem, int32_t from, const ProgressSpan& beat) {
     const VertexAdjacency& adjacency = problem.adjacency;
     const std::vector<Eigen::Vector3d>& p = problem.mesh.positions;
     std::vector<double> distance(p.size(), std::numeric_limits<double>::infinity());
@@ -39,7 +40,8 @@ int32_t farthest_vertex(const SphereProblem& problem, int32_t from) {
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
     distance[from] = 0.0;
     queue.push({0.0, from});
-    while (!queue.empty()) {
+    for (int64_t popped = 0; !queue.empty(); ++popped) {
+        beat.at(popped, static_cast<int64_t>(p.size()));
         const auto [d, v] = queue.top();
         queue.pop();
         if (d > distance[v]) continue;
@@ -61,12 +63,14 @@ int32_t farthest_vertex(const SphereProblem& problem, int32_t from) {
 
 // A path with the fewest edges from a to b (so no two of its vertices but consecutive ones share
 // an edge), a first.
-std::vector<int32_t> fewest_edges_path(const VertexAdjacency& adjacency, int32_t a, int32_t b) {
+std::vector<int32_t> fewest_edges_path(const VertexAdjacency& adjacency, int32_t a, int32_t b,
+                                       const ProgressSpan& beat) {
     const int32_t n = static_cast<int32_t>(adjacency.offsets.size()) - 1;
     std::vector<int32_t> hops(n, -1);
     std::vector<int32_t> queue{a};
     hops[a] = 0;
     for (size_t k = 0; k < queue.size() && hops[b] < 0; ++k) {
+        beat.at(static_cast<int64_t>(k), n);
         const int32_t v = queue[k];
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
             const int32_t w = adjacency.neighbors[s];
@@ -90,9 +94,10 @@ std::vector<int32_t> fewest_edges_path(const VertexAdjacency& adjacency, int32_t
     return path;
 }
 
-// The ring of v turned so that it starts at `first`.
-std::vector<int32_t> ring_from(const SphereProblem& problem, int32_t v, int32_t first) {
-    std::vector<int32_t> ring = vertex_ring(problem.mesh, problem.halfedges, v);
+// The ring of v (its first half-edge out: first_out[v]) turned so that it starts at `first`.
+std::vector<int32_t> ring_from(const SphereProblem& problem, const std::vector<int32_t>& first_out,
+                               int32_t v, int32_t first) {
+    std::vector<int32_t> ring = vertex_ring_from(problem.mesh, problem.halfedges, first_out[v]);
     std::rotate(ring.begin(), std::find(ring.begin(), ring.end(), first), ring.end());
     return ring;
 }
@@ -112,15 +117,16 @@ int32_t slot_of(const VertexAdjacency& adjacency, int32_t v, int32_t w) {
 // path's second vertex, at angle 0). Returns +1 or -1 for the side of B's ring's second vertex
 // (+1: the same side, so B's ring runs the other way round the cylinder), 0 if the sides
 // do not come out consistent (then no cylinder map).
-int cut_shifts(const SphereProblem& problem, const std::vector<int32_t>& path,
-               const std::vector<int32_t>& ring_a, const std::vector<int32_t>& ring_b,
-               std::vector<double>& shift) {
+int cut_shifts(const SphereProblem& problem, const std::vector<int32_t>& first_out,
+               const std::vector<int32_t>& path, const std::vector<int32_t>& ring_a,
+               const std::vector<int32_t>& ring_b, std::vector<double>& shift) {
     const VertexAdjacency& adjacency = problem.adjacency;
     shift.assign(adjacency.neighbors.size(), 0.0);
     bool after_next = false;  // whether the high side runs from next to previous in ring order
     int b_side = 0;
     for (size_t m = 1; m + 1 < path.size(); ++m) {
-        const std::vector<int32_t> ring = vertex_ring(problem.mesh, problem.halfedges, path[m]);
+        const std::vector<int32_t> ring =
+            vertex_ring_from(problem.mesh, problem.halfedges, first_out[path[m]]);
         const int32_t k = static_cast<int32_t>(ring.size());
         const int32_t previous =
             static_cast<int32_t>(std::find(ring.begin(), ring.end(), path[m - 1]) - ring.begin());
@@ -174,14 +180,20 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
     const TriangleMesh& mesh = problem.mesh;
     const VertexAdjacency& adjacency = problem.adjacency;
     const int32_t n = mesh.vertex_count();
-    const int32_t a = farthest_vertex(problem, farthest_vertex(problem, 0));
-    const int32_t b = farthest_vertex(problem, a);
-    const std::vector<int32_t> path = fewest_edges_path(adjacency, a, b);
+    // The passes around the solves report to `beat` as they go: at 446K triangles they were
+    // 320 ms without a progress call.
+    const ProgressSpan beat = progress.part(0.0, 0.0);
+    const int32_t a = farthest_vertex(problem, farthest_vertex(problem, 0, beat), beat);
+    const int32_t b = farthest_vertex(problem, a, beat);
+    const std::vector<int32_t> path = fewest_edges_path(adjacency, a, b, beat);
     if (path.size() < 5) return std::nullopt;
-    const std::vector<int32_t> ring_a = ring_from(problem, a, path[1]);
-    const std::vector<int32_t> ring_b = ring_from(problem, b, path[path.size() - 2]);
+    // Each ring from its vertex's first half-edge, found for all in one pass: vertex_ring's own
+    // search, a pass over the mesh for every vertex of the path, was 170 ms at 446K triangles.
+    const std::vector<int32_t> first_out = first_outgoing_halfedges(mesh, problem.halfedges, beat);
+    const std::vector<int32_t> ring_a = ring_from(problem, first_out, a, path[1]);
+    const std::vector<int32_t> ring_b = ring_from(problem, first_out, b, path[path.size() - 2]);
     std::vector<double> shift;
-    const int b_side = cut_shifts(problem, path, ring_a, ring_b, shift);
+    const int b_side = cut_shifts(problem, first_out, path, ring_a, ring_b, shift);
     if (b_side == 0) return std::nullopt;
 
     // Height in x, angle in y; the rings fixed (B's twist is added below, as tau h).
@@ -211,6 +223,7 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
         const int32_t unknowns = system.unknown_count();
         std::vector<double> rhs(2 * static_cast<size_t>(unknowns), 0.0);
         for (int32_t row = 0; row < unknowns; ++row) {
+            beat.at(row, unknowns);
             const int32_t v = vertex_of[row];
             double sum = 0.0, jump = 0.0;
             for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
@@ -226,7 +239,9 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
 
     // The twist of least energy (theta + tau h), then the modulus H; sums over the annulus.
     double hh = 0.0, th = 0.0, tt = 0.0;
+    const ProgressSpan end = progress.part(1.0, 1.0);
     for (int32_t v = 0; v < n; ++v) {
+        end.at(v, n);
         if (v == a || v == b) continue;
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
             const int32_t u = adjacency.neighbors[s];
@@ -249,6 +264,7 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
     cylinder.cosine.resize(n);
     cylinder.sine.resize(n);
     for (int32_t v = 0; v < n; ++v) {
+        end.at(v, n);
         const double theta = plane[v].y() + tau * plane[v].x();
         cylinder.height[v] = plane[v].x();
         cylinder.cosine[v] = portable::cos(theta);
@@ -261,21 +277,24 @@ namespace {
 
 // Which way round theta runs was not decided: a reflection if most triangles came out
 // clockwise.
-void orient(const TriangleMesh& mesh, std::vector<Eigen::Vector3d>& points) {
-    if (2 * count_folds(mesh, points).folded > mesh.triangle_count()) {
+void orient(const TriangleMesh& mesh, std::vector<Eigen::Vector3d>& points,
+            const ProgressSpan& beat) {
+    if (2 * count_folds(mesh, points, beat).folded > mesh.triangle_count()) {
         for (Eigen::Vector3d& p : points) p.y() = -p.y();
     }
 }
 
 // The shift c of the height that balances the centre of mass of the conformal lift along the
 // axis: its height component sum mass tanh(H (h - c)) falls as c grows (bisection).
-double axial_balance(const SphereProblem& problem, const CylinderCoordinates& cylinder) {
+double axial_balance(const SphereProblem& problem, const CylinderCoordinates& cylinder,
+                     const ProgressSpan& beat) {
     const int32_t n = problem.mesh.vertex_count();
     double low = -1.0, high = 2.0;
     for (int k = 0; k < 80; ++k) {
         const double c = 0.5 * (low + high);
         double balance = 0.0;
         for (int32_t v = 0; v < n; ++v) {
+            beat.at(v, n);
             balance +=
                 problem.mass[v] * (v == cylinder.south ? -1.0
                                    : v == cylinder.north
@@ -290,13 +309,15 @@ double axial_balance(const SphereProblem& problem, const CylinderCoordinates& cy
 }  // namespace
 
 std::vector<Eigen::Vector3d> conformal_cylinder_map(const SphereProblem& problem,
-                                                    const CylinderCoordinates& cylinder) {
+                                                    const CylinderCoordinates& cylinder,
+                                                    const ProgressSpan& beat) {
     const int32_t n = problem.mesh.vertex_count();
     const double height = cylinder.modulus;
     const auto is_pole = [&](int32_t v) { return v == cylinder.south || v == cylinder.north; };
-    const double c = axial_balance(problem, cylinder);
+    const double c = axial_balance(problem, cylinder, beat);
     std::vector<Eigen::Vector3d> points(n);
     for (int32_t v = 0; v < n; ++v) {
+        beat.at(v, n);
         if (is_pole(v)) {
             points[v] = Eigen::Vector3d(0.0, 0.0, v == cylinder.south ? -1.0 : 1.0);
             continue;
@@ -308,13 +329,13 @@ std::vector<Eigen::Vector3d> conformal_cylinder_map(const SphereProblem& problem
             Eigen::Vector3d(2.0 * r * cylinder.cosine[v] / d, 2.0 * r * cylinder.sine[v] / d,
                             std::copysign((1.0 - r * r) / d, x));
     }
-    orient(problem.mesh, points);
+    orient(problem.mesh, points, beat);
     return points;
 }
 
 std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& problem,
                                                      const CylinderCoordinates& cylinder,
-                                                     double share) {
+                                                     double share, const ProgressSpan& beat) {
     const TriangleMesh& mesh = problem.mesh;
     const int32_t n = mesh.vertex_count();
     const auto is_pole = [&](int32_t v) { return v == cylinder.south || v == cylinder.north; };
@@ -326,7 +347,9 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
     double total = 0.0, start = 0.0;
     std::vector<double> areas(mesh.triangles.size());
     double sum = 0.0;
+    const int64_t triangle_count = mesh.triangle_count();
     for (size_t k = 0; k < mesh.triangles.size(); ++k) {
+        beat.at(static_cast<int64_t>(k), triangle_count);
         const Triangle& t = mesh.triangles[k];
         areas[k] = 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]])
                              .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
@@ -335,6 +358,7 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
     }
     const double floor = kAreaFloor * sum / static_cast<double>(mesh.triangles.size());
     for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+        beat.at(static_cast<int64_t>(f), triangle_count);
         const Triangle& t = mesh.triangles[f];
         const double area = std::max(areas[f], floor);
         total += area;
@@ -361,16 +385,21 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
     for (int32_t v = 0; v < n; ++v) {
         if (!is_pole(v)) order.push_back(v);
     }
-    std::sort(order.begin(), order.end(), [&](int32_t x, int32_t y) {
-        return cylinder.height[x] < cylinder.height[y] ||
-               (cylinder.height[x] == cylinder.height[y] && x < y);
-    });
+    sort_in_runs(
+        order,
+        [&](int32_t x, int32_t y) {
+            return cylinder.height[x] < cylinder.height[y] ||
+                   (cylinder.height[x] == cylinder.height[y] && x < y);
+        },
+        beat);
     std::vector<Eigen::Vector3d> points(n);
     points[cylinder.south] = Eigen::Vector3d(0.0, 0.0, -1.0);
     points[cylinder.north] = Eigen::Vector3d(0.0, 0.0, 1.0);
-    const double c = axial_balance(problem, cylinder);
+    const double c = axial_balance(problem, cylinder, beat);
     double below = start, slope = 0.0, previous = 0.0;
-    for (const int32_t v : order) {
+    for (size_t k = 0; k < order.size(); ++k) {
+        beat.at(static_cast<int64_t>(k), n);
+        const int32_t v = order[k];
         below += slope * (cylinder.height[v] - previous);
         previous = cylinder.height[v];
         slope += slope_change[v];
@@ -388,7 +417,7 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
             Eigen::Vector3d(2.0 * t * cylinder.cosine[v] / d, 2.0 * t * cylinder.sine[v] / d,
                             std::copysign((1.0 - t * t) / d, key));
     }
-    orient(mesh, points);
+    orient(mesh, points, beat);
     return points;
 }
 

@@ -55,9 +55,10 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
 
 // The conformal lift w = e^(H (h - c) + i theta), c balancing the centre of mass along the axis
 // (not sideways: that would move the squeezed ends off the poles, where a unit vector resolves
-// 1e-16 absolute).
+// 1e-16 absolute). Reports to `beat` as it goes, as the next one does.
 std::vector<Eigen::Vector3d> conformal_cylinder_map(const SphereProblem& problem,
-                                                    const CylinderCoordinates& cylinder);
+                                                    const CylinderCoordinates& cylinder,
+                                                    const ProgressSpan& beat = {});
 
 // The equal-area lift: the same angles, and the latitude at which the sphere's share below a
 // point equals the mesh's 3D share below its height (z = 2 F(h) - 1; by Archimedes' theorem a
@@ -68,6 +69,6 @@ std::vector<Eigen::Vector3d> conformal_cylinder_map(const SphereProblem& problem
 // and `share` of the equal-area one (still monotone in h).
 std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& problem,
                                                      const CylinderCoordinates& cylinder,
-                                                     double share);
+                                                     double share, const ProgressSpan& beat = {});
 
 }  // namespace raps

@@ -117,9 +117,11 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& prob
             if (e.code() != ErrorCode::kSolverFailed) throw;
         }
         if (coordinates) {
-            std::vector<Eigen::Vector3d> cylinder = conformal_cylinder_map(problem, *coordinates);
+            std::vector<Eigen::Vector3d> cylinder =
+                conformal_cylinder_map(problem, *coordinates, progress.part(0.98, 0.98));
             mobius_centre(problem, cylinder, pool, 1e-4, 100, progress.part(0.98, 1.0));
-            if (count_folds(mesh, cylinder).folded < count_folds(mesh, points).folded) {
+            if (count_folds(mesh, cylinder, progress.part(1.0, 1.0)).folded <
+                count_folds(mesh, points, progress.part(1.0, 1.0)).folded) {
                 points.swap(cylinder);
             }
         }

@@ -57,14 +57,16 @@ bool equal_area_start(const SphereProblem& problem, WeightScheme weights, Thread
         if (e.code() != ErrorCode::kSolverFailed) throw;
     }
     if (!coordinates) return false;
+    const ProgressSpan beat = progress.part(1.0, 1.0);
     for (double share : {1.0, 0.75, 0.5, 0.25}) {
-        std::vector<Eigen::Vector3d> start = equal_area_cylinder_map(problem, *coordinates, share);
-        if (count_folds(problem.mesh, start).folded > 0) continue;
-        mobius_centre(problem, start, pool, 1e-4, 100);
-        const SphereMapScore candidate = score_sphere_map(problem, start, pool);
+        std::vector<Eigen::Vector3d> start =
+            equal_area_cylinder_map(problem, *coordinates, share, beat);
+        if (count_folds(problem.mesh, start, beat).folded > 0) continue;
+        mobius_centre(problem, start, pool, 1e-4, 100, beat);
+        const SphereMapScore candidate = score_sphere_map(problem, start, pool, beat);
         // The centring may have turned a triangle over by the exact sign, which the rounded
         // fold test of the score does not see.
-        if (count_folds(problem.mesh, start).folded > 0 || candidate.folded > 0 ||
+        if (count_folds(problem.mesh, start, beat).folded > 0 || candidate.folded > 0 ||
             candidate.centre > kCentredEnough ||
             !(candidate.area_log <= kStartBelow * score.area_log)) {
             return false;
@@ -161,7 +163,7 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
         bool start_tried = false;
         if (!literal) {
             best = points;
-            best_score = score_sphere_map(problem, points, pool);
+            best_score = score_sphere_map(problem, points, pool, relaxations.part(0.0, 0.0));
             initial_score = best_score;
             acceptable = best_score.folded == 0 && best_score.centre <= kCentredEnough;
             if (by_area && acceptable && best_score.area_log > kSqueezedArea) {
@@ -198,7 +200,8 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                     relax_on_sphere(problem, trial, points, step_options, pool, report).sweeps;
                 ++map.adaptive_solves;
                 if (!literal) {
-                    const SphereMapScore score = score_sphere_map(problem, points, pool);
+                    const SphereMapScore score = score_sphere_map(
+                        problem, points, pool, relaxations.part(reported, reported));
                     const bool fine = score.folded == 0 && score.centre <= kCentredEnough;
                     if (acceptable && !fine && retries > 0) {
                         points.swap(before);
