@@ -22,19 +22,23 @@ struct Sum3 {
 };
 
 // Whether the map `after` turns over a triangle that `before` does not.
+// The passes below report to `beat` as they go: a centring step is a few passes over the mesh,
+// hundreds of milliseconds at millions of triangles.
 bool folds_more(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& before,
-                const std::vector<Eigen::Vector3d>& after, ThreadPool& pool) {
+                const std::vector<Eigen::Vector3d>& after, ThreadPool& pool,
+                const ProgressSpan& beat) {
     const std::vector<Triangle>& triangles = problem.mesh.triangles;
-    const int64_t folded = parallel_sum<int64_t>(
-        pool, static_cast<int64_t>(triangles.size()), [&](int64_t begin, int64_t end) {
-            int64_t count = 0;
-            for (int64_t t = begin; t < end; ++t) {
-                const Triangle& v = triangles[t];
-                if (orientation(after[v[0]], after[v[1]], after[v[2]]) > 0.0) continue;
-                count += orientation(before[v[0]], before[v[1]], before[v[2]]) > 0.0;
-            }
-            return count;
-        });
+    const int64_t n = static_cast<int64_t>(triangles.size());
+    const int64_t folded = parallel_sum<int64_t>(pool, n, [&](int64_t begin, int64_t end) {
+        int64_t count = 0;
+        for (int64_t t = begin; t < end; ++t) {
+            beat.at(t, n);
+            const Triangle& v = triangles[t];
+            if (orientation(after[v[0]], after[v[1]], after[v[2]]) > 0.0) continue;
+            count += orientation(before[v[0]], before[v[1]], before[v[2]]) > 0.0;
+        }
+        return count;
+    });
     return folded > 0;
 }
 
@@ -86,9 +90,11 @@ Mobius boost_towards(const Eigen::Vector3d& direction, double k) {
 }
 
 void lift_all(const std::vector<Eigen::Vector2d>& plane, int32_t pole, const Mobius& m,
-              std::vector<Eigen::Vector3d>& points, ThreadPool& pool) {
-    parallel_for(pool, static_cast<int64_t>(plane.size()), [&](int64_t begin, int64_t end) {
+              std::vector<Eigen::Vector3d>& points, ThreadPool& pool, const ProgressSpan& beat) {
+    const int64_t n = static_cast<int64_t>(plane.size());
+    parallel_for(pool, n, [&](int64_t begin, int64_t end) {
         for (int64_t i = begin; i < end; ++i) {
+            beat.at(i, n);
             const Complex z(plane[i].x(), plane[i].y());
             points[i] = i == pole ? lift(m.a, m.c) : lift(m.a * z + m.b, m.c * z + m.d);
         }
@@ -105,34 +111,40 @@ Eigen::Vector3d mobius_boost(const Eigen::Vector3d& u, const Eigen::Vector3d& a)
 }
 
 Eigen::Vector3d centre_of_mass(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& u,
-                               ThreadPool& pool) {
-    const Sum3 sum =
-        parallel_sum<Sum3>(pool, static_cast<int64_t>(u.size()), [&](int64_t begin, int64_t end) {
-            Sum3 s;
-            for (int64_t i = begin; i < end; ++i) {
-                s.x += problem.mass[i] * u[i].x();
-                s.y += problem.mass[i] * u[i].y();
-                s.z += problem.mass[i] * u[i].z();
-            }
-            return s;
-        });
+                               ThreadPool& pool, const ProgressSpan& beat) {
+    const int64_t n = static_cast<int64_t>(u.size());
+    const Sum3 sum = parallel_sum<Sum3>(pool, n, [&](int64_t begin, int64_t end) {
+        Sum3 s;
+        for (int64_t i = begin; i < end; ++i) {
+            beat.at(i, n);
+            s.x += problem.mass[i] * u[i].x();
+            s.y += problem.mass[i] * u[i].y();
+            s.z += problem.mass[i] * u[i].z();
+        }
+        return s;
+    });
     return Eigen::Vector3d(sum.x, sum.y, sum.z);
 }
 
 double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
-                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved) {
+                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved,
+                     const ProgressSpan& beat) {
     if (moved) *moved = false;
-    const Eigen::Vector3d centre = centre_of_mass(problem, u, pool);
+    const Eigen::Vector3d centre = centre_of_mass(problem, u, pool, beat);
     const double offset = centre.norm();
     if (!(offset > 0.0)) return 0.0;
     Eigen::Vector3d a = 0.75 * centre;
     if (a.norm() > 0.9) a *= 0.9 / a.norm();
     scratch.resize(u.size());
     for (int attempt = 0; attempt < 4; ++attempt, a *= 0.25) {
-        parallel_for(pool, static_cast<int64_t>(u.size()), [&](int64_t begin, int64_t end) {
-            for (int64_t i = begin; i < end; ++i) scratch[i] = mobius_boost(u[i], a);
+        const int64_t n = static_cast<int64_t>(u.size());
+        parallel_for(pool, n, [&](int64_t begin, int64_t end) {
+            for (int64_t i = begin; i < end; ++i) {
+                beat.at(i, n);
+                scratch[i] = mobius_boost(u[i], a);
+            }
         });
-        if (!folds_more(problem, u, scratch, pool)) {
+        if (!folds_more(problem, u, scratch, pool, beat)) {
             u.swap(scratch);
             if (moved) *moved = true;
             break;
@@ -148,16 +160,18 @@ std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
                                                  const ProgressSpan& progress) {
     Mobius m{scale, 0.0, 0.0, 1.0};
     std::vector<Eigen::Vector3d> points(plane.size());
-    lift_all(plane, pole, m, points, pool);
+    lift_all(plane, pole, m, points, pool, progress.part(0.0, 0.0));
     for (int step = 0; step < max_steps; ++step) {
-        const Eigen::Vector3d centre = centre_of_mass(problem, points, pool);
+        const double done = static_cast<double>(step) / max_steps;
+        const ProgressSpan beat = progress.part(done, done);
+        const Eigen::Vector3d centre = centre_of_mass(problem, points, pool, beat);
         const double offset = centre.norm();
         if (!(offset > tolerance)) break;
         // As centring_step: a = 3/4 of the centre of mass, at most 0.9 long; T_a spreads the
         // points near a / |a| by (1 + |a|) / (1 - |a|).
         const double t = std::min(0.75 * offset, 0.9);
         m = compose(boost_towards(centre / offset, (1.0 + t) / (1.0 - t)), m);
-        lift_all(plane, pole, m, points, pool);
+        lift_all(plane, pole, m, points, pool, beat);
         progress.report(static_cast<double>(step + 1) / max_steps);
     }
     return points;
@@ -169,7 +183,9 @@ int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
     int steps = 0;
     bool moved = true;
     while (steps < max_steps && moved &&
-           centring_step(problem, u, scratch, pool, &moved) > tolerance) {
+           centring_step(problem, u, scratch, pool, &moved,
+                         progress.part(static_cast<double>(steps) / max_steps,
+                                       static_cast<double>(steps) / max_steps)) > tolerance) {
         ++steps;
         progress.report(static_cast<double>(steps) / max_steps);
     }

@@ -23,9 +23,10 @@ namespace raps {
 // bijection of the sphere that fixes +-a/|a| and spreads out the points near a/|a|.
 Eigen::Vector3d mobius_boost(const Eigen::Vector3d& u, const Eigen::Vector3d& a);
 
-// The centre of mass sum_i mass_i u_i (bit-identical for any thread count).
+// The centre of mass sum_i mass_i u_i (bit-identical for any thread count). This and the step
+// below report to `beat` (its start fraction) as they go.
 Eigen::Vector3d centre_of_mass(const SphereProblem& problem, const std::vector<Eigen::Vector3d>& u,
-                               ThreadPool& pool);
+                               ThreadPool& pool, const ProgressSpan& beat = {});
 
 // One centring step: T_a with a = 3/4 of the centre of mass (to first order T_a moves a uniform
 // distribution's centre by -4/3 a), at most 0.9 long. A Moebius map keeps circles, not the sign
@@ -36,7 +37,8 @@ Eigen::Vector3d centre_of_mass(const SphereProblem& problem, const std::vector<E
 // lets the smaller steps through.) Returns the length of the centre of mass before the step, and
 // whether the step was taken in `*moved` (if not NULL). `scratch` is a buffer.
 double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
-                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved);
+                     std::vector<Eigen::Vector3d>& scratch, ThreadPool& pool, bool* moved,
+                     const ProgressSpan& beat = {});
 
 // Centring steps until the centre of mass is shorter than `tolerance`, a step is refused or
 // `max_steps` were taken; returns the steps taken.
