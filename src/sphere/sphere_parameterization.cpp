@@ -132,9 +132,8 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                 stereographic_initial_map(problem, settings.weights, pool, timer.span(0.05, 0.5));
         }
         map.relaxation_sweeps +=
-            relax_on_sphere(problem, base_weights, points, options, pool, [&](double fraction) {
-                progress.report(Phase::kInitialMap, 0.5 + 0.5 * fraction);
-            }).sweeps;
+            relax_on_sphere(problem, base_weights, points, options, pool, timer.span(0.5, 1.0))
+                .sweeps;
         timer.finish();
     }
 
@@ -191,13 +190,13 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                 RelaxationOptions step_options = options;
                 step_options.max_sweeps = std::max<int64_t>(
                     1, std::llround(static_cast<double>(options.max_sweeps) * step * steps));
-                const auto report = [&](double fraction) {
-                    const double at = (iteration + reached + fraction * step) / settings.iterations;
-                    reported = std::max(reported, at);  // a retried step does not go back
-                    relaxations.report(reported);
-                };
-                map.relaxation_sweeps +=
-                    relax_on_sphere(problem, trial, points, step_options, pool, report).sweeps;
+                // A retried step does not go back: the phase's progress never falls.
+                const double from = (iteration + reached) / settings.iterations;
+                const double to = (iteration + reached + step) / settings.iterations;
+                map.relaxation_sweeps += relax_on_sphere(problem, trial, points, step_options, pool,
+                                                         relaxations.part(from, to))
+                                             .sweeps;
+                reported = std::max(reported, to);
                 ++map.adaptive_solves;
                 if (!literal) {
                     const SphereMapScore score = score_sphere_map(

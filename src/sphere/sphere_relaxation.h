@@ -36,11 +36,11 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "core/progress.h"
 #include "parallel/thread_pool.h"
 #include "sphere/sphere_problem.h"
 
@@ -68,10 +68,10 @@ struct RelaxationReport {
 
 // Relaxes `u` (unit vectors, one per vertex) with `weights` (one per adjacency slot, rows with a
 // positive sum). `progress` gets the fraction done at least every 16 sweeps and every 1%, and
-// the same fraction again after every colour and every few ten thousand vertices (it may
-// throw to cancel).
+// the same fraction again after every colour, every kItemsPerReport vertices moved and inside
+// the passes between sweeps (it may throw to cancel).
 RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector<double>& weights,
                                  std::vector<Eigen::Vector3d>& u, const RelaxationOptions& options,
-                                 ThreadPool& pool, const std::function<void(double)>& progress);
+                                 ThreadPool& pool, const ProgressSpan& progress);
 
 }  // namespace raps
