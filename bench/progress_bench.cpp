@@ -5,12 +5,14 @@
 // A cancel waits at most the longest gap of the run; the header promises about 1 % of a phase.
 //
 //   raps-bench-progress [--data DIR] [--subdivide K] [--threads N] [--only disk|atlas|sphere]
-//                       [--disk-mesh FILE] [--gaps-over MS]
+//                       [--disk-mesh FILE] [--atlas-mesh FILE] [--sphere-mesh FILE]
+//                       [--gaps-over MS]
 //
 // Cases: disk and atlas on face.obj subdivided K times (default 2: 827K triangles; 3: 3.3M),
 // sphere on bunny.off subdivided K + 1 times (K = 2: 444K triangles); --disk-mesh another shared
-// disk for the disk case (camelhead.off with K = 4: 5.8M triangles). Each case runs once, in its
-// own child process (peak MB is that process's).
+// disk for the disk case (camelhead.off with K = 4: 5.8M triangles), --atlas-mesh any shared mesh
+// for the atlas, --sphere-mesh a closed genus-0 one for the sphere (cow.off with K = 4: 5.9M).
+// Each case runs once, in its own child process (peak MB is that process's).
 #include <time.h>
 
 #include <algorithm>
@@ -181,7 +183,8 @@ void print_case(const Case& c, const Report& r, double peak_mb) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string data = RAPS_SHARED_DATA_DIR, only, disk_mesh = "face.obj";
+    std::string data = RAPS_SHARED_DATA_DIR, only, disk_mesh = "face.obj", atlas_mesh = "face.obj",
+                sphere_mesh = "bunny.off";
     int subdivisions = 2, threads = 0;
     double gaps_over_ms = 0;
     for (int i = 1; i < argc; ++i) {
@@ -189,7 +192,8 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) {
             std::fprintf(stderr,
                          "usage: raps-bench-progress [--data DIR] [--subdivide K] [--threads N] "
-                         "[--only disk|atlas|sphere] [--disk-mesh FILE] [--gaps-over MS]\n");
+                         "[--only disk|atlas|sphere] [--disk-mesh FILE] [--atlas-mesh FILE] "
+                         "[--sphere-mesh FILE] [--gaps-over MS]\n");
             return 2;
         }
         const std::string value = argv[++i];
@@ -203,6 +207,10 @@ int main(int argc, char** argv) {
             only = value;
         else if (arg == "--disk-mesh")
             disk_mesh = value;
+        else if (arg == "--atlas-mesh")
+            atlas_mesh = value;
+        else if (arg == "--sphere-mesh")
+            sphere_mesh = value;
         else if (arg == "--gaps-over")
             gaps_over_ms = std::atof(value.c_str());
         else {
@@ -212,8 +220,8 @@ int main(int argc, char** argv) {
     }
     const Case cases[] = {
         {"disk", RAPS_DOMAIN_DISK, disk_mesh.c_str(), subdivisions},
-        {"atlas", RAPS_DOMAIN_ATLAS, "face.obj", subdivisions},
-        {"sphere", RAPS_DOMAIN_SPHERE, "bunny.off", subdivisions + 1},
+        {"atlas", RAPS_DOMAIN_ATLAS, atlas_mesh.c_str(), subdivisions},
+        {"sphere", RAPS_DOMAIN_SPHERE, sphere_mesh.c_str(), subdivisions + 1},
     };
     std::printf("raps %s, threads %d (0 = all), one run per case\n\n", raps_version_string(),
                 threads);
