@@ -22,6 +22,7 @@
 #include "atlas/user_seams.h"
 #include "atlas/uv_repack.h"
 #include "atlas/vertex_welding.h"
+#include "core/fill_in_runs.h"
 #include "core/hash_mix.h"
 #include "core/portable_math.h"
 #include "mesh/mesh_validation.h"
@@ -135,8 +136,12 @@ std::vector<char> hard_edge_seams(const AtlasSurface& surface, double hard_edge_
 // linear probing, doubled at half load, so it stays about as large as the output.
 class OutputVertexTable {
   public:
-    explicit OutputVertexTable(size_t expected)
-        : keys_(hash_table_size(expected), kEmpty), values_(keys_.size()) {}
+    // Filled in runs (fill_in_runs.h): at 5.8M triangles the table and the output's index
+    // arrays, filled in one go, were 110 ms without a progress call.
+    OutputVertexTable(size_t expected, const ProgressSpan& progress) {
+        assign_in_runs(keys_, hash_table_size(expected), kEmpty, progress.part(0.0, 0.5));
+        assign_in_runs(values_, keys_.size(), uint32_t{0}, progress.part(0.5, 1.0));
+    }
 
     // The number stored under `key`, or `candidate` stored there now (second: true).
     std::pair<uint32_t, bool> find_or_add(uint64_t key, uint32_t candidate) {
@@ -194,10 +199,11 @@ void emit_output(const TriangleMesh& mesh, const AtlasParts& parts,
             chart_offset[c] +
             (c < charts.size() ? static_cast<int64_t>(charts[c].disk.mesh.positions.size()) : 1);
     }
-    OutputVertexTable table(mesh.positions.size());
+    const ProgressSpan start = progress.part(0.0, 0.0);
+    OutputVertexTable table(mesh.positions.size(), start);
     const int32_t triangle_count = mesh.triangle_count();
-    out.indices.resize(3 * static_cast<size_t>(triangle_count));
-    out.chart_of.resize(triangle_count);
+    assign_in_runs(out.indices, 3 * static_cast<size_t>(triangle_count), uint32_t{0}, start);
+    assign_in_runs(out.chart_of, static_cast<size_t>(triangle_count), uint32_t{0}, start);
     out.first_output_vertex.assign(1, 0);
     progress.in_runs(triangle_count, [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {

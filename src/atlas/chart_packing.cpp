@@ -513,7 +513,9 @@ class ChartPacker {
         const int32_t w0 = q % 2 ? p.height : p.width;  // the unturned raster's size
         const int32_t h0 = q % 2 ? p.width : p.height;
         std::vector<Eigen::Vector2d> uv(charts_[c].uv->size());
+        const int64_t count = static_cast<int64_t>(uv.size());
         for (size_t v = 0; v < uv.size(); ++v) {
+            beat_.at(static_cast<int64_t>(v), count);
             Eigen::Vector2d at = (turned(way.rotation, (*charts_[c].uv)[v]) - way.origin) * scale_ +
                                  Eigen::Vector2d(padding_, padding_);
             int32_t cur_w = w0, cur_h = h0;
@@ -536,6 +538,7 @@ class ChartPacker {
         PackResult result = empty_result();
         Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
         for (size_t c = 0; c < count_; ++c) {
+            beat_.report(0.0);
             result.uv[c] = placed_uv(c, layout);
             for (const Eigen::Vector2d& at : result.uv[c]) {
                 low = low.cwiseMin(at);
@@ -550,6 +553,7 @@ class ChartPacker {
         result.texels_per_unit = scale_ * grow;
         const double to_uv = grow / resolution_;
         for (std::vector<Eigen::Vector2d>& chart_uv : result.uv) {
+            beat_.report(0.0);
             for (Eigen::Vector2d& at : chart_uv) {
                 at = Eigen::Vector2d(std::min(1.0, (at.x() - low.x()) * to_uv),
                                      std::min(1.0, (at.y() - low.y()) * to_uv));

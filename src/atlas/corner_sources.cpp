@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "atlas/polygon_units.h"
+#include "core/fill_in_runs.h"
 
 namespace raps {
 
@@ -13,13 +14,15 @@ CornerSources corner_sources(const TriangleMesh& mesh, const AtlasParts& parts,
                              const std::vector<AtlasChart>& charts, const ProgressSpan& progress) {
     const int32_t triangle_count = mesh.triangle_count();
     CornerSources sources;
-    sources.chart.assign(triangle_count, -1);
-    sources.vertex.assign(triangle_count, {0, 0, 0});
+    // Filled in runs (fill_in_runs.h): 39 ms without a progress call at 5.8M triangles.
+    const ProgressSpan start = progress.part(0.0, 0.0);
+    assign_in_runs(sources.chart, static_cast<size_t>(triangle_count), -1, start);
+    assign_in_runs(sources.vertex, static_cast<size_t>(triangle_count), {0, 0, 0}, start);
     // (welded vertex, chart) -> chart vertex, for triangles placed beside a chart; only built
     // when there are such triangles (most meshes have none, and it was most of this step).
     std::map<std::pair<int32_t, int32_t>, int32_t> chart_vertex_of;
     const bool any_aside = !surface.aside_triangles.empty();
-    std::vector<int32_t> first_chart_of_welded(mesh.positions.size(), -1);
+    std::vector<int32_t> first_chart_of_welded = filled_in_runs(mesh.positions.size(), -1, start);
     for (size_t c = 0; c < charts.size(); ++c) {
         const ChartDisk& disk = charts[c].disk;
         progress.report(0.8 * static_cast<double>(c) / static_cast<double>(charts.size()));
