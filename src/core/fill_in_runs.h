@@ -31,6 +31,22 @@ void assign_in_runs(std::vector<T>& v, size_t count, const T& value, const Progr
     }
 }
 
+// to = from, copied in runs as assign_in_runs fills (the sphere's points at 5M triangles are
+// 68 MB, 30 to 60 ms copied in one go).
+template <typename T>
+void copy_in_runs(std::vector<T>& to, const std::vector<T>& from, const ProgressSpan& progress) {
+    to.clear();
+    to.reserve(from.size());
+    while (to.size() < from.size()) {
+        const size_t next = from.size() - to.size() > kEntriesPerFillRun
+                                ? to.size() + kEntriesPerFillRun
+                                : from.size();
+        to.insert(to.end(), from.begin() + static_cast<std::ptrdiff_t>(to.size()),
+                  from.begin() + static_cast<std::ptrdiff_t>(next));
+        if (progress.active()) progress.report(static_cast<double>(next) / from.size());
+    }
+}
+
 // A new vector of count copies of value, filled as assign_in_runs does.
 template <typename T>
 std::vector<T> filled_in_runs(size_t count, const T& value, const ProgressSpan& progress) {

@@ -56,9 +56,11 @@ namespace {
 // Planar triangles (the pole's star left out) that are not clockwise, by the exact sign (the
 // disk comes out clockwise, below).
 int64_t count_planar_folds(const TriangleMesh& mesh, const std::vector<Eigen::Vector2d>& plane,
-                           int32_t pole) {
+                           int32_t pole, const ProgressSpan& beat) {
     int64_t folded = 0;
-    for (const Triangle& t : mesh.triangles) {
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        beat.at(static_cast<int64_t>(i), mesh.triangle_count());
+        const Triangle& t = mesh.triangles[i];
         if (t[0] == pole || t[1] == pole || t[2] == pole) continue;
         const auto at = [&](int32_t v) { return Eigen::Vector3d(plane[v].x(), plane[v].y(), 1.0); };
         folded += exact_orientation_sign(at(t[0]), at(t[1]), at(t[2])) >= 0;
@@ -108,7 +110,7 @@ std::vector<Eigen::Vector3d> stereographic_initial_map(const SphereProblem& prob
     mobius_centre(problem, points, pool, 1e-4, 100, progress.part(0.93, 0.96));
     // A planar fold is rounding (the exact solution is an embedding): a long part squeezed below
     // the solve's absolute error. Then the two-puncture map, where it folds fewer triangles.
-    if (count_planar_folds(mesh, plane, pole) > 0) {
+    if (count_planar_folds(mesh, plane, pole, progress.part(0.96, 0.96)) > 0) {
         std::optional<CylinderCoordinates> coordinates;
         try {
             coordinates = cylinder_coordinates(problem, weights, progress.part(0.96, 0.98));

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/fill_in_runs.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/mesh_validation.h"
 #include "mesh/vertex_order.h"
@@ -161,7 +162,7 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
         SphereMapScore initial_score;
         bool start_tried = false;
         if (!literal) {
-            best = points;
+            copy_in_runs(best, points, relaxations.part(0.0, 0.0));
             best_score = score_sphere_map(problem, points, pool, relaxations.part(0.0, 0.0));
             initial_score = best_score;
             acceptable = best_score.folded == 0 && best_score.centre <= kCentredEnough;
@@ -186,7 +187,7 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                 std::vector<double> trial =
                     adaptive_weights(problem.adjacency, weights, monitor, settings.alpha * step,
                                      relaxations.part(reported, reported));
-                if (!literal) before = points;
+                if (!literal) copy_in_runs(before, points, relaxations.part(reported, reported));
                 RelaxationOptions step_options = options;
                 step_options.max_sweeps = std::max<int64_t>(
                     1, std::llround(static_cast<double>(options.max_sweeps) * step * steps));
@@ -210,7 +211,7 @@ SphereMap parameterize_sphere(const TriangleMesh& input, const Settings& setting
                     }
                     acceptable = fine;
                     if (better_sphere_map(score, best_score, by_area)) {
-                        best = points;
+                        copy_in_runs(best, points, relaxations.part(reported, reported));
                         best_score = score;
                     }
                 }

@@ -5,6 +5,7 @@
 
 #include <Eigen/SVD>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
 #include "core/progress.h"
 #include "sphere/mobius_centring.h"
@@ -167,7 +168,7 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
         // The move is measured over every kMeasureEvery-th sweep (it costs a copy and two passes).
         const bool measure = (report.sweeps + 1) % kMeasureEvery == 0 ||
                              report.sweeps + 1 == options.max_sweeps || report.sweeps == 0;
-        if (measure) before = u;
+        if (measure) copy_in_runs(before, u, progress.part(reported, reported));
         // Within a sweep the fraction stays, but it is reported again every kItemsPerReport
         // vertices (a colour's vertices move independently, so cutting a colour into chunks
         // changes nothing), so that a cancel never waits for a whole sweep.
