@@ -313,14 +313,20 @@ std::vector<int32_t> first_outgoing_halfedges(const TriangleMesh& mesh, const Ha
 
 VertexTriangles build_vertex_triangles(const TriangleMesh& mesh, const ProgressSpan& progress) {
     VertexTriangles stars;
+    // The counts and the arrays' first touches report too: at 5.65M triangles the three arrays
+    // filled in one go were 145-330 ms without a progress call.
+    const ProgressSpan start = progress.part(0.0, 0.0);
     stars.offsets.assign(mesh.positions.size() + 1, 0);
-    for (const Triangle& t : mesh.triangles) {
-        for (int32_t v : t) ++stars.offsets[v + 1];
-    }
+    start.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+        for (int64_t f = run_begin; f < run_end; ++f) {
+            for (int32_t v : mesh.triangles[f]) ++stars.offsets[v + 1];
+        }
+    });
     std::partial_sum(stars.offsets.begin(), stars.offsets.end(), stars.offsets.begin());
-    stars.first.resize(stars.offsets.back());
-    stars.second.resize(stars.offsets.back());
-    stars.triangle.resize(stars.offsets.back());
+    const size_t entries = static_cast<size_t>(stars.offsets.back());
+    assign_in_runs(stars.first, entries, 0, start);
+    assign_in_runs(stars.second, entries, 0, start);
+    assign_in_runs(stars.triangle, entries, 0, start);
     std::vector<int32_t> fill(stars.offsets.begin(), stars.offsets.end() - 1);
     progress.in_runs(mesh.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t f = static_cast<int32_t>(run_begin); f < run_end; ++f) {

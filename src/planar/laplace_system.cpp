@@ -48,8 +48,11 @@ InteriorPattern interior_pattern(const VertexAdjacency& adjacency,
                                  const ProgressSpan& progress) {
     InteriorPattern interior;
     const int32_t vertex_count = static_cast<int32_t>(on_boundary.size());
-    std::vector<int32_t> unknown_of_vertex(vertex_count, -1);
+    const ProgressSpan start = progress.part(0.0, 0.0);
+    std::vector<int32_t> unknown_of_vertex = filled_in_runs(vertex_count, -1, start);
+    interior.vertex_of_unknown.reserve(vertex_count);
     for (int32_t v = 0; v < vertex_count; ++v) {
+        start.at(v, vertex_count);
         if (!on_boundary[v]) {
             unknown_of_vertex[v] = static_cast<int32_t>(interior.vertex_of_unknown.size());
             interior.vertex_of_unknown.push_back(v);
