@@ -4,6 +4,8 @@
 #include <limits>
 #include <numeric>
 
+#include "core/fill_in_runs.h"
+
 namespace raps {
 namespace {
 
@@ -64,15 +66,20 @@ std::vector<int32_t> morton_vertex_order(const std::vector<Eigen::Vector3d>& pos
 
 TriangleMesh reorder_vertices(const TriangleMesh& mesh, const std::vector<int32_t>& order,
                               const ProgressSpan& progress) {
+    // Every pass and copy reports (at 5.65M triangles the copy of the triangles and the
+    // vertex pass were 73-95 ms without a progress call).
     TriangleMesh out;
-    out.positions.resize(order.size());
-    std::vector<int32_t> position_of(order.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        out.positions[k] = mesh.positions[order[k]];
-        position_of[order[k]] = static_cast<int32_t>(k);
-    }
-    out.triangles = mesh.triangles;
-    progress.in_runs(out.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
+    out.positions.reserve(order.size());
+    std::vector<int32_t> position_of = filled_in_runs(order.size(), 0, progress.part(0.0, 0.1));
+    progress.part(0.1, 0.3).in_runs(static_cast<int64_t>(order.size()),
+                                    [&](int64_t run_begin, int64_t run_end) {
+                                        for (int64_t k = run_begin; k < run_end; ++k) {
+                                            out.positions.push_back(mesh.positions[order[k]]);
+                                            position_of[order[k]] = static_cast<int32_t>(k);
+                                        }
+                                    });
+    copy_in_runs(out.triangles, mesh.triangles, progress.part(0.3, 0.5));
+    progress.part(0.5, 1.0).in_runs(out.triangle_count(), [&](int64_t run_begin, int64_t run_end) {
         for (int32_t t = static_cast<int32_t>(run_begin); t < run_end; ++t) {
             for (int32_t& v : out.triangles[t]) v = position_of[v];
         }
