@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/fill_in_runs.h"
+#include "core/release_in_runs.h"
 
 namespace raps {
 
@@ -178,6 +179,16 @@ void LaplaceSystem::solve(const std::vector<double>& weights, std::vector<Eigen:
             uv[vertex_of_unknown_[row]] = Eigen::Vector2d(rhs[row], rhs[n + row]);
         }
     });
+}
+
+void LaplaceSystem::release(const ProgressSpan& progress) {
+    if (solver_) solver_->release(progress);
+    solver_.reset();
+    release_in_runs(values_, progress);
+    release_in_runs(rhs_, progress);
+    release_in_runs(value_of_slot_, progress);
+    release_in_runs(vertex_of_unknown_, progress);
+    release_in_runs(diagonal_of_unknown_, progress);
 }
 
 }  // namespace raps

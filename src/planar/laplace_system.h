@@ -49,6 +49,11 @@ class LaplaceSystem {
     const std::vector<int32_t>& diagonal_of_unknown() const { return diagonal_of_unknown_; }
     SparseSolver& solver() { return *solver_; }
 
+    // Frees the system's memory (the factorization's first: hundreds of megabytes at millions of
+    // vertices) in runs with progress calls between them (core/release_in_runs.h), where the
+    // destructor would free it in one go; the system cannot be used afterwards.
+    void release(const ProgressSpan& progress);
+
   private:
     const VertexAdjacency& adjacency_;
     std::vector<int32_t> vertex_of_unknown_;

@@ -386,6 +386,7 @@ void MultifrontalFactorization::build_relative_rows(const ProgressSpan& progress
         }
     }
     front_ = allocate(max_front);
+    front_capacity_ = max_front;
     stack_ = allocate(stack_peak_);
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "core/fill_in_runs.h"
+#include "core/release_in_runs.h"
 #include "solver/dense_kernels.h"
 
 namespace raps {
@@ -422,6 +423,31 @@ void MultifrontalFactorization::solve_backward(double* x_data, int rhs_count,
             panel.topRows(k).triangularView<Eigen::Upper>().solveInPlace(xs);
         }
     }
+}
+
+void MultifrontalFactorization::release(const ProgressSpan& progress) {
+    release_pages_in_runs(factors_.get(), static_cast<size_t>(factor_capacity_) * sizeof(double),
+                          progress);
+    factors_.reset();
+    factor_capacity_ = 0;
+    release_pages_in_runs(front_.get(), static_cast<size_t>(front_capacity_) * sizeof(double),
+                          progress);
+    front_.reset();
+    front_capacity_ = 0;
+    release_pages_in_runs(stack_.get(), static_cast<size_t>(stack_peak_) * sizeof(double),
+                          progress);
+    stack_.reset();
+    stack_peak_ = 0;
+    release_in_runs(order_, progress);
+    release_in_runs(supernodes_, progress);
+    release_in_runs(child_list_, progress);
+    release_in_runs(row_indices_, progress);
+    release_in_runs(relative_rows_, progress);
+    release_in_runs(value_source_, progress);
+    release_in_runs(value_target_, progress);
+    release_in_runs(diagonal_source_, progress);
+    prepared_ = false;
+    size_ = 0;
 }
 
 }  // namespace raps

@@ -51,6 +51,10 @@ class MultifrontalFactorization {
 
     int32_t size() const { return size_; }
 
+    // Frees the factors, the workspaces and the analysis, giving their memory back in runs with a
+    // progress call between two (core/release_in_runs.h); analyze() must run again before use.
+    void release(const ProgressSpan& progress);
+
   private:
     struct Supernode {
         int32_t first_column;  // in elimination order; columns first .. first + columns - 1
@@ -112,6 +116,7 @@ class MultifrontalFactorization {
     Buffer factors_;  // per supernode: L panel, then U panel (LU)
     int64_t factor_capacity_ = 0;
     Buffer front_;  // workspace: the largest front
+    int64_t front_capacity_ = 0;
     Buffer stack_;  // contribution blocks waiting for their parent
     int64_t stack_peak_ = 0;
     double total_flops_ = 0;

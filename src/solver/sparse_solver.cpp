@@ -6,6 +6,7 @@
 #include <Eigen/SparseLU>
 
 #include "core/error.h"
+#include "core/release_in_runs.h"
 #include "solver/minimum_degree.h"
 #include "solver/nested_dissection.h"
 
@@ -115,6 +116,15 @@ void SparseSolver::solve_with_pivoting(const std::vector<double>& values, double
         for (int32_t row = 0; row < n; ++row)
             rhs[static_cast<int64_t>(c) * n + row] = x(position[row], c);
     }
+}
+
+void SparseSolver::release(const ProgressSpan& progress) {
+    factorization_.release(progress);
+    release_in_runs(pattern_.columns, progress);
+    release_in_runs(pattern_.row_offsets, progress);
+    release_in_runs(order_, progress);
+    release_in_runs(pivoting_values_, progress);
+    pattern_.size = 0;
 }
 
 }  // namespace raps

@@ -41,6 +41,10 @@ class SparseSolver {
     // (not factored again).
     void solve_more(double* rhs, int rhs_count, const ProgressSpan& progress = {}) const;
 
+    // Frees the pattern, the order and the factorization in runs with progress calls between
+    // them (core/release_in_runs.h); the solver cannot be used afterwards.
+    void release(const ProgressSpan& progress);
+
     const SparsePattern& pattern() const { return pattern_; }
     int32_t size() const { return pattern_.size; }
 
