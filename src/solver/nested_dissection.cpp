@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/fill_in_runs.h"
 #include "solver/dissection.h"
 
 namespace raps {
@@ -335,12 +336,21 @@ int64_t Dissection::imbalance_of(const GraphLevel& level, const std::vector<int3
 void Dissection::emit() {
     const GraphLevel& fine = levels_[0];
     const int32_t count = static_cast<int32_t>(nodes_.size());
-    std::vector<int32_t> offsets(count + 1, 0), members(fine.size());
-    for (int32_t v = 0; v < fine.size(); ++v) ++offsets[label_[v] + 1];
+    // The passes over every vertex report as they go (70 ms without a call at 2.8M vertices).
+    const ProgressSpan beat = progress_.part(kRefined, kRefined);
+    std::vector<int32_t> offsets(count + 1, 0);
+    std::vector<int32_t> members = filled_in_runs(static_cast<size_t>(fine.size()), 0, beat);
+    for (int32_t v = 0; v < fine.size(); ++v) {
+        beat.at(v, fine.size());
+        ++offsets[label_[v] + 1];
+    }
     for (int32_t i = 0; i < count; ++i) offsets[i + 1] += offsets[i];
     {
         std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
-        for (int32_t v = 0; v < fine.size(); ++v) members[fill[label_[v]]++] = v;
+        for (int32_t v = 0; v < fine.size(); ++v) {
+            beat.at(v, fine.size());
+            members[fill[label_[v]]++] = v;
+        }
     }
     std::vector<std::pair<int32_t, bool>> stack{{0, false}};  // (node, children done)
     while (!stack.empty()) {

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "core/fill_in_runs.h"
 #include "solver/dissection.h"
 
 namespace raps {
@@ -16,10 +17,12 @@ namespace dissection {
 
 void Dissection::project_labels(size_t l) {
     const GraphLevel& level = levels_[l];
-    std::vector<int32_t> fine_label(level.size());
     // Phase B's share of this level (run() reports its end).
     const double step = (kRefined - kDissected) / static_cast<double>(base_);
     const double from = kDissected + step * static_cast<double>(base_ - l - 1);
+    // Fresh pages touched in runs (11 MB on the finest level at 2.8M vertices: 50 ms at once).
+    std::vector<int32_t> fine_label =
+        filled_in_runs(static_cast<size_t>(level.size()), 0, progress_.part(from, from));
     for (int32_t v = 0; v < level.size(); ++v) {
         progress_.at(v, level.size(), from, from + step);
         fine_label[v] = label_[level.parent[v]];
