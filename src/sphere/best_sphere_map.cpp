@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
+#include "core/release_in_runs.h"
 #include "mesh/mesh_validation.h"
 #include "sphere/mobius_centring.h"
 #include "sphere/spherical_geometry.h"
@@ -27,7 +29,9 @@ SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<
                                 ThreadPool& pool, const ProgressSpan& beat) {
     const TriangleMesh& mesh = problem.mesh;
     const int64_t count = mesh.triangle_count();
-    std::vector<double> area_3d(count), area_map(count);
+    // Fresh pages touched, and given back, in runs: 90 MB at 5.65M triangles, 77 ms in one go.
+    std::vector<double> area_3d = filled_in_runs(static_cast<size_t>(count), 0.0, beat);
+    std::vector<double> area_map = filled_in_runs(static_cast<size_t>(count), 0.0, beat);
     const Totals totals = parallel_sum<Totals>(pool, count, [&](int64_t begin, int64_t end) {
         Totals sum;
         for (int64_t t = begin; t < end; ++t) {
@@ -43,7 +47,7 @@ SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<
     });
     SphereMapScore score;
     score.folded = totals.folded;
-    score.centre = centre_of_mass(problem, u, pool).norm();
+    score.centre = centre_of_mass(problem, u, pool, beat).norm();
     score.area_log = parallel_sum<double>(pool, count, [&](int64_t begin, int64_t end) {
         double sum = 0.0;
         for (int64_t t = begin; t < end; ++t) {
@@ -54,6 +58,8 @@ SphereMapScore score_sphere_map(const SphereProblem& problem, const std::vector<
         }
         return sum;
     });
+    release_in_runs(area_3d, beat);
+    release_in_runs(area_map, beat);
     return score;
 }
 

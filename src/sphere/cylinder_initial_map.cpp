@@ -7,7 +7,9 @@
 #include <queue>
 #include <utility>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_math.h"
+#include "core/release_in_runs.h"
 #include "core/sort_in_runs.h"
 #include "mesh/mesh_topology.h"
 #include "planar/laplace_system.h"
@@ -119,9 +121,11 @@ int32_t slot_of(const VertexAdjacency& adjacency, int32_t v, int32_t w) {
 // do not come out consistent (then no cylinder map).
 int cut_shifts(const SphereProblem& problem, const std::vector<int32_t>& first_out,
                const std::vector<int32_t>& path, const std::vector<int32_t>& ring_a,
-               const std::vector<int32_t>& ring_b, std::vector<double>& shift) {
+               const std::vector<int32_t>& ring_b, std::vector<double>& shift,
+               const ProgressSpan& beat) {
     const VertexAdjacency& adjacency = problem.adjacency;
-    shift.assign(adjacency.neighbors.size(), 0.0);
+    // One per adjacency slot: 270 MB of fresh pages at 5.65M triangles, filled in runs.
+    assign_in_runs(shift, adjacency.neighbors.size(), 0.0, beat);
     bool after_next = false;  // whether the high side runs from next to previous in ring order
     int b_side = 0;
     for (size_t m = 1; m + 1 < path.size(); ++m) {
@@ -193,12 +197,13 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
     const std::vector<int32_t> ring_a = ring_from(problem, first_out, a, path[1]);
     const std::vector<int32_t> ring_b = ring_from(problem, first_out, b, path[path.size() - 2]);
     std::vector<double> shift;
-    const int b_side = cut_shifts(problem, first_out, path, ring_a, ring_b, shift);
+    const int b_side = cut_shifts(problem, first_out, path, ring_a, ring_b, shift, beat);
     if (b_side == 0) return std::nullopt;
 
     // Height in x, angle in y; the rings fixed (B's twist is added below, as tau h).
-    std::vector<char> fixed(n, 0);
-    std::vector<Eigen::Vector2d> plane(n, Eigen::Vector2d::Zero());
+    std::vector<char> fixed = filled_in_runs(static_cast<size_t>(n), char{0}, beat);
+    std::vector<Eigen::Vector2d> plane =
+        filled_in_runs(static_cast<size_t>(n), Eigen::Vector2d::Zero().eval(), beat);
     fixed[a] = fixed[b] = 1;
     const std::vector<double> angle_a = pole_ring_angles(mesh, a, ring_a);
     const std::vector<double> angle_b = pole_ring_angles(mesh, b, ring_b);
@@ -213,15 +218,14 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
     }
     const WeightScheme positive =
         weights == WeightScheme::kCotangent ? WeightScheme::kMeanValue : weights;
-    const std::vector<double> w =
-        laplacian_weights(mesh, adjacency, positive, progress.part(0.0, 0.05));
+    std::vector<double> w = laplacian_weights(mesh, adjacency, positive, progress.part(0.0, 0.05));
     {
         LaplaceSystem system(mesh, adjacency, fixed, {}, progress.part(0.05, 0.4));
         system.solve(w, plane, progress.part(0.4, 0.8));
         // The cut's jumps, by superposition: the same system with their terms as right-hand side.
         const std::vector<int32_t>& vertex_of = system.vertex_of_unknown();
         const int32_t unknowns = system.unknown_count();
-        std::vector<double> rhs(2 * static_cast<size_t>(unknowns), 0.0);
+        std::vector<double> rhs = filled_in_runs(2 * static_cast<size_t>(unknowns), 0.0, beat);
         for (int32_t row = 0; row < unknowns; ++row) {
             beat.at(row, unknowns);
             const int32_t v = vertex_of[row];
@@ -233,9 +237,16 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
             rhs[unknowns + row] = jump / sum;
         }
         system.solver().solve_more(rhs.data(), 2, progress.part(0.8, 1.0));
-        for (int32_t row = 0; row < unknowns; ++row)
+        for (int32_t row = 0; row < unknowns; ++row) {
+            beat.at(row, unknowns);
             plane[vertex_of[row]].y() += rhs[unknowns + row];
+        }
+        // Given back in runs: the factorization's memory freed in one go was 131 ms at 5.65M
+        // triangles without a progress call.
+        release_in_runs(rhs, beat);
+        system.release(beat);
     }
+    release_in_runs(fixed, beat);
 
     // The twist of least energy (theta + tau h), then the modulus H; sums over the annulus.
     double hh = 0.0, th = 0.0, tt = 0.0;
@@ -260,9 +271,9 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
     cylinder.modulus = std::sqrt(std::max(tt - th * th / hh, 0.0) / hh);
     if (!(cylinder.modulus > 0.0) || !std::isfinite(cylinder.modulus)) return std::nullopt;
     const double tau = -th / hh;
-    cylinder.height.resize(n);
-    cylinder.cosine.resize(n);
-    cylinder.sine.resize(n);
+    assign_in_runs(cylinder.height, static_cast<size_t>(n), 0.0, end);
+    assign_in_runs(cylinder.cosine, static_cast<size_t>(n), 0.0, end);
+    assign_in_runs(cylinder.sine, static_cast<size_t>(n), 0.0, end);
     for (int32_t v = 0; v < n; ++v) {
         end.at(v, n);
         const double theta = plane[v].y() + tau * plane[v].x();
@@ -270,6 +281,9 @@ std::optional<CylinderCoordinates> cylinder_coordinates(const SphereProblem& pro
         cylinder.cosine[v] = portable::cos(theta);
         cylinder.sine[v] = portable::sin(theta);
     }
+    release_in_runs(w, end);
+    release_in_runs(shift, end);
+    release_in_runs(plane, end);
     return cylinder;
 }
 
@@ -343,9 +357,11 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
     // of heights, so that F is piecewise linear with a slope that changes only at vertices and
     // varies on the scale of the triangles (a step per vertex or per bin made F steep inside
     // one ring of a capsule and folded its triangles). The poles' stars are steps at 0 and 1.
-    std::vector<double> slope_change(n, 0.0), step(n, 0.0);
+    // The arrays are filled, and given back, in runs: 90 MB of fresh pages at 5.65M triangles.
+    std::vector<double> slope_change = filled_in_runs(static_cast<size_t>(n), 0.0, beat);
+    std::vector<double> step = filled_in_runs(static_cast<size_t>(n), 0.0, beat);
     double total = 0.0, start = 0.0;
-    std::vector<double> areas(mesh.triangles.size());
+    std::vector<double> areas = filled_in_runs(mesh.triangles.size(), 0.0, beat);
     double sum = 0.0;
     const int64_t triangle_count = mesh.triangle_count();
     for (size_t k = 0; k < mesh.triangles.size(); ++k) {
@@ -392,7 +408,9 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
                    (cylinder.height[x] == cylinder.height[y] && x < y);
         },
         beat);
-    std::vector<Eigen::Vector3d> points(n);
+    release_in_runs(areas, beat);
+    std::vector<Eigen::Vector3d> points =
+        filled_in_runs(static_cast<size_t>(n), Eigen::Vector3d::Zero().eval(), beat);
     points[cylinder.south] = Eigen::Vector3d(0.0, 0.0, -1.0);
     points[cylinder.north] = Eigen::Vector3d(0.0, 0.0, 1.0);
     const double c = axial_balance(problem, cylinder, beat);
@@ -417,6 +435,9 @@ std::vector<Eigen::Vector3d> equal_area_cylinder_map(const SphereProblem& proble
             Eigen::Vector3d(2.0 * t * cylinder.cosine[v] / d, 2.0 * t * cylinder.sine[v] / d,
                             std::copysign((1.0 - t * t) / d, key));
     }
+    release_in_runs(slope_change, beat);
+    release_in_runs(step, beat);
+    release_in_runs(order, beat);
     orient(mesh, points, beat);
     return points;
 }

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <complex>
 
+#include "core/fill_in_runs.h"
 #include "core/portable_complex.h"
 #include "core/portable_math.h"
+#include "core/release_in_runs.h"
 #include "sphere/spherical_geometry.h"
 
 namespace raps {
@@ -135,7 +137,9 @@ double centring_step(const SphereProblem& problem, std::vector<Eigen::Vector3d>&
     if (!(offset > 0.0)) return 0.0;
     Eigen::Vector3d a = 0.75 * centre;
     if (a.norm() > 0.9) a *= 0.9 / a.norm();
-    scratch.resize(u.size());
+    // Fresh pages touched in runs (68 MB at 5.65M triangles: 78 ms in one go).
+    if (scratch.size() != u.size())
+        assign_in_runs(scratch, u.size(), Eigen::Vector3d::Zero().eval(), beat);
     for (int attempt = 0; attempt < 4; ++attempt, a *= 0.25) {
         const int64_t n = static_cast<int64_t>(u.size());
         parallel_for(pool, n, [&](int64_t begin, int64_t end) {
@@ -159,7 +163,8 @@ std::vector<Eigen::Vector3d> mobius_centred_lift(const SphereProblem& problem,
                                                  double tolerance, int max_steps,
                                                  const ProgressSpan& progress) {
     Mobius m{scale, 0.0, 0.0, 1.0};
-    std::vector<Eigen::Vector3d> points(plane.size());
+    std::vector<Eigen::Vector3d> points =
+        filled_in_runs(plane.size(), Eigen::Vector3d::Zero().eval(), progress.part(0.0, 0.0));
     lift_all(plane, pole, m, points, pool, progress.part(0.0, 0.0));
     for (int step = 0; step < max_steps; ++step) {
         const double done = static_cast<double>(step) / max_steps;
@@ -189,6 +194,7 @@ int mobius_centre(const SphereProblem& problem, std::vector<Eigen::Vector3d>& u,
         ++steps;
         progress.report(static_cast<double>(steps) / max_steps);
     }
+    release_in_runs(scratch, progress.part(1.0, 1.0));
     return steps;
 }
 

@@ -8,18 +8,21 @@
 #include "core/fill_in_runs.h"
 #include "core/portable_math.h"
 #include "core/progress.h"
+#include "core/release_in_runs.h"
 #include "sphere/mobius_centring.h"
 #include "sphere/spherical_geometry.h"
 
 namespace raps {
 namespace {
 
-// Weights divided by their row sum.
+// Weights divided by their row sum, reported to `beat` as they go (270 MB of fresh pages at
+// 5.65M triangles: 85 ms without a progress call, filled in one go).
 std::vector<double> normalized_rows(const VertexAdjacency& adjacency,
-                                    const std::vector<double>& weights) {
-    std::vector<double> normalized(weights.size());
+                                    const std::vector<double>& weights, const ProgressSpan& beat) {
+    std::vector<double> normalized = filled_in_runs(weights.size(), 0.0, beat);
     const int32_t n = static_cast<int32_t>(adjacency.offsets.size()) - 1;
     for (int32_t v = 0; v < n; ++v) {
+        beat.at(v, n);
         double sum = 0.0;
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) sum += weights[s];
         for (int32_t s = adjacency.offsets[v]; s < adjacency.offsets[v + 1]; ++s) {
@@ -36,11 +39,14 @@ constexpr double kSignCertain = 1e-13;
 class Relaxer {
   public:
     Relaxer(const SphereProblem& problem, const std::vector<double>& weights,
-            std::vector<Eigen::Vector3d>& u, double step)
+            std::vector<Eigen::Vector3d>& u, double step, const ProgressSpan& beat)
         : problem_(problem),
-          weights_(normalized_rows(problem.adjacency, weights)),
+          weights_(normalized_rows(problem.adjacency, weights, beat)),
           u_(u),
           step_(step) {}
+
+    // Gives the normalised weights back in runs (release_in_runs.h) instead of in one free.
+    void release(const ProgressSpan& beat) { release_in_runs(weights_, beat); }
 
     // Moves vertex i (refusing moves that break the plane floor when `guarded`); returns whether
     // it was refused.
@@ -158,7 +164,7 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
     const double mean_edge =
         std::sqrt(16.0 * M_PI / (std::sqrt(3.0) * static_cast<double>(mesh.triangle_count())));
     const double unit = 1.0 / (step * mean_edge * std::sqrt(static_cast<double>(n)));
-    Relaxer relaxer(problem, weights, u, step);
+    Relaxer relaxer(problem, weights, u, step, progress.part(0.0, 0.0));
     std::vector<Eigen::Vector3d> before, scratch;
     RelaxationReport report;
     double first = 0.0, reported = 0.0;
@@ -220,6 +226,9 @@ RelaxationReport relax_on_sphere(const SphereProblem& problem, const std::vector
             progress.report(reported);
         }
     }
+    relaxer.release(progress.part(1.0, 1.0));
+    release_in_runs(before, progress.part(1.0, 1.0));
+    release_in_runs(scratch, progress.part(1.0, 1.0));
     progress.report(1.0);
     return report;
 }
