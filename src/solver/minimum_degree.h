@@ -8,12 +8,16 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.h"
 #include "solver/sparse_pattern.h"
 
 namespace raps {
 
 // The elimination order of a structurally symmetric pattern (sorted rows; the diagonal may be
-// present or not): order[k] is the unknown eliminated k-th.
-std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern);
+// present or not): order[k] is the unknown eliminated k-th. `progress` hears on both sides of
+// Eigen's routine, which cannot report: at 150,000 unknowns (the largest it orders) it waited
+// 41 to 44 ms, the longest wait of an atlas at 5.8M triangles (docs/cancel-latency.md).
+std::vector<int32_t> minimum_degree_order(const SparsePattern& pattern,
+                                          const ProgressSpan& progress = {});
 
 }  // namespace raps

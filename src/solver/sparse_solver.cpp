@@ -27,7 +27,7 @@ std::vector<int32_t> fill_reducing_order(const SparsePattern& pattern,
                                          const ProgressSpan& progress) {
     // Small and medium systems are ordered by minimum degree alone: there the dissection's
     // separators cost more time than the fill they save.
-    if (pattern.size <= kMinimumDegreeOnly) return minimum_degree_order(pattern);
+    if (pattern.size <= kMinimumDegreeOnly) return minimum_degree_order(pattern, progress);
     return nested_dissection_order(pattern, coordinates, progress);
 }
 

@@ -526,7 +526,7 @@ class raps_chart(ctypes.Structure):
 # milliseconds at that size) and, outside the sphere domain, the release of large buffers (a
 # factorization's, a run's between two phases); the sphere gives its large buffers back in runs
 # of 16 MB with a call between two. Measured at one thread (docs/cancel-latency.md): the atlas
-# at 5.8M triangles waited at most 54 ms of work, the sphere at 5.65M 44 ms. Return
+# at 5.8M triangles waited at most 44 ms of work, the sphere at 5.65M 44 ms. Return
 # nonzero to go on, 0 to cancel: the run then stops at that call and returns
 # RAPS_ERROR_CANCELLED. It is called on the thread that called raps_parameterize or, with
 # RAPS_PARAM_THREADS != 1, on the run's worker threads; calls for one run never overlap. When one
