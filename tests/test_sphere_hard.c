@@ -156,66 +156,6 @@ static test_mesh make_dumbbell(double neck, int sectors) {
     return make_revolution(dumbbell_profile, &neck, sectors, neck);
 }
 
-/* Midpoint subdivision, 1 -> 4 triangles, with an edge table; `onto_sphere` projects the new
- * vertices onto the unit sphere. */
-static uint64_t edge_key(uint32_t a, uint32_t b) {
-    return a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
-}
-
-static test_mesh subdivide(const test_mesh* m, int onto_sphere) {
-    const size_t slots = 4 * m->index_count + 1;
-    uint64_t* keys = malloc(slots * sizeof(uint64_t));
-    uint32_t* values = malloc(slots * sizeof(uint32_t));
-    assert_non_null(keys);
-    assert_non_null(values);
-    for (size_t s = 0; s < slots; ++s) keys[s] = UINT64_MAX;
-    test_mesh_builder g;
-    memset(&g, 0, sizeof(g));
-    for (size_t i = 0; i < m->vertex_count; ++i) {
-        test_mesh_add_vertex(&g, m->positions[3 * i], m->positions[3 * i + 1],
-                             m->positions[3 * i + 2]);
-    }
-    for (size_t t = 0; t < m->index_count; t += 3) {
-        uint32_t mid[3];
-        for (int e = 0; e < 3; ++e) {
-            const uint32_t a = m->indices[t + e], b = m->indices[t + (e + 1) % 3];
-            const uint64_t key = edge_key(a, b);
-            size_t s = (size_t)((key * 0x9E3779B97F4A7C15ull) >> 20) % slots;
-            while (keys[s] != UINT64_MAX && keys[s] != key) s = (s + 1) % slots;
-            if (keys[s] == UINT64_MAX) {
-                double p[3];
-                for (int q = 0; q < 3; ++q) {
-                    p[q] = 0.5 * (m->positions[3 * a + q] + m->positions[3 * b + q]);
-                }
-                if (onto_sphere) {
-                    const double n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-                    for (int q = 0; q < 3; ++q) p[q] /= n;
-                }
-                keys[s] = key;
-                values[s] = (uint32_t)test_mesh_add_vertex(&g, p[0], p[1], p[2]);
-            }
-            mid[e] = values[s];
-        }
-        const uint32_t* c = m->indices + t;
-        test_mesh_add_triangle(&g, c[0], mid[0], mid[2]);
-        test_mesh_add_triangle(&g, mid[0], c[1], mid[1]);
-        test_mesh_add_triangle(&g, mid[2], mid[1], c[2]);
-        test_mesh_add_triangle(&g, mid[0], mid[1], mid[2]);
-    }
-    free(keys);
-    free(values);
-    return g.mesh;
-}
-
-static test_mesh subdivided(test_mesh mesh, int levels, int onto_sphere) {
-    for (int k = 0; k < levels; ++k) {
-        test_mesh next = subdivide(&mesh, onto_sphere);
-        test_mesh_free(&mesh);
-        mesh = next;
-    }
-    return mesh;
-}
-
 /* A fixed pseudo-random value in [0, 1) per integer. */
 static double hash01(uint32_t x) {
     x ^= x >> 16;
@@ -229,7 +169,7 @@ static double hash01(uint32_t x) {
 /* A starfish: the unit sphere flattened to a third in z, with five arms in the xy plane that
  * reach out to `reach` (radial displacement of a subdivided icosahedron). */
 static test_mesh make_starfish(double reach, int levels) {
-    test_mesh m = subdivided(make_icosphere(0), levels, 1);
+    test_mesh m = subdivided_mesh(make_icosphere(0), levels, 1);
     for (size_t i = 0; i < m.vertex_count; ++i) {
         double* p = m.positions + 3 * i;
         double arm = 0.0;
@@ -248,7 +188,7 @@ static test_mesh make_starfish(double reach, int levels) {
 /* A scan-like sphere: a subdivided icosahedron, each vertex moved radially by up to +-3% and
  * along the surface by up to a quarter of an edge, plus a few bumps. */
 static test_mesh make_noisy_sphere(int levels) {
-    test_mesh m = subdivided(make_icosphere(0), levels, 1);
+    test_mesh m = subdivided_mesh(make_icosphere(0), levels, 1);
     const double edge = 1.1 / pow(2.0, levels);
     for (size_t i = 0; i < m.vertex_count; ++i) {
         double* p = m.positions + 3 * i;
@@ -464,7 +404,7 @@ static void noisy_scan_like_sphere_maps_bijectively_and_area_adapted(void** stat
  * needles (ratio about 50). Measured: 0.477 -> 0.047 (5,120 triangles; 20,480: 0.722 -> 0.061). */
 static void pancake_maps_bijectively_and_area_adapted(void** state) {
     (void)state;
-    test_mesh m = subdivided(make_icosphere(0), 4, 1);
+    test_mesh m = subdivided_mesh(make_icosphere(0), 4, 1);
     for (size_t i = 0; i < m.vertex_count; ++i) m.positions[3 * i + 2] *= 0.02;
     assert_area_lowered("pancake 1:1:0.02", &m, 0.6);
     test_mesh_free(&m);
@@ -504,7 +444,7 @@ static void subdivided_shared_meshes_with_long_limbs_map_bijectively_and_centred
     const int smaller = getenv("RAPS_TEST_SANITIZER") != NULL;
     for (int k = 0; k < (smaller ? 1 : 3); ++k) {
         const int level = smaller ? 0 : levels[k];
-        test_mesh m = subdivided(load_shared_mesh(names[k]), level, 0);
+        test_mesh m = subdivided_mesh(load_shared_mesh(names[k]), level, 0);
         char name[64];
         snprintf(name, sizeof(name), "%s x%d", names[k], 1 << (2 * level));
         assert_area_lowered(name, &m, 0.6);

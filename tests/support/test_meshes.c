@@ -263,6 +263,66 @@ test_mesh make_closed_torus(int nu, int nv) {
     return make_torus(nu, nv, 0);
 }
 
+/* Midpoint subdivision, 1 -> 4 triangles, with an edge table; `onto_sphere` projects the new
+ * vertices onto the unit sphere. */
+static uint64_t edge_key(uint32_t a, uint32_t b) {
+    return a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
+}
+
+static test_mesh subdivide(const test_mesh* m, int onto_sphere) {
+    const size_t slots = 4 * m->index_count + 1;
+    uint64_t* keys = malloc(slots * sizeof(uint64_t));
+    uint32_t* values = malloc(slots * sizeof(uint32_t));
+    assert_non_null(keys);
+    assert_non_null(values);
+    for (size_t s = 0; s < slots; ++s) keys[s] = UINT64_MAX;
+    test_mesh_builder g;
+    memset(&g, 0, sizeof(g));
+    for (size_t i = 0; i < m->vertex_count; ++i) {
+        test_mesh_add_vertex(&g, m->positions[3 * i], m->positions[3 * i + 1],
+                             m->positions[3 * i + 2]);
+    }
+    for (size_t t = 0; t < m->index_count; t += 3) {
+        uint32_t mid[3];
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t a = m->indices[t + e], b = m->indices[t + (e + 1) % 3];
+            const uint64_t key = edge_key(a, b);
+            size_t s = (size_t)((key * 0x9E3779B97F4A7C15ull) >> 20) % slots;
+            while (keys[s] != UINT64_MAX && keys[s] != key) s = (s + 1) % slots;
+            if (keys[s] == UINT64_MAX) {
+                double p[3];
+                for (int q = 0; q < 3; ++q) {
+                    p[q] = 0.5 * (m->positions[3 * a + q] + m->positions[3 * b + q]);
+                }
+                if (onto_sphere) {
+                    const double n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+                    for (int q = 0; q < 3; ++q) p[q] /= n;
+                }
+                keys[s] = key;
+                values[s] = (uint32_t)test_mesh_add_vertex(&g, p[0], p[1], p[2]);
+            }
+            mid[e] = values[s];
+        }
+        const uint32_t* c = m->indices + t;
+        test_mesh_add_triangle(&g, c[0], mid[0], mid[2]);
+        test_mesh_add_triangle(&g, mid[0], c[1], mid[1]);
+        test_mesh_add_triangle(&g, mid[2], mid[1], c[2]);
+        test_mesh_add_triangle(&g, mid[0], mid[1], mid[2]);
+    }
+    free(keys);
+    free(values);
+    return g.mesh;
+}
+
+test_mesh subdivided_mesh(test_mesh mesh, int levels, int onto_sphere) {
+    for (int k = 0; k < levels; ++k) {
+        test_mesh next = subdivide(&mesh, onto_sphere);
+        test_mesh_free(&mesh);
+        mesh = next;
+    }
+    return mesh;
+}
+
 test_mesh join_meshes(const test_mesh* a, const test_mesh* b, double dx, double dy, double dz) {
     test_mesh_builder out;
     memset(&out, 0, sizeof(out));

@@ -57,6 +57,9 @@ test_mesh make_uv_sphere(int rings, int sectors);
 test_mesh make_annulus(int rings, int sectors); /* two boundary loops */
 test_mesh make_punctured_torus(int nu, int nv); /* one boundary loop, genus 1 */
 test_mesh make_closed_torus(int nu, int nv);    /* no boundary, genus 1 */
+/* `mesh` after `levels` midpoint subdivisions (1 -> 4 triangles each; the new vertices first
+ * projected onto the unit sphere with onto_sphere). Takes `mesh` (frees it). */
+test_mesh subdivided_mesh(test_mesh mesh, int levels, int onto_sphere);
 /* `a` and `b` in one mesh (b's vertices after a's), b moved by (dx, dy, dz). */
 test_mesh join_meshes(const test_mesh* a, const test_mesh* b, double dx, double dy, double dz);
 
