@@ -19,7 +19,19 @@ class Occupancy {
         const size_t rows = static_cast<size_t>(std::min(strip, kReservedRows));
         cells_.reserve(rows * words_);
         longest_free_.reserve(rows);
+        runs_at_.reserve(rows);
+        runs_state_.reserve(rows);
     }
+    // A copy keeps the cells, not the measured runs: the repaired orders copy a layout for
+    // each place they try (page_packing.cpp), and each copy measures the rows it visits.
+    Occupancy(const Occupancy& other)
+        : strip_(other.strip_),
+          words_(other.words_),
+          cells_(other.cells_),
+          longest_free_(other.longest_free_),
+          runs_at_(other.runs_at_.size()),
+          runs_state_(other.runs_state_.size(), 0) {}
+    Occupancy& operator=(const Occupancy&) = delete;
 
     // Whether the padded chart placed with its lower left cell at (x, y) meets an occupied
     // cell.
@@ -57,6 +69,8 @@ class Occupancy {
         if (needed > rows()) {
             cells_.resize(static_cast<size_t>(needed) * words_, 0);
             longest_free_.resize(needed, -1);
+            runs_at_.resize(needed);
+            runs_state_.resize(needed, 0);
         }
         const int32_t shift = x % 64, offset = x / 64;
         for (int32_t r = 0; r < p.height; ++r) {
@@ -69,6 +83,7 @@ class Occupancy {
             }
             target[p.words] |= carry;
             longest_free_[y + r] = -1;  // measured again when asked for
+            runs_state_[y + r] = 0;
         }
     }
 
@@ -77,19 +92,37 @@ class Occupancy {
     // Calls fn(begin, end) for each run of free cells of a row at least `least` long, left to
     // right, until fn returns true; from `from` on (a run through it begins there).
     template <typename Fn>
-    void for_each_free_run(int32_t row, int32_t least, Fn fn, int32_t from = 0) const {
+    void for_each_free_run(int32_t row, int32_t least, Fn fn, int32_t from = 0) {
         if (row >= rows()) {
             if (strip_ - from >= least) fn(from, strip_);
             return;
         }
-        const uint64_t* bits = row_ptr(row);
-        auto next = [&](int32_t at, bool occupied) {
-            return next_cell(bits, strip_, at, occupied);
-        };
-        for (int32_t begin = next(from, false); begin < strip_;) {
-            const int32_t end = next(begin, true);
+        // A row's first visit since it changed scans its bits from `from`, and may stop early;
+        // a second one keeps its runs for the visits after (measured()).
+        if (runs_state_[row] == 0) {
+            runs_state_[row] = 1;
+            const uint64_t* bits = row_ptr(row);
+            for (int32_t begin = next_cell(bits, strip_, from, false); begin < strip_;) {
+                const int32_t end = next_cell(bits, strip_, begin, true);
+                if (end - begin >= least && fn(begin, end)) return;
+                begin = next_cell(bits, strip_, end, false);
+            }
+            return;
+        }
+        const int32_t* runs = measured(row);
+        const size_t count = 2 * static_cast<size_t>(runs_at_[row].count);
+        // From the first run that ends past `from` (runs are ascending and disjoint).
+        size_t low = 0, high = count / 2;
+        while (low < high) {
+            const size_t middle = (low + high) / 2;
+            if (runs[2 * middle + 1] <= from)
+                low = middle + 1;
+            else
+                high = middle;
+        }
+        for (size_t k = 2 * low; k < count; k += 2) {
+            const int32_t begin = std::max(runs[k], from), end = runs[k + 1];
             if (end - begin >= least && fn(begin, end)) return;
-            begin = next(end, false);
         }
     }
 
@@ -106,9 +139,43 @@ class Occupancy {
         return cells_.data() + static_cast<size_t>(row) * words_;
     }
 
+    // A row's free runs as (begin, end) pairs, measured once after the row last changed: a
+    // chart's hole search visits the same rows' runs at every height and sample row it tries,
+    // and scanning their bits each time was a quarter of packing 800 charts of a noisy scan
+    // (raps-bench-atlas --noise 0.2 --subdivide 2 --mesh lion.off). They are appended to one
+    // pool, dropped whole once stale rows fill it (per-row vectors cost more in allocations
+    // than they saved on a layout of 30 charts).
+    const int32_t* measured(int32_t row) {
+        if (runs_state_[row] == 2) return run_pool_.data() + runs_at_[row].offset;
+        if (run_pool_.size() > kRunPoolEntries) {
+            run_pool_.clear();
+            for (char& state : runs_state_) state = state == 2 ? 1 : state;
+        }
+        const size_t offset = run_pool_.size();
+        const uint64_t* bits = row_ptr(row);
+        for (int32_t begin = next_cell(bits, strip_, 0, false); begin < strip_;) {
+            const int32_t end = next_cell(bits, strip_, begin, true);
+            run_pool_.push_back(begin);
+            run_pool_.push_back(end);
+            begin = next_cell(bits, strip_, end, false);
+        }
+        runs_at_[row] = {offset, static_cast<int32_t>((run_pool_.size() - offset) / 2)};
+        runs_state_[row] = 2;
+        return run_pool_.data() + offset;
+    }
+
+    static constexpr size_t kRunPoolEntries = size_t(1) << 20;
+    struct Runs {
+        size_t offset = 0;
+        int32_t count = 0;
+    };
+
     int32_t strip_, words_;
     std::vector<uint64_t> cells_;
     std::vector<int32_t> longest_free_;  // per row, -1 until measured
+    std::vector<int32_t> run_pool_;
+    std::vector<Runs> runs_at_;     // per row, in run_pool_ where runs_state_ is 2
+    std::vector<char> runs_state_;  // per row: 0 not visited since it changed, 1 once, 2 kept
 };
 
 namespace {
