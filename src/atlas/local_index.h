@@ -24,8 +24,8 @@ class LocalIndex {
             return;
         }
         // Open addressing at a load of at most a half: a miss (a neighbour outside the chart)
-        // ends at an empty slot within a few probes.
-        shift_ = 32;
+        // ends at an empty slot within a few probes. At least two slots (a shift below 32).
+        shift_ = 31;
         while (shift_ > 1 && (size_t(1) << (32 - shift_)) < 2 * ids.size()) --shift_;
         slots_.assign(size_t(1) << (32 - shift_), Slot{-1, -1});
         mask_ = slots_.size() - 1;
@@ -53,7 +53,7 @@ class LocalIndex {
 
     std::vector<int32_t> position_;  // the array over the surface
     std::vector<Slot> slots_;        // or the hash table
-    int shift_ = 32;
+    int shift_ = 31;
     size_t mask_ = 0;
 };
 
