@@ -21,42 +21,19 @@
 
 #include "raps.h"
 #include "support/atlas_checks.h"
+#include "support/progress_record.h"
 #include "support/test_meshes.h"
-
-enum { kTrianglesPerCall = 16384 };
-
-typedef struct call {
-    raps_phase phase;
-    double fraction;
-} call;
-
-typedef struct recorder {
-    call* calls;
-    int count, capacity;
-} recorder;
-
-static int32_t record(void* user, raps_phase phase, double fraction) {
-    recorder* r = user;
-    if (r->count == r->capacity) {
-        r->capacity = r->capacity ? 2 * r->capacity : 65536;
-        r->calls = realloc(r->calls, (size_t)r->capacity * sizeof(call));
-        assert_non_null(r->calls);
-    }
-    r->calls[r->count].phase = phase;
-    r->calls[r->count].fraction = fraction;
-    ++r->count;
-    return 1;
-}
 
 /* The atlas at the default settings on `threads` threads; `progress` records every call, and
  * `uv` (malloc'ed) gets the uvs as doubles, the bits the library computed. */
-static atlas run_atlas(const test_mesh* mesh, int64_t threads, recorder* progress, double** uv) {
+static atlas run_atlas(const test_mesh* mesh, int64_t threads, progress_record* progress,
+                       double** uv) {
     raps_mesh* m = to_raps_mesh(mesh);
     raps_settings* s = NULL;
     assert_status(raps_settings_create(&s), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_DOMAIN, RAPS_DOMAIN_ATLAS), RAPS_OK);
     assert_status(raps_settings_set_int(s, RAPS_PARAM_THREADS, threads), RAPS_OK);
-    if (progress) assert_status(raps_settings_set_progress(s, record, progress), RAPS_OK);
+    if (progress) assert_status(raps_settings_set_progress(s, record_progress, progress), RAPS_OK);
     raps_result* r = parameterize_ok(m, s);
     atlas a = atlas_of(r);
     if (uv) {
@@ -70,34 +47,6 @@ static atlas run_atlas(const test_mesh* mesh, int64_t threads, recorder* progres
     return a;
 }
 
-static void check_progress_follows_work(const recorder* r, size_t triangles) {
-    const int minimum = 2 + (int)(triangles / kTrianglesPerCall);
-    int calls[RAPS_PHASE_COUNT] = {0};
-    unsigned seen = 0;
-    assert_true(r->count > 0);
-    for (int c = 0; c < r->count; ++c) {
-        const call* x = &r->calls[c];
-        assert_true(x->phase >= 0 && x->phase < RAPS_PHASE_COUNT);
-        if (c == 0 || r->calls[c - 1].phase != x->phase) {
-            assert_false(seen & (1u << x->phase));
-            assert_true(x->fraction == 0.0);
-            if (c > 0) assert_true(r->calls[c - 1].fraction == 1.0);
-            seen |= 1u << x->phase;
-        } else {
-            assert_true(x->fraction >= r->calls[c - 1].fraction && x->fraction <= 1.0);
-        }
-        ++calls[x->phase];
-    }
-    assert_true(r->calls[r->count - 1].fraction == 1.0);
-    for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {
-        if (!(seen & (1u << p))) continue;
-        print_message("phase %d: %d progress calls (at least %d)\n", p, calls[p], minimum);
-        if (calls[p] < minimum)
-            fail_msg("phase %d made %d progress calls for %zu triangles, fewer than %d", p,
-                     calls[p], triangles, minimum);
-    }
-}
-
 static void a_million_triangle_atlas_keeps_the_small_meshs_quality(void** state) {
     (void)state;
     test_mesh small = load_shared_mesh("lion.off");
@@ -107,7 +56,7 @@ static void a_million_triangle_atlas_keeps_the_small_meshs_quality(void** state)
     test_mesh mesh = subdivided_mesh(load_shared_mesh("lion.off"), 3, 0);
     const size_t triangles = mesh.index_count / 3;
     assert_int_equal(triangles, 1067136);
-    recorder progress = {NULL, 0, 0};
+    progress_record progress = {NULL, 0, 0, 0};
     double *uv_two = NULL, *uv_one = NULL;
     atlas two = run_atlas(&mesh, 2, &progress, &uv_two);
     print_message(
@@ -124,7 +73,8 @@ static void a_million_triangle_atlas_keeps_the_small_meshs_quality(void** state)
     assert_true(two.stats.stretch_linf <= 3.0);
     assert_true(two.stats.chart_count <= 2 * reference.stats.chart_count);
     assert_true(two.stats.utilization >= reference.stats.utilization - 0.05);
-    check_progress_follows_work(&progress, triangles);
+    int first[RAPS_PHASE_COUNT], calls[RAPS_PHASE_COUNT];
+    check_progress_follows_work("lion.off x64", &progress, triangles, first, calls);
     free(progress.calls);
 
     atlas one = run_atlas(&mesh, 1, NULL, &uv_one);

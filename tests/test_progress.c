@@ -15,41 +15,14 @@
 #include <cmocka.h>
 
 #include "raps.h"
+#include "support/progress_record.h"
 #include "support/test_meshes.h"
 
-/* Work per progress call a phase may not exceed, in triangles of the mesh (the library reports
- * every 8,192 items of a pass; a phase makes several passes). */
-enum { kTrianglesPerCall = 16384 };
-
-typedef struct call {
-    raps_phase phase;
-    double fraction;
-} call;
-
-/* Every call of a run, and the call at which to cancel (0: never). */
-typedef struct recorder {
-    call* calls;
-    int count, capacity, cancel_at;
-} recorder;
-
-static int32_t record(void* user, raps_phase phase, double fraction) {
-    recorder* r = user;
-    if (r->count == r->capacity) {
-        r->capacity = r->capacity ? 2 * r->capacity : 4096;
-        r->calls = realloc(r->calls, (size_t)r->capacity * sizeof(call));
-        assert_non_null(r->calls);
-    }
-    r->calls[r->count].phase = phase;
-    r->calls[r->count].fraction = fraction;
-    ++r->count;
-    return r->count != r->cancel_at;
-}
-
-static raps_status run(const test_mesh* mesh, raps_settings* s, recorder* r) {
+static raps_status run(const test_mesh* mesh, raps_settings* s, progress_record* r) {
     raps_mesh* m = to_raps_mesh(mesh);
     raps_result* result = NULL;
     assert_status(raps_result_create(&result), RAPS_OK);
-    assert_status(raps_settings_set_progress(s, record, r), RAPS_OK);
+    assert_status(raps_settings_set_progress(s, record_progress, r), RAPS_OK);
     const raps_status status = raps_parameterize(m, s, result);
     if (status == RAPS_ERROR_CANCELLED) {
         assert_int_equal(raps_result_vertex_count(result), 0);
@@ -63,43 +36,16 @@ static raps_status run(const test_mesh* mesh, raps_settings* s, recorder* r) {
  * 2 + triangles / kTrianglesPerCall of them; then a cancel at the middle call of each phase. */
 static void assert_progress_follows_work(const char* name, const test_mesh* mesh, raps_settings* s,
                                          unsigned expected_phases) {
-    const size_t triangles = mesh->index_count / 3;
-    const int minimum = 2 + (int)(triangles / kTrianglesPerCall);
-    recorder full = {NULL, 0, 0, 0};
+    progress_record full = {NULL, 0, 0, 0};
     assert_status(run(mesh, s, &full), RAPS_OK);
     int first[RAPS_PHASE_COUNT], calls[RAPS_PHASE_COUNT];
-    unsigned seen = 0;
-    for (int p = 0; p < RAPS_PHASE_COUNT; ++p) first[p] = calls[p] = 0;
-    for (int c = 0; c < full.count; ++c) {
-        const call* x = &full.calls[c];
-        assert_true(x->phase >= 0 && x->phase < RAPS_PHASE_COUNT);
-        assert_true(x->fraction >= 0.0 && x->fraction <= 1.0);
-        const int starts = c == 0 || full.calls[c - 1].phase != x->phase;
-        if (starts) {
-            /* A phase's calls are contiguous: it starts once, at 0, after the last one ended
-             * at 1. */
-            assert_false(seen & (1u << x->phase));
-            assert_true(x->fraction == 0.0);
-            if (c > 0) assert_true(full.calls[c - 1].fraction == 1.0);
-            seen |= 1u << x->phase;
-            first[x->phase] = c;
-        } else {
-            assert_true(x->fraction >= full.calls[c - 1].fraction);
-        }
-        ++calls[x->phase];
-    }
-    assert_true(full.calls[full.count - 1].fraction == 1.0);
+    const unsigned seen =
+        check_progress_follows_work(name, &full, mesh->index_count / 3, first, calls);
     assert_int_equal(seen, expected_phases);
     for (int p = 0; p < RAPS_PHASE_COUNT; ++p) {
         if (!(seen & (1u << p))) continue;
-        print_message("%s, %zu triangles: phase %d, %d calls (at least %d)\n", name, triangles, p,
-                      calls[p], minimum);
-        if (calls[p] < minimum) {
-            fail_msg("%s: phase %d made %d progress calls for %zu triangles, fewer than %d", name,
-                     p, calls[p], triangles, minimum);
-        }
         /* Cancelled at the middle call of the phase: that call is the run's last. */
-        recorder cancelled = {NULL, 0, 0, first[p] + calls[p] / 2 + 1};
+        progress_record cancelled = {NULL, 0, 0, first[p] + calls[p] / 2 + 1};
         assert_status(run(mesh, s, &cancelled), RAPS_ERROR_CANCELLED);
         assert_int_equal(cancelled.count, cancelled.cancel_at);
         assert_int_equal(cancelled.calls[cancelled.count - 1].phase, p);
